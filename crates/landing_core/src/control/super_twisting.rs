@@ -1,0 +1,117 @@
+//! Super-twisting guidance (seed 001, eq. 46; SPEC 5 law 7), the seed's baseline.
+//!
+//! `Printed` is eq. 46 with s = q - q_ref:
+//! ```text
+//! a = -(1/m) [ (B1/2) |s|^(-1/2) s' + B2 sgn(s) ] - g
+//! ```
+//! It is the time derivative of the super-twisting control `-B1 sig^(1/2)(s) - B2 int sgn(s)`,
+//! applied to the acceleration of a second-order plant. `|s|^(-1/2)` is singular at s = 0;
+//! `|s|` is floored at `s_floor` there. Where the seed cancels g, this cancels the plant's whole
+//! modelled acceleration (g plus the modelled drag), like the fixed-time law it is compared with.
+//!
+//! `Standard` is the textbook super-twisting algorithm on the sliding variable
+//! `sigma = s' + c s`, with its integral state w:
+//! ```text
+//! a = -drift + q_ref'' - c s' + (1/m) (-B1 sig^(1/2)(sigma) + w),   w' = -B2 sgn(sigma)
+//! ```
+//! The gains keep the seed's force units (divided by the inertia m, as in eq. 46), so the same
+//! B1, B2 drive both variants.
+
+use nalgebra::SVector;
+
+use super::{ControlLaw, LawInput};
+use crate::error::{ParamError, require, require_axes};
+use crate::math::sgn;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SuperTwistingVariant {
+    Printed,
+    Standard,
+}
+
+impl SuperTwistingVariant {
+    pub const NAMES: [&'static str; 2] = ["printed", "standard"];
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "printed" => Some(Self::Printed),
+            "standard" => Some(Self::Standard),
+            _ => None,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SuperTwisting<const D: usize> {
+    pub b1: SVector<f64, D>,
+    pub b2: SVector<f64, D>,
+    /// Slope of the sliding variable of the standard variant.
+    pub c: SVector<f64, D>,
+    pub variant: SuperTwistingVariant,
+    /// Floor on |s| in `|s|^(-1/2)` of the printed variant (the singularity guard).
+    pub s_floor: f64,
+}
+
+impl<const D: usize> SuperTwisting<D> {
+    /// The sliding variable the law drives to zero: s itself (printed) or s' + c s (standard).
+    #[inline(always)]
+    pub fn sigma(&self, input: &LawInput<D>) -> SVector<f64, D> {
+        match self.variant {
+            SuperTwistingVariant::Printed => input.e,
+            SuperTwistingVariant::Standard => input.de + self.c.component_mul(&input.e),
+        }
+    }
+}
+
+impl<const D: usize> ControlLaw<D> for SuperTwisting<D> {
+    /// The integral state w of the standard variant, in force units.
+    type Memory = SVector<f64, D>;
+    const DIAGNOSTICS: &'static [&'static str] = &["sigma", "w"];
+
+    fn start(&self, _input: &LawInput<D>) -> SVector<f64, D> {
+        SVector::zeros()
+    }
+
+    #[inline(always)]
+    fn command(&self, w: &SVector<f64, D>, input: &LawInput<D>) -> SVector<f64, D> {
+        let mut a = input.reference.acceleration - input.drift;
+        for i in 0..D {
+            let s = input.e[i];
+            let ds = input.de[i];
+            let m = input.inertia[i];
+            a[i] += match self.variant {
+                SuperTwistingVariant::Printed => {
+                    let root = s.abs().max(self.s_floor).sqrt();
+                    -(0.5 * self.b1[i] * ds / root + self.b2[i] * sgn(s)) / m
+                }
+                SuperTwistingVariant::Standard => {
+                    let sigma = ds + self.c[i] * s;
+                    -self.c[i] * ds + (-self.b1[i] * sgn(sigma) * sigma.abs().sqrt() + w[i]) / m
+                }
+            };
+        }
+        a
+    }
+
+    #[inline(always)]
+    fn advance(&self, w: &mut SVector<f64, D>, input: &LawInput<D>) {
+        if self.variant == SuperTwistingVariant::Standard {
+            let sigma = self.sigma(input);
+            for i in 0..D {
+                w[i] -= input.dt * self.b2[i] * sgn(sigma[i]);
+            }
+        }
+    }
+
+    fn diagnostics(&self, w: &SVector<f64, D>, input: &LawInput<D>, out: &mut [f64]) {
+        out[..D].copy_from_slice(self.sigma(input).as_slice());
+        out[D..2 * D].copy_from_slice(w.as_slice());
+    }
+
+    fn validate(&self) -> Result<(), ParamError> {
+        require_axes(self.b1.as_slice(), "b1", "b1 > 0", |v| v > 0.0)?;
+        require_axes(self.b2.as_slice(), "b2", "b2 > 0", |v| v > 0.0)?;
+        require_axes(self.c.as_slice(), "c", "c > 0", |v| v > 0.0)?;
+        require(self.s_floor > 0.0, "s_floor", self.s_floor, "s_floor > 0")
+    }
+}

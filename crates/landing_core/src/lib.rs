@@ -1,0 +1,24 @@
+//! `landing_core`: spacecraft landing and attitude control under sliding-mode and fuzzy laws.
+//!
+//! Pure Rust, no Python. One trait per concept: [`gravity::GravityField`], [`plant::Plant`],
+//! [`control::ControlLaw`], [`integrator::Integrator`]. A batch is dispatched once on its plant,
+//! law and integrator to a monomorphised rollout ([`rollout::rollout`]) that runs on fixed-size
+//! nalgebra types without heap allocation per step; [`batch::run`] runs the cases on rayon.
+//! The sampled-data semantics are those of SPEC section 2.
+
+pub mod batch;
+pub mod control;
+pub mod disturbance;
+pub mod error;
+pub mod gravity;
+pub mod integrator;
+pub mod math;
+pub mod plant;
+pub mod reference;
+pub mod rng;
+pub mod rollout;
+pub mod state;
+
+pub use batch::{Batch, BatchError, BatchOutput, PerCase};
+pub use error::ParamError;
+pub use rollout::{CaseMetrics, SimConfig, Touchdown};

@@ -1,0 +1,123 @@
+//! Reference trajectories the laws track (SPEC section 4).
+
+use nalgebra::SVector;
+
+use crate::error::{ParamError, require};
+
+/// Reference position, velocity and acceleration at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefPoint<const D: usize> {
+    pub position: SVector<f64, D>,
+    pub velocity: SVector<f64, D>,
+    pub acceleration: SVector<f64, D>,
+}
+
+/// A reference is chosen once per batch and evaluated per control instant. It is a small enum
+/// rather than a generic parameter: the branch is the same at every step (perfectly predicted),
+/// and a generic would multiply the number of monomorphised rollouts by the number of kinds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reference<const D: usize> {
+    /// A fixed target state: the law drives q to `position` and q' to `velocity` (SPEC 4:
+    /// seed 001 uses r_d = 0, v_d = 0).
+    Constant { position: SVector<f64, D>, velocity: SVector<f64, D> },
+    /// `p(t) = c0 + c1 t + c2 t^2 + c3 t^3` per axis on `[0, t_end]`; afterwards the end point is
+    /// held (zero velocity and acceleration).
+    Cubic { coefficients: [SVector<f64, D>; 4], t_end: f64 },
+}
+
+impl<const D: usize> Default for Reference<D> {
+    fn default() -> Self {
+        Self::Constant { position: SVector::zeros(), velocity: SVector::zeros() }
+    }
+}
+
+impl<const D: usize> Reference<D> {
+    /// The cubic through `p0, v0` at 0 and `pt, vt` at `t_end` (seeds 000 and 002).
+    pub fn cubic_from_boundary(
+        p0: SVector<f64, D>,
+        v0: SVector<f64, D>,
+        pt: SVector<f64, D>,
+        vt: SVector<f64, D>,
+        t_end: f64,
+    ) -> Result<Self, ParamError> {
+        require(t_end > 0.0, "T", t_end, "T > 0")?;
+        let t = t_end;
+        let c2 = (pt - p0) * (3.0 / (t * t)) - (v0 * 2.0 + vt) / t;
+        let c3 = (p0 - pt) * (2.0 / (t * t * t)) + (v0 + vt) / (t * t);
+        Ok(Self::Cubic { coefficients: [p0, v0, c2, c3], t_end })
+    }
+
+    #[inline]
+    pub fn at(&self, t: f64) -> RefPoint<D> {
+        match *self {
+            Self::Constant { position, velocity } => {
+                RefPoint { position, velocity, acceleration: SVector::zeros() }
+            }
+            Self::Cubic { coefficients: [c0, c1, c2, c3], t_end } => {
+                if t <= t_end {
+                    RefPoint {
+                        position: c0 + (c1 + (c2 + c3 * t) * t) * t,
+                        velocity: c1 + (c2 * 2.0 + c3 * (3.0 * t)) * t,
+                        acceleration: c2 * 2.0 + c3 * (6.0 * t),
+                    }
+                } else {
+                    let te = t_end;
+                    RefPoint {
+                        position: c0 + (c1 + (c2 + c3 * te) * te) * te,
+                        velocity: SVector::zeros(),
+                        acceleration: SVector::zeros(),
+                    }
+                }
+            }
+        }
+    }
+
+    pub fn validate(&self) -> Result<(), ParamError> {
+        match self {
+            Self::Constant { position, velocity } => {
+                for (i, v) in position.iter().enumerate() {
+                    require(true, "position", *v, "finite values").map_err(|e| e.on_axis(i))?;
+                }
+                for (i, v) in velocity.iter().enumerate() {
+                    require(true, "velocity", *v, "finite values").map_err(|e| e.on_axis(i))?;
+                }
+            }
+            Self::Cubic { coefficients, t_end } => {
+                require(*t_end > 0.0, "t_end", *t_end, "t_end > 0")?;
+                for c in coefficients {
+                    for (i, v) in c.iter().enumerate() {
+                        require(true, "coefficients", *v, "finite values").map_err(|e| e.on_axis(i))?;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    #[test]
+    fn cubic_meets_its_boundary_conditions() {
+        let p0 = Vector3::new(3200.0, 1300.0, 9000.0);
+        let v0 = Vector3::new(-1.2, 0.2, -1.0);
+        let pt = Vector3::new(2837.0, 928.1, 5708.0);
+        let vt = Vector3::zeros();
+        let r = Reference::cubic_from_boundary(p0, v0, pt, vt, 8000.0).unwrap();
+        let a = r.at(0.0);
+        let b = r.at(8000.0);
+        assert!((a.position - p0).norm() < 1e-9 && (a.velocity - v0).norm() < 1e-12);
+        assert!((b.position - pt).norm() < 1e-6 && (b.velocity - vt).norm() < 1e-9);
+        // the acceleration is the derivative of the velocity (central difference)
+        let h = 1e-3;
+        let t = 1234.5;
+        let fd = (r.at(t + h).velocity - r.at(t - h).velocity) / (2.0 * h);
+        assert!((fd - r.at(t).acceleration).norm() < 1e-9);
+        // past the end the end point is held
+        let c = r.at(9000.0);
+        assert!((c.position - pt).norm() < 1e-6 && c.velocity == Vector3::zeros());
+    }
+}

@@ -1,0 +1,328 @@
+//! One case, sampled-data (SPEC section 2).
+//!
+//! At each control instant t_k = k dt the law reads x_k and the reference at t_k; the command
+//! is actuated (scaled, saturated) and held over [t_k, t_k + dt); the law's memory is advanced;
+//! the random part of the disturbance is drawn for period k and held; the plant is advanced by
+//! `substeps` steps of the integrator, whose stages see the deterministic disturbance at their
+//! own times. No heap allocation happens inside the step loop.
+
+use std::cell::Cell;
+
+use nalgebra::SVector;
+
+use crate::control::{ControlLaw, LawInput};
+use crate::disturbance::{Disturbance, disturbance_stream};
+use crate::error::ParamError;
+use crate::integrator::Integrator;
+use crate::plant::Plant;
+use crate::reference::Reference;
+use crate::state::State;
+
+/// Horizon, step and recording of a batch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SimConfig {
+    /// Control period.
+    pub dt: f64,
+    /// Number of control periods K; t_final = K dt.
+    pub steps: u64,
+    /// Integrator steps per control period.
+    pub substeps: u32,
+    /// Keep every k-th control instant (and always the first and the last); 0 keeps none.
+    pub record_every: u64,
+    /// Seed of the counter-based random streams.
+    pub seed: u64,
+    /// Global index of the batch's first case: case i draws from the streams of case
+    /// `first_case + i`, so a slice of a campaign can be re-run alone with the same numbers.
+    pub first_case: u64,
+}
+
+/// Largest number of control periods a batch may ask for (keeps k dt exact in f64 terms of
+/// the integer counter and guards against an accidental t_final / dt of 1e15).
+pub const MAX_STEPS: u64 = 1 << 40;
+
+impl SimConfig {
+    /// Checks the horizon: t_final must be a whole number of control periods (to 1e-9
+    /// relative), because the zero-order hold has no partial period.
+    pub fn new(
+        t_final: f64,
+        dt: f64,
+        substeps: u32,
+        record_every: u64,
+        seed: u64,
+    ) -> Result<Self, ParamError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(ParamError::new("dt", dt, "dt > 0 and finite"));
+        }
+        if !(t_final.is_finite() && t_final > 0.0) {
+            return Err(ParamError::new("t_final", t_final, "t_final > 0 and finite"));
+        }
+        let ratio = t_final / dt;
+        if ratio < 1.0 - 1e-9 {
+            return Err(ParamError::new("t_final", t_final, "t_final >= dt"));
+        }
+        let steps = ratio.round();
+        if (ratio - steps).abs() > 1e-9 * steps.max(1.0) {
+            return Err(ParamError::new("t_final", t_final, "t_final an integer multiple of dt"));
+        }
+        if steps > MAX_STEPS as f64 {
+            return Err(ParamError::new("t_final", t_final, "t_final / dt <= 2^40"));
+        }
+        if substeps == 0 {
+            return Err(ParamError::new("substeps", 0.0, "substeps >= 1"));
+        }
+        Ok(Self { dt, steps: steps as u64, substeps, record_every, seed, first_case: 0 })
+    }
+
+    /// The same configuration with the batch's cases numbered from `first_case`.
+    pub fn with_first_case(mut self, first_case: u64) -> Self {
+        self.first_case = first_case;
+        self
+    }
+
+    pub fn t_final(&self) -> f64 {
+        self.steps as f64 * self.dt
+    }
+
+    /// Number of recorded instants.
+    pub fn n_records(&self) -> usize {
+        match self.record_every {
+            0 => 0,
+            e => (self.steps / e + 1 + u64::from(self.steps % e != 0)) as usize,
+        }
+    }
+
+    /// The recorded control instants, in seconds.
+    pub fn record_times(&self) -> Vec<f64> {
+        let mut t = Vec::with_capacity(self.n_records());
+        if self.record_every > 0 {
+            let mut k = 0;
+            while k < self.steps {
+                t.push(k as f64 * self.dt);
+                k += self.record_every;
+            }
+            t.push(self.t_final());
+        }
+        t
+    }
+}
+
+/// First crossing of the landing surface (altitude from positive to non-positive),
+/// interpolated linearly within the integrator step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Touchdown<const D: usize> {
+    pub time: f64,
+    pub position: SVector<f64, D>,
+    pub velocity: SVector<f64, D>,
+}
+
+/// Per-case figures of merit, accumulated during the rollout.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CaseMetrics<const D: usize> {
+    /// e(t_final) = q - q_ref; NaN if the case diverged.
+    pub final_error: SVector<f64, D>,
+    /// e'(t_final); NaN if the case diverged.
+    pub final_rate_error: SVector<f64, D>,
+    /// m(0) - m(t_final) for plants with mass, else NaN.
+    pub fuel_used: f64,
+    /// max over applied commands of |u| (Euclidean).
+    pub peak_command: f64,
+    /// max over applied commands of |u_i|, per axis.
+    pub peak_command_axis: SVector<f64, D>,
+    /// integral of |u| dt over the applied commands.
+    pub control_effort: f64,
+    pub touchdown: Option<Touchdown<D>>,
+    /// Time at which the state (or the command) stopped being admissible.
+    pub diverged_at: Option<f64>,
+}
+
+impl<const D: usize> CaseMetrics<D> {
+    fn new() -> Self {
+        Self {
+            final_error: SVector::repeat(f64::NAN),
+            final_rate_error: SVector::repeat(f64::NAN),
+            fuel_used: f64::NAN,
+            peak_command: 0.0,
+            peak_command_axis: SVector::zeros(),
+            control_effort: 0.0,
+            touchdown: None,
+            diverged_at: None,
+        }
+    }
+
+    #[inline(always)]
+    fn add_command(&mut self, u: &SVector<f64, D>, dt: f64) {
+        let norm = u.norm();
+        self.peak_command = self.peak_command.max(norm);
+        self.peak_command_axis = self.peak_command_axis.sup(&u.abs());
+        self.control_effort += norm * dt;
+    }
+}
+
+/// Where one case writes its recording; the slices are empty when nothing is recorded.
+pub struct CaseBuffers<'a> {
+    /// n_records x state dim.
+    pub states: &'a mut [f64],
+    /// n_records x D.
+    pub controls: &'a mut [f64],
+    /// n_records x (number of diagnostics x D).
+    pub diagnostics: &'a mut [f64],
+    /// state dim.
+    pub final_state: &'a mut [f64],
+}
+
+/// Builds what the law sees at (t, x).
+#[inline(always)]
+fn law_input<const D: usize, P: Plant<D>>(
+    plant: &P,
+    reference: &Reference<D>,
+    t: f64,
+    dt: f64,
+    x: &P::State,
+) -> LawInput<D> {
+    let (q, qd) = plant.coordinates(x);
+    let r = reference.at(t);
+    LawInput {
+        t,
+        dt,
+        e: q - r.position,
+        de: qd - r.velocity,
+        reference: r,
+        drift: plant.modelled_acceleration(t, x),
+        inertia: plant.inertia(x),
+    }
+}
+
+/// Writes record `slot`.
+#[inline(always)]
+fn record<const D: usize, S: State, L: ControlLaw<D>>(
+    out: &mut CaseBuffers<'_>,
+    slot: usize,
+    x: &S,
+    u: &SVector<f64, D>,
+    law: &L,
+    memory: &L::Memory,
+    input: &LawInput<D>,
+) {
+    let nx = S::DIM;
+    let nd = L::DIAGNOSTICS.len() * D;
+    out.states[slot * nx..(slot + 1) * nx].copy_from_slice(x.as_slice());
+    out.controls[slot * D..(slot + 1) * D].copy_from_slice(u.as_slice());
+    law.diagnostics(memory, input, &mut out.diagnostics[slot * nd..(slot + 1) * nd]);
+}
+
+/// Simulates one case and returns its metrics; the recording goes into `out`. `case` is the
+/// global case index that keys the random streams.
+#[allow(clippy::too_many_arguments)]
+pub fn rollout<const D: usize, P, L, I>(
+    plant: &P,
+    law: &L,
+    integrator: I,
+    x0: &P::State,
+    reference: &Reference<D>,
+    disturbance: &Disturbance<D>,
+    cfg: &SimConfig,
+    case: u64,
+    mut out: CaseBuffers<'_>,
+) -> CaseMetrics<D>
+where
+    P: Plant<D>,
+    L: ControlLaw<D>,
+    I: Integrator,
+{
+    let recording = cfg.record_every > 0;
+    let rng = disturbance_stream(cfg.seed, case);
+    let h = cfg.dt / f64::from(cfg.substeps);
+    let mut metrics = CaseMetrics::new();
+
+    let mut x = *x0;
+    let m0 = plant.mass(&x);
+    let mut input = law_input(plant, reference, 0.0, cfg.dt, &x);
+    let mut memory = law.start(&input);
+    let mut slot = 0usize;
+    let mut next_record = 0u64;
+
+    'periods: for k in 0..cfg.steps {
+        let t = k as f64 * cfg.dt;
+        let u = plant.actuate(&x, &law.command(&memory, &input));
+        if !u.iter().all(|v| v.is_finite()) {
+            metrics.diverged_at = Some(t);
+            break;
+        }
+        if recording && k == next_record {
+            record(&mut out, slot, &x, &u, law, &memory, &input);
+            slot += 1;
+            next_record += cfg.record_every;
+        }
+        metrics.add_command(&u, cfg.dt);
+
+        let held = disturbance.draw(&rng, k);
+        law.advance(&mut memory, &input);
+        // RK4's two middle stages share a time: remember the last disturbance evaluated
+        // (a pure function of time, so this changes no result).
+        let last = Cell::new((f64::NAN, SVector::<f64, D>::zeros()));
+        let f = |tau: f64, y: &P::State| {
+            let (t_last, d_last) = last.get();
+            let d = if tau == t_last {
+                d_last
+            } else {
+                let d = disturbance.at(tau, &held);
+                last.set((tau, d));
+                d
+            };
+            plant.derivative(tau, y, &u, &d)
+        };
+        for j in 0..cfg.substeps {
+            let tj = t + f64::from(j) * h;
+            let next = integrator.step(&f, tj, &x, h);
+            if metrics.touchdown.is_none() {
+                if let (Some(z0), Some(z1)) = (plant.altitude(&x), plant.altitude(&next)) {
+                    if z0 > 0.0 && z1 <= 0.0 {
+                        let w = z0 / (z0 - z1);
+                        let (q0, v0) = plant.coordinates(&x);
+                        let (q1, v1) = plant.coordinates(&next);
+                        metrics.touchdown = Some(Touchdown {
+                            time: tj + w * h,
+                            position: q0 + (q1 - q0) * w,
+                            velocity: v0 + (v1 - v0) * w,
+                        });
+                    }
+                }
+            }
+            x = next;
+            if !plant.admissible(&x) {
+                metrics.diverged_at = Some(tj + h);
+                break 'periods;
+            }
+        }
+        input = law_input(plant, reference, (k + 1) as f64 * cfg.dt, cfg.dt, &x);
+    }
+
+    if metrics.diverged_at.is_none() {
+        // The command at t_final is recorded (it is what would be held next) but not applied.
+        let u = plant.actuate(&x, &law.command(&memory, &input));
+        if u.iter().all(|v| v.is_finite()) {
+            if recording {
+                record(&mut out, slot, &x, &u, law, &memory, &input);
+                slot += 1;
+            }
+            out.final_state.copy_from_slice(x.as_slice());
+            metrics.final_error = input.e;
+            metrics.final_rate_error = input.de;
+            if let (Some(m0), Some(m)) = (m0, plant.mass(&x)) {
+                metrics.fuel_used = m0 - m;
+            }
+        } else {
+            metrics.diverged_at = Some(cfg.t_final());
+        }
+    }
+    if metrics.diverged_at.is_some() {
+        // A diverged case reads NaN from its divergence on, and is flagged in its metrics.
+        let nx = P::State::DIM;
+        let nd = L::DIAGNOSTICS.len() * D;
+        out.states[slot * nx..].fill(f64::NAN);
+        out.controls[slot * D..].fill(f64::NAN);
+        out.diagnostics[slot * nd..].fill(f64::NAN);
+        out.final_state.fill(f64::NAN);
+    }
+    metrics
+}

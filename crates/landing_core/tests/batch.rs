@@ -1,0 +1,161 @@
+//! Batch semantics: independence of cases, determinism across thread counts, recording.
+
+mod common;
+
+use common::*;
+use landing_core::batch::{Batch, PerCase, run_with_threads};
+use landing_core::control::{FixedTimeMss, MssVariant};
+use landing_core::disturbance::{Disturbance, Sinusoid};
+use landing_core::integrator::Rk4;
+use landing_core::plant::MarsLander;
+use landing_core::reference::Reference;
+use landing_core::rng::{CaseStream, streams};
+use landing_core::SimConfig;
+use nalgebra::Vector3;
+
+fn dispersed(n: usize) -> Vec<MarsState> {
+    (0..n)
+        .map(|i| {
+            let z = CaseStream::new(42, streams::DISPERSION, i as u64);
+            let mut w = [0.0; 8];
+            z.fill_normals(0, &mut w);
+            mars_state(
+                [-2000.0 + 100.0 * w[0], 1000.0 + 100.0 * w[1], 1500.0 + 100.0 * w[2]],
+                [100.0 + 10.0 * w[3], -15.0 + 10.0 * w[4], -75.0 + 10.0 * w[5]],
+                1905.0 + 20.0 * w[6],
+            )
+        })
+        .collect()
+}
+
+fn noisy() -> Disturbance<3> {
+    Disturbance::none()
+        .with_sinusoid(Sinusoid {
+            amplitude: Vector3::repeat(20.0),
+            omega: Vector3::repeat(1.0),
+            phase: Vector3::zeros(),
+        })
+        .unwrap()
+        .with_noise(Vector3::repeat(0.5))
+}
+
+fn batch(x0: Vec<MarsState>, laws: PerCase<FixedTimeMss<3>>) -> Batch<3, MarsLander, FixedTimeMss<3>> {
+    Batch {
+        plants: PerCase::shared(MarsLander { thrust_limit: Vector3::repeat(50_000.0), ..Default::default() }),
+        laws,
+        references: PerCase::shared(Reference::default()),
+        disturbances: PerCase::shared(noisy()),
+        x0,
+    }
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let b = batch(dispersed(37), PerCase::shared(spec_gains(MssVariant::Printed)));
+    let cfg = SimConfig::new(2.0, 0.001, 2, 50, 9).unwrap();
+    let one = run_with_threads(&b, Rk4, &cfg, Some(1)).unwrap();
+    let two = run_with_threads(&b, Rk4, &cfg, Some(2)).unwrap();
+    let five = run_with_threads(&b, Rk4, &cfg, Some(5)).unwrap();
+    for other in [&two, &five] {
+        assert_eq!(bits(&one.states), bits(&other.states));
+        assert_eq!(bits(&one.controls), bits(&other.controls));
+        assert_eq!(bits(&one.final_state), bits(&other.final_state));
+        assert_eq!(one.metrics, other.metrics);
+    }
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+#[test]
+fn a_case_is_the_same_alone_or_in_a_batch() {
+    // per-case gains: each case of the batch equals its own single-case run
+    let x0 = dispersed(6);
+    let laws: Vec<_> = (0..6)
+        .map(|i| FixedTimeMss { alpha1: Vector3::repeat(0.5 + 0.1 * i as f64), ..spec_gains(MssVariant::Printed) })
+        .collect();
+    let cfg = SimConfig::new(1.0, 0.001, 1, 100, 3).unwrap();
+    let all = run_with_threads(&batch(x0.clone(), PerCase::from_vec(laws.clone())), Rk4, &cfg, Some(2)).unwrap();
+    for i in 0..6 {
+        // alone, the case keeps its global index (and so its random streams)
+        let alone_cfg = cfg.with_first_case(i as u64);
+        let alone = run_with_threads(&batch(vec![x0[i]], PerCase::shared(laws[i])), Rk4, &alone_cfg, Some(1)).unwrap();
+        assert_eq!(bits(&all.final_state[i * 7..(i + 1) * 7]), bits(&alone.final_state));
+        let nr = all.n_records();
+        assert_eq!(bits(&all.states[i * nr * 7..(i + 1) * nr * 7]), bits(&alone.states));
+    }
+    // and the gains did make a difference
+    assert_ne!(bits(&all.final_state[0..7]), bits(&all.final_state[7..14]));
+}
+
+#[test]
+fn chunks_of_a_campaign_reproduce_it() {
+    let x0 = dispersed(10);
+    let cfg = SimConfig::new(0.5, 0.001, 1, 0, 5).unwrap();
+    let whole = run_with_threads(&batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed))), Rk4, &cfg, None).unwrap();
+    let mut pieces = Vec::new();
+    for (start, end) in [(0, 3), (3, 4), (4, 10)] {
+        let part = batch(x0[start..end].to_vec(), PerCase::shared(spec_gains(MssVariant::Printed)));
+        pieces.extend(run_with_threads(&part, Rk4, &cfg.with_first_case(start as u64), Some(1)).unwrap().final_state);
+    }
+    assert_eq!(bits(&whole.final_state), bits(&pieces));
+    // and the noise matters: numbering the pieces from 0 changes them
+    let wrong = run_with_threads(&batch(x0[3..4].to_vec(), PerCase::shared(spec_gains(MssVariant::Printed))), Rk4, &cfg, None).unwrap();
+    assert_ne!(bits(&wrong.final_state), bits(&whole.final_state[21..28]));
+}
+
+#[test]
+fn a_diverging_case_is_flagged_and_spoils_nothing() {
+    // Case 2 starts 1e200 m away with an unlimited engine: the command overflows to infinity
+    // within a few steps. The others have the 50 kN limit.
+    let mut x0 = dispersed(4);
+    x0[2] = mars_state([1e200, 0.0, 1500.0], [0.0, 0.0, 0.0], 1905.0);
+    let mut b = batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed)));
+    let limited = *b.plants.get(0);
+    let mut plants = vec![limited; 4];
+    plants[2] = MarsLander::default();
+    b.plants = PerCase::from_vec(plants);
+    let cfg = SimConfig::new(1.0, 0.01, 1, 10, 0).unwrap();
+    let out = run_with_threads(&b, Rk4, &cfg, Some(2)).unwrap();
+    let flags: Vec<bool> = out.metrics.iter().map(|m| m.diverged_at.is_some()).collect();
+    assert_eq!(flags, [false, false, true, false]);
+    assert!(out.final_state[14..21].iter().all(|v| v.is_nan()));
+    assert!(out.metrics[2].final_error.iter().all(|v| v.is_nan()));
+    // the healthy cases equal a batch without the bad one
+    let mut clean = x0.clone();
+    clean[2] = x0[0];
+    let ref_out = run_with_threads(&batch(clean, PerCase::shared(spec_gains(MssVariant::Printed))), Rk4, &cfg, Some(1)).unwrap();
+    for i in [0usize, 1, 3] {
+        assert_eq!(bits(&out.final_state[i * 7..(i + 1) * 7]), bits(&ref_out.final_state[i * 7..(i + 1) * 7]));
+        assert!(out.final_state[i * 7..(i + 1) * 7].iter().all(|v| v.is_finite()));
+    }
+}
+
+#[test]
+fn recording_keeps_every_kth_instant_and_the_last() {
+    let b = batch(dispersed(2), PerCase::shared(spec_gains(MssVariant::Printed)));
+    let cfg = SimConfig::new(1.0, 0.1, 1, 3, 0).unwrap();
+    assert_eq!(cfg.record_times(), vec![0.0, 0.30000000000000004, 0.6000000000000001, 0.9, 1.0]);
+    let out = run_with_threads(&b, Rk4, &cfg, None).unwrap();
+    assert_eq!(out.n_records(), 5);
+    // first record is x0, last equals the final state
+    assert_eq!(&out.states[0..7], b.x0[0].as_slice());
+    let nr = out.n_records();
+    assert_eq!(&out.states[(nr - 1) * 7..nr * 7], &out.final_state[0..7]);
+    // record_every = 0 keeps the final states and metrics only
+    let cfg0 = SimConfig::new(1.0, 0.1, 1, 0, 0).unwrap();
+    let out0 = run_with_threads(&b, Rk4, &cfg0, None).unwrap();
+    assert!(out0.states.is_empty() && out0.times.is_empty());
+    assert_eq!(bits(&out0.final_state), bits(&out.final_state));
+}
+
+#[test]
+fn horizon_must_be_whole_periods() {
+    assert!(SimConfig::new(1.0, 0.3, 1, 1, 0).is_err());
+    assert!(SimConfig::new(8000.0, 0.01, 1, 1, 0).is_ok());
+    assert_eq!(SimConfig::new(8000.0, 0.01, 1, 1, 0).unwrap().steps, 800_000);
+    assert_eq!(SimConfig::new(-1.0, 0.1, 1, 1, 0).unwrap_err().param, "t_final");
+    assert_eq!(SimConfig::new(1.0, 0.0, 1, 1, 0).unwrap_err().param, "dt");
+    assert_eq!(SimConfig::new(1.0, 0.1, 0, 1, 0).unwrap_err().param, "substeps");
+}

@@ -1,0 +1,68 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use landing_core::batch::{Batch, BatchOutput, PerCase, run};
+use landing_core::control::{ControlLaw, FixedTimeMss, MssVariant};
+use landing_core::disturbance::Disturbance;
+use landing_core::integrator::Integrator;
+use landing_core::plant::{MarsLander, Plant};
+use landing_core::reference::Reference;
+use landing_core::SimConfig;
+use nalgebra::{SVector, Vector3};
+
+pub type MarsState = SVector<f64, 7>;
+
+pub fn mars_state(r: [f64; 3], v: [f64; 3], m: f64) -> MarsState {
+    MarsState::from([r[0], r[1], r[2], v[0], v[1], v[2], m])
+}
+
+/// The seed-001 nominal initial state (Table I).
+pub fn nominal() -> MarsState {
+    mars_state([-2000.0, 1000.0, 1500.0], [100.0, -15.0, -75.0], 1905.0)
+}
+
+/// The reconstructed gains of SPEC section 6.
+pub fn spec_gains(variant: MssVariant) -> FixedTimeMss<3> {
+    FixedTimeMss {
+        beta1: Vector3::repeat(0.8),
+        beta2: Vector3::repeat(0.4),
+        q1: Vector3::repeat(0.95),
+        q2: Vector3::repeat(1.05),
+        alpha1: Vector3::repeat(0.9),
+        alpha2: Vector3::repeat(0.5),
+        gamma1: Vector3::repeat(0.9),
+        gamma2: Vector3::repeat(1.1),
+        variant,
+        s1_floor: 1e-3,
+    }
+}
+
+pub fn run_one<L: ControlLaw<3>, I: Integrator>(
+    plant: MarsLander,
+    law: L,
+    integrator: I,
+    x0: MarsState,
+    disturbance: Disturbance<3>,
+    cfg: &SimConfig,
+) -> BatchOutput<3> {
+    let batch = Batch {
+        plants: PerCase::shared(plant),
+        laws: PerCase::shared(law),
+        references: PerCase::shared(Reference::default()),
+        disturbances: PerCase::shared(disturbance),
+        x0: vec![x0],
+    };
+    run(&batch, integrator, cfg).expect("batch runs")
+}
+
+pub fn no_drag() -> MarsLander {
+    MarsLander { drag: false, ..Default::default() }
+}
+
+pub fn final_state(out: &BatchOutput<3>, case: usize) -> MarsState {
+    MarsState::from_column_slice(&out.final_state[case * 7..(case + 1) * 7])
+}
+
+pub fn check_plant_ok<P: Plant<3>>(p: &P) {
+    p.validate().expect("valid plant");
+}

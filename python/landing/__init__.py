@@ -1,0 +1,40 @@
+"""landing: spacecraft landing and attitude control under sliding-mode and fuzzy laws.
+
+A Rust core simulates one case or a million in parallel; this package configures plants,
+laws, references and disturbances, runs batches and reads the results.
+
+>>> import landing
+>>> plant = landing.plants.MarsLander()
+>>> law = landing.controllers.SuperTwisting()
+>>> x0 = plant.initial_state([-2000, 1000, 1500], [100, -15, -75], 1905)
+>>> res = landing.simulate(plant, law, x0, t_final=10.0, dt=0.01)
+"""
+
+from landing._core import __version__
+from landing import controllers, disturbances, errors, plants, reference
+from landing.errors import (
+    DivergenceWarning,
+    LandingError,
+    ParameterError,
+    ParameterTypeError,
+    SimulationError,
+)
+from landing.simulation import Metrics, SimulationResult, simulate, simulate_batch
+
+__all__ = [
+    "__version__",
+    "controllers",
+    "disturbances",
+    "errors",
+    "plants",
+    "reference",
+    "simulate",
+    "simulate_batch",
+    "Metrics",
+    "SimulationResult",
+    "LandingError",
+    "ParameterError",
+    "ParameterTypeError",
+    "SimulationError",
+    "DivergenceWarning",
+]

@@ -1,0 +1,97 @@
+"""Lumped unknown disturbances: generalized accelerations the laws do not see (SPEC 3.1).
+
+Components add up: pass a list (``disturbance=[Constant(...), Sinusoid(...)]``) or write
+``Constant(...) + Sinusoid(...)``. Deterministic parts are evaluated at every integrator stage;
+random parts are drawn once per control period from the case's own counter-based stream, so a
+case's noise does not depend on the thread count or the batch it runs in.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, Iterable, Sequence, Union
+
+from landing import _core
+from landing._table import ArrayLike, Table
+
+__all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "Sum", "as_table"]
+
+
+class Disturbance(Table):
+    """Base class of the disturbance components."""
+
+    def __post_init__(self) -> None:
+        _core.check_signal(type(self).__name__, "disturbance", {"components": [self._table()]})
+
+    def __add__(self, other: "Disturbance") -> "Sum":
+        return Sum([self]) + other
+
+    def components(self) -> list["Disturbance"]:
+        return [self]
+
+
+@dataclass(eq=False)
+class Constant(Disturbance):
+    """A constant acceleration per axis."""
+
+    value: ArrayLike
+
+    kind: ClassVar[str] = "constant"
+
+
+@dataclass(eq=False)
+class Sinusoid(Disturbance):
+    """``amplitude sin(omega t + phase)`` per axis (seed 001 eq. 47: 20 sin t on every axis)."""
+
+    amplitude: ArrayLike
+    omega: ArrayLike
+    phase: ArrayLike = 0.0
+
+    kind: ClassVar[str] = "sinusoid"
+
+
+@dataclass(eq=False)
+class UniformNoise(Disturbance):
+    """Uniform on ``[-bound, bound]`` per axis, drawn once per control period and held."""
+
+    bound: ArrayLike
+
+    kind: ClassVar[str] = "uniform_noise"
+
+
+class Sum(Disturbance):
+    """Several components acting together."""
+
+    def __init__(self, parts: Iterable[Disturbance]):
+        self.parts: list[Disturbance] = []
+        for p in parts:
+            self.parts.extend(p.components())
+
+    def components(self) -> list[Disturbance]:
+        return list(self.parts)
+
+    def __add__(self, other: Disturbance) -> "Sum":
+        return Sum(self.parts + other.components())
+
+    def __repr__(self) -> str:
+        return " + ".join(repr(p) for p in self.parts) or "Sum([])"
+
+
+DisturbanceLike = Union[Disturbance, Sequence[Disturbance], None]
+
+
+def as_table(disturbance: DisturbanceLike) -> Union[dict[str, Any], None]:
+    """The core table of a disturbance, a list of them, or None."""
+    from landing.errors import ParameterTypeError
+
+    if disturbance is None:
+        return None
+    items = [disturbance] if isinstance(disturbance, Disturbance) else list(disturbance)
+    parts: list[Disturbance] = []
+    for item in items:
+        if not isinstance(item, Disturbance):
+            raise ParameterTypeError(
+                f"disturbance must be a landing.disturbances component or a list of them, got {item!r}"
+            )
+        parts.extend(item.components())
+    return {"components": [p._table() for p in parts]}

@@ -1,0 +1,41 @@
+"""The exceptions and warnings `landing` raises on purpose.
+
+Every error about an input is a :class:`ParameterError` (a ``ValueError``) or a
+:class:`ParameterTypeError` (a ``TypeError``); both are :class:`LandingError`, so one ``except``
+catches everything the library raises deliberately. The message names the argument, the value
+and the rule it breaks.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "LandingError",
+    "ParameterError",
+    "ParameterTypeError",
+    "SimulationError",
+    "DivergenceWarning",
+]
+
+
+class LandingError(Exception):
+    """Base class of the library's errors."""
+
+
+class ParameterError(LandingError, ValueError):
+    """An argument has a valid type but a value or shape the model does not accept."""
+
+
+class ParameterTypeError(LandingError, TypeError):
+    """An argument has the wrong type."""
+
+
+class SimulationError(LandingError, RuntimeError):
+    """The simulation could not run (thread pool, internal error)."""
+
+
+class DivergenceWarning(RuntimeWarning):
+    """Some cases of a batch left the model's domain (non-finite state, no mass left).
+
+    They are stopped and flagged in ``metrics["diverged"]``; their recorded states are NaN
+    from the divergence on. The other cases are unaffected.
+    """

@@ -1,0 +1,88 @@
+"""Plants: the dynamics a batch integrates (SPEC section 3).
+
+A plant holds physical parameters only; any numeric parameter may be given per case (an array
+with one entry per case of the batch, or ``(N, 3)`` for per-axis ones).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar, Optional
+
+import numpy as np
+
+from landing import _core
+from landing._table import ArrayLike, Table
+
+__all__ = ["Plant", "MarsLander"]
+
+
+class Plant(Table):
+    """Base class of the plants."""
+
+    def __post_init__(self) -> None:
+        _core.check_plant(type(self).__name__, self._table())
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return tuple(_core.plant_info(self.kind)["state_names"])
+
+    @property
+    def control_names(self) -> tuple[str, ...]:
+        return tuple(_core.plant_info(self.kind)["control_names"])
+
+    @property
+    def axes(self) -> int:
+        """Number of generalized coordinates (and of command components)."""
+        return int(_core.plant_info(self.kind)["axes"])
+
+    @property
+    def state_dim(self) -> int:
+        return len(self.state_names)
+
+
+@dataclass(eq=False)
+class MarsLander(Plant):
+    """Mars powered descent (seed 001, SPEC 3.1).
+
+    State ``[rx, ry, rz, vx, vy, vz, m]`` in an inertial frame at the target, z up; the
+    command is the engine force ``F = m a`` (N), clipped per axis to ``thrust_limit``.
+
+    ``r' = v``, ``v' = F/m + g + a_drag + a_p(t)``, ``m' = -|F| / (isp g0)``, with
+    ``a_drag_i = -drag_coefficient v_i |v_i| exp(-density_decay rz) / (area_i m)``.
+
+    Parameters
+    ----------
+    isp : specific impulse, s (225 s, Acikmese and Ploen 2007, the seed's reference [1]).
+    area : effective cross-sections perpendicular to x, y, z, m^2 (seed Table I).
+    gravity : Mars surface gravity, m/s^2 (acts along -z).
+    drag : whether the plant has drag (the guidance then models it).
+    thrust_limit : per-axis limit on |F_i|, N; ``None`` for unlimited (seed part 3: 50 kN).
+    drag_coefficient : k_d of seed eq. 12, kg/m.
+    density_decay : h_d of seed eq. 12, 1/m (the seed's 0.0009; the Mars-atmosphere model it
+        cites uses 0.00009).
+    g0 : standard gravity in the rocket equation, m/s^2.
+    """
+
+    isp: ArrayLike = 225.0
+    area: ArrayLike = (6.0, 7.5, 8.7)
+    gravity: ArrayLike = 3.7114
+    drag: bool = True
+    thrust_limit: Optional[ArrayLike] = None
+    drag_coefficient: ArrayLike = 0.699
+    density_decay: ArrayLike = 0.0009
+    g0: ArrayLike = 9.807
+
+    kind: ClassVar[str] = "mars_lander"
+
+    @staticmethod
+    def initial_state(position: ArrayLike, velocity: ArrayLike, mass: ArrayLike) -> np.ndarray:
+        """Stack positions ``(..., 3)``, velocities ``(..., 3)`` and masses ``(...)`` into states ``(..., 7)``."""
+        r = np.asarray(position, dtype=np.float64)
+        v = np.asarray(velocity, dtype=np.float64)
+        m = np.asarray(mass, dtype=np.float64)
+        shape = np.broadcast_shapes(r.shape[:-1], v.shape[:-1], m.shape)
+        return np.concatenate(
+            [np.broadcast_to(r, shape + (3,)), np.broadcast_to(v, shape + (3,)), np.broadcast_to(m, shape)[..., None]],
+            axis=-1,
+        )

@@ -1,0 +1,76 @@
+"""Reference trajectories the laws track (SPEC section 4)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from landing import _core
+from landing._table import ArrayLike, Table, as_float_array
+
+__all__ = ["Reference", "Constant", "Cubic"]
+
+
+class Reference(Table):
+    """Base class of the references."""
+
+    def __post_init__(self) -> None:
+        _core.check_signal(type(self).__name__, "reference", self._table())
+
+    def evaluate(self, t: ArrayLike, axes: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity and acceleration at times ``t``, each ``(len(t), axes)``
+        (``(axes,)`` for a scalar t), computed by the core."""
+        tt = as_float_array(type(self).__name__, "t", t)
+        out = _core.evaluate_reference(self._table(), axes, tt.ravel().tolist())
+        res = tuple(out[k] for k in ("position", "velocity", "acceleration"))
+        if tt.ndim == 0:
+            return tuple(a[0] for a in res)  # type: ignore[return-value]
+        return res  # type: ignore[return-value]
+
+
+@dataclass(eq=False)
+class Constant(Reference):
+    """A fixed target state: position (default the origin) and velocity (default zero)."""
+
+    position: ArrayLike = 0.0
+    velocity: ArrayLike = 0.0
+
+    kind: ClassVar[str] = "constant"
+
+
+@dataclass(eq=False)
+class Cubic(Reference):
+    """``p(t) = c0 + c1 t + c2 t^2 + c3 t^3`` per axis on ``[0, t_end]``, then the end point held.
+
+    ``coefficients`` has shape ``(axes, 4)`` (columns c0..c3), or ``(N, axes, 4)`` per case.
+    """
+
+    coefficients: ArrayLike
+    t_end: ArrayLike
+
+    kind: ClassVar[str] = "cubic"
+
+    @classmethod
+    def from_boundary(
+        cls, p0: ArrayLike, v0: ArrayLike, pT: ArrayLike, vT: ArrayLike, T: float
+    ) -> "Cubic":
+        """The cubic through position and velocity ``p0, v0`` at 0 and ``pT, vT`` at ``T``."""
+        args = [as_float_array(cls.__name__, n, v).ravel().tolist() for n, v in
+                (("p0", p0), ("v0", v0), ("pT", pT), ("vT", vT))]
+        c = _core.cubic_from_boundary(*args, float(T))
+        return cls(coefficients=np.array(c).T, t_end=float(T))
+
+    def _table(self) -> dict[str, Any]:
+        c = as_float_array(type(self).__name__, "coefficients", self.coefficients)
+        if c.ndim not in (2, 3) or c.shape[-1] != 4:
+            from landing.errors import ParameterError
+
+            raise ParameterError(
+                f"Cubic: coefficients has shape {c.shape}; it takes (axes, 4) or (N, axes, 4)"
+            )
+        table: dict[str, Any] = {"kind": self.kind, "t_end": as_float_array("Cubic", "t_end", self.t_end)}
+        for j in range(4):
+            table[f"c{j}"] = np.ascontiguousarray(c[..., j])
+        return table

@@ -1,0 +1,318 @@
+"""Batched rollouts: :func:`simulate_batch` and :func:`simulate` (SPEC section 8)."""
+
+from __future__ import annotations
+
+import operator
+import warnings
+from dataclasses import dataclass
+from typing import Any, Iterator, Mapping, Optional, Union
+
+import numpy as np
+
+from landing import _core
+from landing.controllers import Controller
+from landing.disturbances import DisturbanceLike, as_table
+from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
+from landing.plants import Plant
+from landing.reference import Reference
+
+__all__ = ["Metrics", "SimulationResult", "simulate_batch", "simulate"]
+
+
+class Metrics(Mapping[str, np.ndarray]):
+    """Per-case figures of merit: a table of columns, one row per case.
+
+    Columns (N cases, D axes):
+
+    - ``final_position_error`` (N,), ``final_velocity_error`` (N,): norms of the tracking
+      error and its rate at t_final; ``final_error``, ``final_rate_error`` (N, D) per axis.
+    - ``fuel_used`` (N,): m(0) - m(t_final), for plants with mass (NaN otherwise).
+    - ``peak_command`` (N,): largest |u| applied (for the Mars lander, the peak thrust in N);
+      ``peak_command_axis`` (N, D): largest |u_i|.
+    - ``control_effort`` (N,): integral of |u| dt.
+    - ``touchdown_time``, ``touchdown_speed`` (N,), ``touchdown_position``,
+      ``touchdown_velocity`` (N, D): first crossing of the surface, interpolated within the
+      step; NaN if none (or the plant has no surface).
+    - ``diverged`` (N,) bool, ``diverged_time`` (N,): cases stopped because the state left the
+      model's domain. Their final errors and fuel are NaN.
+
+    Columns are also attributes: ``res.metrics.fuel_used``.
+    """
+
+    def __init__(self, columns: Mapping[str, np.ndarray]):
+        self._columns = dict(columns)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self._columns[name]
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        try:
+            return self.__dict__["_columns"][name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._columns)
+
+    def __len__(self) -> int:
+        return len(self._columns)
+
+    def __dir__(self) -> list[str]:
+        return sorted(set(super().__dir__()) | set(self._columns))
+
+    def row(self, case: int) -> dict[str, Any]:
+        """The metrics of one case."""
+        return {k: v[case] for k, v in self._columns.items()}
+
+    def to_pandas(self):  # pragma: no cover - optional dependency
+        """A pandas DataFrame, per-axis columns split into ``name_0``, ``name_1``..."""
+        import pandas as pd
+
+        flat: dict[str, np.ndarray] = {}
+        for k, v in self._columns.items():
+            if v.ndim == 1:
+                flat[k] = v
+            else:
+                for j in range(v.shape[1]):
+                    flat[f"{k}_{j}"] = v[:, j]
+        return pd.DataFrame(flat)
+
+    def __repr__(self) -> str:
+        cols = {k: np.atleast_1d(v) for k, v in self._columns.items()}
+        n = len(cols["diverged"])
+        lines = [f"Metrics({n} case{'s' if n != 1 else ''})"]
+        for k, v in cols.items():
+            if v.ndim == 1 and v.dtype != bool and (n > 1 or np.ndim(self._columns[k]) == 0):
+                finite = v[np.isfinite(v)]
+                if finite.size:
+                    lines.append(f"  {k:<22} mean {finite.mean():.6g}  min {finite.min():.6g}  max {finite.max():.6g}")
+                else:
+                    lines.append(f"  {k:<22} (none)")
+        lines.append(f"  {'diverged':<22} {int(cols['diverged'].sum())} of {n}")
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationResult:
+    """What a batch produced.
+
+    Attributes
+    ----------
+    t : (T,) recorded control instants, s (empty with ``record_every=0``).
+    states : (N, T, n_state) states at the recorded instants.
+    controls : (N, T, n_control) the command applied over ``[t_k, t_k + dt)``, after
+        saturation (thrust in N for the Mars lander). The last entry is the command computed
+        at t_final, which would be held next.
+    final_state : (N, n_state) state at t_final.
+    diagnostics : name -> (N, T, D) internal signals of the law (sliding variables, ...).
+    metrics : per-case table, see :class:`Metrics`.
+
+    ``result[i]`` is case i alone, with the case axis dropped.
+    """
+
+    t: np.ndarray
+    states: np.ndarray
+    controls: np.ndarray
+    final_state: np.ndarray
+    diagnostics: dict[str, np.ndarray]
+    metrics: Metrics
+    state_names: tuple[str, ...]
+    control_names: tuple[str, ...]
+
+    @property
+    def n_cases(self) -> int:
+        return int(self.final_state.shape[0]) if self.final_state.ndim == 2 else 1
+
+    @property
+    def diverged(self) -> np.ndarray:
+        return self.metrics["diverged"]
+
+    def __len__(self) -> int:
+        return self.n_cases
+
+    def __getitem__(self, case: int) -> "SimulationResult":
+        if self.final_state.ndim != 2:
+            raise TypeError("this result holds a single case")
+        return SimulationResult(
+            t=self.t,
+            states=self.states[case],
+            controls=self.controls[case],
+            final_state=self.final_state[case],
+            diagnostics={k: v[case] for k, v in self.diagnostics.items()},
+            metrics=Metrics({k: v[case] for k, v in self.metrics.items()}),
+            state_names=self.state_names,
+            control_names=self.control_names,
+        )
+
+    def state(self, name: str) -> np.ndarray:
+        """One state component by name, e.g. ``res.state("rz")``: (N, T) or (T,)."""
+        return self.states[..., self.state_names.index(name)]
+
+
+def _int(name: str, value: Any, *, optional: bool = False) -> Optional[int]:
+    if value is None and optional:
+        return None
+    try:
+        return operator.index(value)
+    except TypeError:
+        raise ParameterTypeError(f"{name} must be an integer, got {value!r}") from None
+
+
+def _real(name: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ParameterTypeError(f"{name} must be a real number, got {value!r}")
+    return float(value)
+
+
+def simulate_batch(
+    plant: Plant,
+    controller: Controller,
+    x0: Any,
+    *,
+    t_final: float,
+    dt: float,
+    integrator: str = "rk4",
+    substeps: int = 1,
+    reference: Optional[Reference] = None,
+    disturbance: DisturbanceLike = None,
+    record_every: int = 1,
+    seed: int = 0,
+    first_case: int = 0,
+    threads: Optional[int] = None,
+) -> SimulationResult:
+    """Simulate N cases of ``plant`` under ``controller`` in parallel (SPEC section 2 semantics).
+
+    Parameters
+    ----------
+    plant : a :mod:`landing.plants` plant; its numeric parameters may be per case.
+    controller : a :mod:`landing.controllers` law; its gains may be per case.
+    x0 : (N, n_state) initial states, one row per case.
+    t_final : horizon, s; a whole number of control periods.
+    dt : control period, s. The command is computed from the state at t_k, saturated, and held
+        over ``[t_k, t_k + dt)``.
+    integrator : ``"rk4"`` or ``"euler"``.
+    substeps : integrator steps per control period.
+    reference : target the law tracks (default: the origin at rest).
+    disturbance : unknown disturbance (a component, a sum or a list of components).
+    record_every : keep every k-th control instant (always the first and the last); 0 keeps
+        only the final states and the metrics.
+    seed : seed of the counter-based random streams; case i's numbers depend only on
+        (seed, first_case + i), never on the thread count or the batch size.
+    first_case : global index of the first case, so that a slice of a campaign run alone
+        (or in chunks) draws the same random numbers as in the whole batch.
+    threads : worker threads (default: all cores).
+
+    Returns
+    -------
+    SimulationResult. Cases whose state leaves the model's domain are stopped, flagged in
+    ``metrics["diverged"]`` and reported with a :class:`~landing.errors.DivergenceWarning`.
+    """
+    x = _as_states(x0)
+    if x.ndim != 2:
+        raise ParameterError(
+            f"x0 has shape {x.shape}; simulate_batch takes (N, n_state) "
+            f"(use landing.simulate for one case)"
+        )
+    return _run(plant, controller, x, t_final=t_final, dt=dt, integrator=integrator,
+                substeps=substeps, reference=reference, disturbance=disturbance,
+                record_every=record_every, seed=seed, first_case=first_case, threads=threads)
+
+
+def _as_states(x0: Any) -> np.ndarray:
+    try:
+        return np.ascontiguousarray(np.asarray(x0, dtype=np.float64))
+    except (TypeError, ValueError):
+        raise ParameterTypeError("x0 must be an array of real numbers") from None
+
+
+def _run(
+    plant: Plant,
+    controller: Controller,
+    x: np.ndarray,
+    *,
+    t_final: float,
+    dt: float,
+    integrator: str = "rk4",
+    substeps: int = 1,
+    reference: Optional[Reference] = None,
+    disturbance: DisturbanceLike = None,
+    record_every: int = 1,
+    seed: int = 0,
+    first_case: int = 0,
+    threads: Optional[int] = None,
+) -> SimulationResult:
+    """The shared body of simulate and simulate_batch (warnings point at their caller)."""
+    if not isinstance(plant, Plant):
+        raise ParameterTypeError(f"plant must be a landing.plants plant, got {type(plant).__name__}")
+    if not isinstance(controller, Controller):
+        raise ParameterTypeError(
+            f"controller must be a landing.controllers law, got {type(controller).__name__}"
+        )
+    if reference is not None and not isinstance(reference, Reference):
+        raise ParameterTypeError(
+            f"reference must be a landing.reference reference or None, got {type(reference).__name__}"
+        )
+    if not isinstance(integrator, str):
+        raise ParameterTypeError(f"integrator must be a string, got {integrator!r}")
+    seed_i = _int("seed", seed)
+    if not 0 <= seed_i < 2**64:
+        raise ParameterError(f"seed = {seed_i} violates 0 <= seed < 2**64")
+    first = _int("first_case", first_case)
+    if not 0 <= first < 2**63:
+        raise ParameterError(f"first_case = {first} violates 0 <= first_case < 2**63")
+    out = _core.simulate_batch(
+        plant._table(),
+        controller._table(),
+        x,
+        t_final=_real("t_final", t_final),
+        dt=_real("dt", dt),
+        integrator=integrator,
+        substeps=_int("substeps", substeps),
+        reference=None if reference is None else reference._table(),
+        disturbance=as_table(disturbance),
+        record_every=_int("record_every", record_every),
+        seed=seed_i,
+        first_case=first,
+        threads=_int("threads", threads, optional=True),
+    )
+    axes = out["axes"]
+    diag = out["diagnostics"]
+    diagnostics = {
+        name: diag[:, :, j * axes:(j + 1) * axes] for j, name in enumerate(out["diagnostic_names"])
+    }
+    metrics = Metrics(out["metrics"])
+    diverged = np.flatnonzero(metrics["diverged"])
+    if diverged.size:
+        shown = ", ".join(str(i) for i in diverged[:10]) + (", ..." if diverged.size > 10 else "")
+        warnings.warn(
+            f"{diverged.size} of {x.shape[0]} cases diverged (cases {shown}); they are stopped, "
+            "flagged in metrics['diverged'] and NaN from the divergence on",
+            DivergenceWarning,
+            stacklevel=3,
+        )
+    return SimulationResult(
+        t=out["t"],
+        states=out["states"],
+        controls=out["controls"],
+        final_state=out["final_state"],
+        diagnostics=diagnostics,
+        metrics=metrics,
+        state_names=tuple(out["state_names"]),
+        control_names=tuple(out["control_names"]),
+    )
+
+
+def simulate(
+    plant: Plant,
+    controller: Controller,
+    x0: Any,
+    **kwargs: Any,
+) -> SimulationResult:
+    """One case: :func:`simulate_batch` with ``x0`` of shape ``(n_state,)``; the result has no
+    case axis (``states`` is (T, n_state), metrics are scalars)."""
+    x = _as_states(x0)
+    if x.ndim != 1:
+        raise ParameterError(
+            f"x0 has shape {x.shape}; simulate takes one state (n_state,) (use simulate_batch for many)"
+        )
+    return _run(plant, controller, x[None, :], **kwargs)[0]

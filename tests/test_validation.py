@@ -1,0 +1,133 @@
+"""Every entry point refuses bad input with an error naming the argument and the rule."""
+
+import numpy as np
+import pytest
+
+import landing
+from landing import controllers, disturbances, plants, reference
+from conftest import NOMINAL, SPEC_GAINS
+
+
+def gains(**kw):
+    return dict(SPEC_GAINS, **kw)
+
+
+CONSTRUCTION = [
+    (lambda: plants.MarsLander(isp=0.0), "isp = 0 violates isp > 0"),
+    (lambda: plants.MarsLander(isp=[225.0, -1.0]), r"isp = -1 violates isp > 0 \(case 1\)"),
+    (lambda: plants.MarsLander(area=(6.0, -7.5, 8.7)), r"area = -7.5 violates area > 0 \(axis 1\)"),
+    (lambda: plants.MarsLander(gravity=-1.0), "gravity"),
+    (lambda: plants.MarsLander(g0=0.0), "g0"),
+    (lambda: plants.MarsLander(drag_coefficient=-0.1), "drag_coefficient"),
+    (lambda: plants.MarsLander(density_decay=-1.0), "density_decay"),
+    (lambda: plants.MarsLander(thrust_limit=0.0), "thrust_limit = 0 violates thrust_limit > 0"),
+    (lambda: plants.MarsLander(isp=np.nan), "isp = NaN violates finite values"),
+    (lambda: plants.MarsLander(area=np.ones((2, 2, 3))), "area has shape"),
+    (lambda: controllers.FixedTimeMSS(**gains(q1=1.2)), "q1 = 1.2 violates 0 < q1 < 1"),
+    (lambda: controllers.FixedTimeMSS(**gains(q1=0.0)), "0 < q1 < 1"),
+    (lambda: controllers.FixedTimeMSS(**gains(q2=0.9)), "q2 = 0.9 violates q2 > 1"),
+    (lambda: controllers.FixedTimeMSS(**gains(gamma1=(0.9, 1.0, 0.9))), r"gamma1 = 1 violates 0 < gamma1 < 1 \(axis 1\)"),
+    (lambda: controllers.FixedTimeMSS(**gains(gamma2=1.0)), "gamma2 > 1"),
+    (lambda: controllers.FixedTimeMSS(**gains(beta1=-0.8)), "beta1 > 0"),
+    (lambda: controllers.FixedTimeMSS(**gains(beta2=0.0)), "beta2 > 0"),
+    (lambda: controllers.FixedTimeMSS(**gains(alpha1=0.0)), "alpha1 > 0"),
+    (lambda: controllers.FixedTimeMSS(**gains(alpha2=-1.0)), "alpha2 > 0"),
+    (lambda: controllers.FixedTimeMSS(**gains(), s1_floor=0.0), "s1_floor > 0"),
+    (lambda: controllers.FixedTimeMSS(**gains(), variant="exactly"), "variant = \"exactly\" is not one of"),
+    (lambda: controllers.FixedTimeMSS(**gains(alpha1=[0.9, 0.8, 0.7, 0.6, 0.5], alpha2=[0.5, 0.4, 0.3, 0.2])),
+     "alpha2 has 4 values per case but the batch has 5 cases"),
+    (lambda: controllers.SuperTwisting(b1=0.0), "b1 > 0"),
+    (lambda: controllers.SuperTwisting(b2=-1.0), "b2 > 0"),
+    (lambda: controllers.SuperTwisting(c=0.0), "c > 0"),
+    (lambda: controllers.SuperTwisting(s_floor=-1.0), "s_floor > 0"),
+    (lambda: controllers.SuperTwisting(variant="classic"), "variant"),
+    (lambda: controllers.OpenLoop(acceleration=np.inf), "acceleration = inf violates finite values"),
+    (lambda: reference.Cubic.from_boundary([0, 0, 0], [0, 0, 0], [1, 1, 1], [0, 0, 0], -5.0), "T = -5 violates T > 0"),
+    (lambda: reference.Cubic(coefficients=np.zeros((3, 3)), t_end=1.0), "coefficients has shape"),
+    (lambda: reference.Constant(position=(0.0, np.nan, 0.0)), "position"),
+    (lambda: disturbances.UniformNoise(bound=-1.0), "bound >= 0"),
+    (lambda: disturbances.Sinusoid(amplitude=1.0, omega=np.inf), "omega"),
+]
+
+
+@pytest.mark.parametrize("make, message", CONSTRUCTION)
+def test_constructors_refuse_bad_parameters(make, message):
+    with pytest.raises(ValueError, match=message) as info:
+        make()
+    assert isinstance(info.value, landing.ParameterError)
+
+
+def test_type_errors_name_the_argument():
+    with pytest.raises(TypeError, match="isp must be a real number"):
+        plants.MarsLander(isp="fast")
+    with pytest.raises(TypeError, match="drag must be True or False"):
+        plants.MarsLander(drag="yes")
+    with pytest.raises(TypeError, match="acceleration must be a real number"):
+        controllers.OpenLoop(acceleration=[1.0, "x", 2.0])
+
+
+def run(**kw):
+    args = dict(plant=plants.MarsLander(), controller=controllers.OpenLoop(), x0=NOMINAL[None, :],
+                t_final=1.0, dt=0.1)
+    args.update(kw)
+    return landing.simulate_batch(args.pop("plant"), args.pop("controller"), args.pop("x0"), **args)
+
+
+SIMULATION = [
+    (dict(dt=0.0), ValueError, "dt = 0 violates dt > 0"),
+    (dict(dt=-0.1), ValueError, "dt"),
+    (dict(dt=np.nan), ValueError, "dt"),
+    (dict(t_final=0.0), ValueError, "t_final = 0 violates"),
+    (dict(t_final=np.inf), ValueError, "t_final"),
+    (dict(t_final=1.05), ValueError, "t_final an integer multiple of dt"),
+    (dict(t_final=0.05), ValueError, "t_final >= dt"),
+    (dict(integrator="rk45"), ValueError, "integrator = \"rk45\" is not one of"),
+    (dict(integrator=4), TypeError, "integrator must be a string"),
+    (dict(substeps=0), ValueError, "substeps = 0 violates substeps >= 1"),
+    (dict(substeps=2.5), TypeError, "substeps must be an integer"),
+    (dict(record_every=-1), ValueError, "record_every = -1 violates"),
+    (dict(seed=-1), ValueError, "seed = -1 violates"),
+    (dict(seed=2**64), ValueError, "seed"),
+    (dict(seed=1.5), TypeError, "seed must be an integer"),
+    (dict(threads=0), ValueError, "threads = 0 violates threads >= 1"),
+    (dict(first_case=-2), ValueError, "first_case"),
+    (dict(x0=NOMINAL), ValueError, r"x0 has shape \(7,\)"),
+    (dict(x0=NOMINAL[None, :6]), ValueError, r"x0 has shape \(1, 6\); this plant takes \(N, 7\)"),
+    (dict(x0=np.zeros((0, 7))), ValueError, "N >= 1"),
+    (dict(x0=np.array([NOMINAL, NOMINAL * np.r_[1, 1, 1, 1, 1, 1, -1]])), ValueError, r"x0\[1, 6\] = -1905 violates mass x0\[6\] > 0"),
+    (dict(x0=np.array([np.r_[NOMINAL[:6], np.nan]])), ValueError, r"x0\[0, 6\] = NaN violates finite values"),
+    (dict(x0=[["a"] * 7]), TypeError, "x0 must be an array of real numbers"),
+    (dict(plant="mars"), TypeError, "plant must be a landing.plants plant"),
+    (dict(controller=None), TypeError, "controller must be a landing.controllers law"),
+    (dict(reference={"kind": "constant"}), TypeError, "reference must be"),
+    (dict(disturbance=[1.0]), TypeError, "disturbance must be a landing.disturbances component"),
+    (dict(disturbance=[disturbances.Sinusoid(1.0, 1.0)] * 5), ValueError, "at most 4"),
+    (dict(t_final=5.0, dt=1e-12), ValueError, r"t_final / dt <= 2\^40"),
+    (dict(controller=controllers.FixedTimeMSS(**gains(alpha1=[0.9, 0.8]))), ValueError,
+     "alpha1 has 2 values per case but the batch has 1 cases"),
+]
+
+
+@pytest.mark.parametrize("kw, error, message", SIMULATION)
+def test_simulate_batch_refuses_bad_input(kw, error, message):
+    with pytest.raises(error, match=message) as info:
+        run(**kw)
+    assert isinstance(info.value, landing.LandingError)
+
+
+def test_simulate_takes_one_state():
+    with pytest.raises(ValueError, match=r"simulate takes one state"):
+        landing.simulate(plants.MarsLander(), controllers.OpenLoop(), NOMINAL[None, :], t_final=1.0, dt=0.1)
+
+
+def test_bad_parameters_changed_after_construction_are_still_caught():
+    law = controllers.FixedTimeMSS(**SPEC_GAINS)
+    law.q2 = 0.5
+    with pytest.raises(ValueError, match=r"controller \(fixed_time_mss\): q2 = 0.5 violates q2 > 1"):
+        run(controller=law)
+
+
+def test_recording_too_large_is_a_memory_error_not_a_crash():
+    x0 = np.tile(NOMINAL, (10_000, 1))
+    with pytest.raises(MemoryError, match="record fewer instants"):
+        run(x0=x0, t_final=1e6, dt=1e-3)
