@@ -18,6 +18,7 @@ pub mod reference;
 pub mod rng;
 pub mod rollout;
 pub mod state;
+pub mod workloads;
 
 pub use batch::{Batch, BatchError, BatchOutput, PerCase};
 pub use error::ParamError;

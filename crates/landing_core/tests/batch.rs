@@ -5,38 +5,20 @@ mod common;
 use common::*;
 use landing_core::batch::{Batch, PerCase, run_with_threads};
 use landing_core::control::{FixedTimeMss, MssVariant};
-use landing_core::disturbance::{Disturbance, Sinusoid};
+use landing_core::disturbance::Disturbance;
 use landing_core::integrator::Rk4;
 use landing_core::plant::MarsLander;
 use landing_core::reference::Reference;
-use landing_core::rng::{CaseStream, streams};
+use landing_core::workloads::{mars_dispersed, mars_storm};
 use landing_core::SimConfig;
 use nalgebra::Vector3;
 
 fn dispersed(n: usize) -> Vec<MarsState> {
-    (0..n)
-        .map(|i| {
-            let z = CaseStream::new(42, streams::DISPERSION, i as u64);
-            let mut w = [0.0; 8];
-            z.fill_normals(0, &mut w);
-            mars_state(
-                [-2000.0 + 100.0 * w[0], 1000.0 + 100.0 * w[1], 1500.0 + 100.0 * w[2]],
-                [100.0 + 10.0 * w[3], -15.0 + 10.0 * w[4], -75.0 + 10.0 * w[5]],
-                1905.0 + 20.0 * w[6],
-            )
-        })
-        .collect()
+    mars_dispersed(n, 42)
 }
 
 fn noisy() -> Disturbance<3> {
-    Disturbance::none()
-        .with_sinusoid(Sinusoid {
-            amplitude: Vector3::repeat(20.0),
-            omega: Vector3::repeat(1.0),
-            phase: Vector3::zeros(),
-        })
-        .unwrap()
-        .with_noise(Vector3::repeat(0.5))
+    mars_storm().with_noise(Vector3::repeat(0.5))
 }
 
 fn batch(x0: Vec<MarsState>, laws: PerCase<FixedTimeMss<3>>) -> Batch<3, MarsLander, FixedTimeMss<3>> {

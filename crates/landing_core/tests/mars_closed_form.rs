@@ -111,8 +111,8 @@ fn one_step_zero_order_hold_by_hand() {
         assert!((x1[i] - expect[i]).abs() <= 1e-9 * expect[i].abs().max(1.0), "component {i}: {} vs {}", x1[i], expect[i]);
     }
     // the recorded command at t = 0 is the held thrust
-    for i in 0..3 {
-        assert!((out.controls[i] - f[i]).abs() <= 1e-9 * f[i].abs());
+    for (u, f) in out.controls[..3].iter().zip(&f) {
+        assert!((u - f).abs() <= 1e-9 * f.abs());
     }
     // with substeps the command is still computed once: x1 differs from a 10-step Euler run
     // with a new command every step

@@ -71,9 +71,9 @@ fn raise(py: Python<'_>, class: &str, fallback: fn(String) -> PyErr, msg: String
 pub fn to_pyerr(py: Python<'_>, e: InputError) -> PyErr {
     match e {
         InputError::Shape(m) | InputError::Value(m) => {
-            raise(py, "ParameterError", |m| PyValueError::new_err(m), m)
+            raise(py, "ParameterError", PyValueError::new_err::<String>, m)
         }
-        InputError::Type(m) => raise(py, "ParameterTypeError", |m| PyTypeError::new_err(m), m),
+        InputError::Type(m) => raise(py, "ParameterTypeError", PyTypeError::new_err::<String>, m),
         InputError::Py(e) => e,
     }
 }
@@ -81,9 +81,9 @@ pub fn to_pyerr(py: Python<'_>, e: InputError) -> PyErr {
 pub fn batch_error(py: Python<'_>, e: BatchError) -> PyErr {
     match e {
         BatchError::Allocation { .. } => pyo3::exceptions::PyMemoryError::new_err(e.to_string()),
-        BatchError::Length { .. } => raise(py, "ParameterError", |m| PyValueError::new_err(m), e.to_string()),
+        BatchError::Length { .. } => raise(py, "ParameterError", PyValueError::new_err::<String>, e.to_string()),
         BatchError::ThreadPool(_) => {
-            raise(py, "SimulationError", |m| PyRuntimeError::new_err(m), e.to_string())
+            raise(py, "SimulationError", PyRuntimeError::new_err::<String>, e.to_string())
         }
     }
 }
@@ -92,7 +92,7 @@ pub fn internal_error(py: Python<'_>, what: String) -> PyErr {
     raise(
         py,
         "SimulationError",
-        |m| PyRuntimeError::new_err(m),
+        PyRuntimeError::new_err::<String>,
         format!("internal error in the simulation core ({what}); this is a bug, please report it"),
     )
 }

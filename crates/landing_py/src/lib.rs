@@ -29,10 +29,9 @@ use errors::{InputError, batch_error, internal_error, param_error, to_pyerr};
 use params::Params;
 use specs::{LawSpec, PlantSpec, kind_of, parse_disturbance, parse_law, parse_plant, parse_reference};
 
-/// Everything a batch needs, owned, ready to cross into the GIL-free region.
-struct Job<const D: usize, P: Plant<D>> {
+/// What a batch needs besides its law, owned, ready to cross into the GIL-free region.
+struct Setting<const D: usize, P: Plant<D>> {
     plants: PerCase<P>,
-    law: LawSpec<D>,
     references: PerCase<Reference<D>>,
     disturbances: PerCase<Disturbance<D>>,
     x0: Vec<P::State>,
@@ -41,37 +40,30 @@ struct Job<const D: usize, P: Plant<D>> {
     threads: Option<usize>,
 }
 
-fn run_law<const D: usize, P: Plant<D>, L: ControlLaw<D>>(
-    plants: PerCase<P>,
-    laws: PerCase<L>,
-    references: PerCase<Reference<D>>,
-    disturbances: PerCase<Disturbance<D>>,
-    x0: Vec<P::State>,
-    integrator: IntegratorKind,
-    cfg: &SimConfig,
-    threads: Option<usize>,
-) -> Result<BatchOutput<D>, BatchError> {
-    let batch = Batch { plants, laws, references, disturbances, x0 };
-    match integrator {
-        IntegratorKind::Rk4 => run_with_threads(&batch, Rk4, cfg, threads),
-        IntegratorKind::Euler => run_with_threads(&batch, Euler, cfg, threads),
+struct Job<const D: usize, P: Plant<D>> {
+    law: LawSpec<D>,
+    setting: Setting<D, P>,
+}
+
+impl<const D: usize, P: Plant<D>> Setting<D, P> {
+    /// The dispatch on the integrator, once per batch.
+    fn run<L: ControlLaw<D>>(self, laws: PerCase<L>) -> Result<BatchOutput<D>, BatchError> {
+        let Setting { plants, references, disturbances, x0, integrator, cfg, threads } = self;
+        let batch = Batch { plants, laws, references, disturbances, x0 };
+        match integrator {
+            IntegratorKind::Rk4 => run_with_threads(&batch, Rk4, &cfg, threads),
+            IntegratorKind::Euler => run_with_threads(&batch, Euler, &cfg, threads),
+        }
     }
 }
 
 impl<const D: usize, P: Plant<D>> Job<D, P> {
-    /// The one dispatch on the law (and inside, on the integrator) per batch.
+    /// The dispatch on the law, once per batch.
     fn run(self) -> Result<BatchOutput<D>, BatchError> {
-        let Job { plants, law, references, disturbances, x0, integrator, cfg, threads } = self;
-        match law {
-            LawSpec::FixedTimeMss(l) => {
-                run_law(plants, l, references, disturbances, x0, integrator, &cfg, threads)
-            }
-            LawSpec::SuperTwisting(l) => {
-                run_law(plants, l, references, disturbances, x0, integrator, &cfg, threads)
-            }
-            LawSpec::OpenLoop(l) => {
-                run_law(plants, l, references, disturbances, x0, integrator, &cfg, threads)
-            }
+        match self.law {
+            LawSpec::FixedTimeMss(l) => self.setting.run(l),
+            LawSpec::SuperTwisting(l) => self.setting.run(l),
+            LawSpec::OpenLoop(l) => self.setting.run(l),
         }
     }
 }
@@ -140,7 +132,7 @@ fn prepare<'py, const D: usize, P: Plant<D>>(
             parse_disturbance::<D>(&mut p).map_err(|e| e.context(&p.owner))?
         }
     };
-    Ok(Job { plants, law, references, disturbances, x0, integrator, cfg, threads })
+    Ok(Job { law, setting: Setting { plants, references, disturbances, x0, integrator, cfg, threads } })
 }
 
 /// Runs a prepared job without the GIL, turning a panic into an exception.

@@ -155,7 +155,7 @@ impl Plant<3> for MarsLander {
         require(self.drag_coefficient >= 0.0, "drag_coefficient", self.drag_coefficient, "drag_coefficient >= 0")?;
         require(self.density_decay >= 0.0, "density_decay", self.density_decay, "density_decay >= 0")?;
         for (i, &l) in self.thrust_limit.iter().enumerate() {
-            if !(l > 0.0) {
+            if l.is_nan() || l <= 0.0 {
                 return Err(ParamError::new("thrust_limit", l, "thrust_limit > 0").on_axis(i));
             }
         }

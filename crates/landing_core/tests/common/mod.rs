@@ -8,7 +8,8 @@ use landing_core::integrator::Integrator;
 use landing_core::plant::{MarsLander, Plant};
 use landing_core::reference::Reference;
 use landing_core::SimConfig;
-use nalgebra::{SVector, Vector3};
+use landing_core::workloads::{MARS_NOMINAL, spec_fixed_time_gains};
+use nalgebra::SVector;
 
 pub type MarsState = SVector<f64, 7>;
 
@@ -18,23 +19,12 @@ pub fn mars_state(r: [f64; 3], v: [f64; 3], m: f64) -> MarsState {
 
 /// The seed-001 nominal initial state (Table I).
 pub fn nominal() -> MarsState {
-    mars_state([-2000.0, 1000.0, 1500.0], [100.0, -15.0, -75.0], 1905.0)
+    MarsState::from(MARS_NOMINAL)
 }
 
 /// The reconstructed gains of SPEC section 6.
 pub fn spec_gains(variant: MssVariant) -> FixedTimeMss<3> {
-    FixedTimeMss {
-        beta1: Vector3::repeat(0.8),
-        beta2: Vector3::repeat(0.4),
-        q1: Vector3::repeat(0.95),
-        q2: Vector3::repeat(1.05),
-        alpha1: Vector3::repeat(0.9),
-        alpha2: Vector3::repeat(0.5),
-        gamma1: Vector3::repeat(0.9),
-        gamma2: Vector3::repeat(1.1),
-        variant,
-        s1_floor: 1e-3,
-    }
+    spec_fixed_time_gains(variant)
 }
 
 pub fn run_one<L: ControlLaw<3>, I: Integrator>(

@@ -1,0 +1,72 @@
+//! The reference workloads of SPEC section 10, shared by the criterion benches, the profiling
+//! example and the tests, so that all of them measure and check the same thing.
+
+use nalgebra::{SVector, Vector3};
+
+use crate::batch::{Batch, PerCase};
+use crate::control::{FixedTimeMss, MssVariant};
+use crate::disturbance::{Disturbance, Sinusoid};
+use crate::plant::MarsLander;
+use crate::reference::Reference;
+use crate::rng::{CaseStream, streams};
+
+/// Seed 001 Table I initial state `[r, v, m]`.
+pub const MARS_NOMINAL: [f64; 7] = [-2000.0, 1000.0, 1500.0, 100.0, -15.0, -75.0, 1905.0];
+
+/// Seed 001 Table II standard deviations.
+pub const MARS_TABLE2_SD: [f64; 7] = [100.0, 100.0, 100.0, 10.0, 10.0, 10.0, 20.0];
+
+/// The fixed-time gains SPEC section 6 reconstructs from the seed's bounds
+/// (T1 = 74.5780 s, T2 = 30.8217 s).
+pub fn spec_fixed_time_gains(variant: MssVariant) -> FixedTimeMss<3> {
+    FixedTimeMss {
+        beta1: Vector3::repeat(0.8),
+        beta2: Vector3::repeat(0.4),
+        q1: Vector3::repeat(0.95),
+        q2: Vector3::repeat(1.05),
+        alpha1: Vector3::repeat(0.9),
+        alpha2: Vector3::repeat(0.5),
+        gamma1: Vector3::repeat(0.9),
+        gamma2: Vector3::repeat(1.1),
+        variant,
+        s1_floor: 1e-3,
+    }
+}
+
+/// `cases` Table II-dispersed initial states, case i drawn from the dispersion stream of
+/// (seed, i).
+pub fn mars_dispersed(cases: usize, seed: u64) -> Vec<SVector<f64, 7>> {
+    (0..cases)
+        .map(|i| {
+            let mut z = [0.0; 8];
+            CaseStream::new(seed, streams::DISPERSION, i as u64).fill_normals(0, &mut z);
+            SVector::<f64, 7>::from_fn(|j, _| MARS_NOMINAL[j] + MARS_TABLE2_SD[j] * z[j])
+        })
+        .collect()
+}
+
+/// The seed-001 dust storm, a_p = 20 sin t on every axis (eq. 47).
+pub fn mars_storm() -> Disturbance<3> {
+    Disturbance::none()
+        .with_sinusoid(Sinusoid {
+            amplitude: Vector3::repeat(20.0),
+            omega: Vector3::repeat(1.0),
+            phase: Vector3::zeros(),
+        })
+        .expect("one sinusoid fits")
+}
+
+/// W1/W2: fixed-time guidance with the SPEC gains on `cases` dispersed cases, drag, 50 kN per
+/// axis, the dust storm.
+pub fn mars_w1(cases: usize, seed: u64) -> Batch<3, MarsLander, FixedTimeMss<3>> {
+    Batch {
+        plants: PerCase::shared(MarsLander {
+            thrust_limit: Vector3::repeat(50_000.0),
+            ..Default::default()
+        }),
+        laws: PerCase::shared(spec_fixed_time_gains(MssVariant::Printed)),
+        references: PerCase::shared(Reference::default()),
+        disturbances: PerCase::shared(mars_storm()),
+        x0: mars_dispersed(cases, seed),
+    }
+}
