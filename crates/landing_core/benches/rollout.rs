@@ -20,7 +20,9 @@ fn bench(c: &mut Criterion) {
     let batch = mars_w1(CASES, 2024);
     let steps = (CASES as f64 * T_FINAL / DT) as u64;
     let mut g = c.benchmark_group("mars_fixed_time_300x10s");
-    g.sample_size(10).measurement_time(Duration::from_secs(30)).throughput(Throughput::Elements(steps));
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(30))
+        .throughput(Throughput::Elements(steps));
     let final_only = SimConfig::new(T_FINAL, DT, 1, 0, 0).unwrap();
     let every_10ms = SimConfig::new(T_FINAL, DT, 1, 10, 0).unwrap();
     g.bench_function("W1_final_only_1_thread", |b| {

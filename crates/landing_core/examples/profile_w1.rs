@@ -17,5 +17,8 @@ fn main() {
     let out = run_with_threads(&batch, Rk4, &cfg, Some(1)).unwrap();
     let el = start.elapsed().as_secs_f64();
     let checksum: f64 = out.final_state.iter().sum();
-    println!("{:.1} ns per case-step (checksum {checksum})", el * 1e9 / (cases as f64 * cfg.steps as f64));
+    println!(
+        "{:.1} ns per case-step (checksum {checksum})",
+        el * 1e9 / (cases as f64 * cfg.steps as f64)
+    );
 }

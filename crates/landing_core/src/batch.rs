@@ -58,7 +58,11 @@ pub struct Batch<const D: usize, P: Plant<D>, L: ControlLaw<D>> {
 #[derive(Debug, Clone, PartialEq)]
 pub enum BatchError {
     /// A per-case table whose length is neither 1 nor the number of cases.
-    Length { what: &'static str, len: usize, cases: usize },
+    Length {
+        what: &'static str,
+        len: usize,
+        cases: usize,
+    },
     /// The recording would not fit in memory.
     Allocation { bytes: u128 },
     /// The requested thread pool could not be built.
@@ -69,7 +73,10 @@ impl std::fmt::Display for BatchError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Length { what, len, cases } => {
-                write!(f, "{what} has {len} entries for {cases} cases; give 1 or {cases}")
+                write!(
+                    f,
+                    "{what} has {len} entries for {cases} cases; give 1 or {cases}"
+                )
             }
             Self::Allocation { bytes } => write!(
                 f,
@@ -111,7 +118,9 @@ impl<const D: usize> BatchOutput<D> {
 fn zeroed(len: usize) -> Result<Vec<f64>, BatchError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len)
-        .map_err(|_| BatchError::Allocation { bytes: len as u128 * 8 })?;
+        .map_err(|_| BatchError::Allocation {
+            bytes: len as u128 * 8,
+        })?;
     v.resize(len, 0.0);
     Ok(v)
 }
@@ -144,7 +153,11 @@ where
         ("disturbance", batch.disturbances.len()),
     ] {
         if len != 1 && len != n {
-            return Err(BatchError::Length { what, len, cases: n });
+            return Err(BatchError::Length {
+                what,
+                len,
+                cases: n,
+            });
         }
     }
     let nx = P::State::DIM;
@@ -178,7 +191,12 @@ where
                 batch.disturbances.get(i),
                 cfg,
                 cfg.first_case + i as u64,
-                CaseBuffers { states: s, controls: c, diagnostics: d, final_state: f },
+                CaseBuffers {
+                    states: s,
+                    controls: c,
+                    diagnostics: d,
+                    final_state: f,
+                },
             )
         })
         .collect();

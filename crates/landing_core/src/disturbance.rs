@@ -43,7 +43,11 @@ impl<const D: usize> Default for Disturbance<D> {
         let zero = SVector::zeros();
         Self {
             constant: zero,
-            sinusoids: [Sinusoid { amplitude: zero, omega: zero, phase: zero }; MAX_SINUSOIDS],
+            sinusoids: [Sinusoid {
+                amplitude: zero,
+                omega: zero,
+                phase: zero,
+            }; MAX_SINUSOIDS],
             in_phase: [false; MAX_SINUSOIDS],
             n_sinusoids: 0,
             noise_bound: zero,
@@ -112,14 +116,20 @@ impl<const D: usize> Disturbance<D> {
         let blocks = D.div_ceil(4) as u64;
         let mut u = SVector::<f64, D>::zeros();
         rng.fill_uniforms(period * blocks, u.as_mut_slice());
-        HeldNoise(self.noise_bound.component_mul(&(u * 2.0 - SVector::repeat(1.0))))
+        HeldNoise(
+            self.noise_bound
+                .component_mul(&(u * 2.0 - SVector::repeat(1.0))),
+        )
     }
 
     /// The deterministic part at time `t`.
     #[inline(always)]
     pub fn deterministic(&self, t: f64) -> SVector<f64, D> {
         let mut d = self.constant;
-        for (s, &in_phase) in self.sinusoids[..self.n_sinusoids].iter().zip(&self.in_phase) {
+        for (s, &in_phase) in self.sinusoids[..self.n_sinusoids]
+            .iter()
+            .zip(&self.in_phase)
+        {
             if in_phase {
                 d += s.amplitude * (s.omega[0] * t + s.phase[0]).sin();
             } else {
@@ -138,11 +148,13 @@ impl<const D: usize> Disturbance<D> {
 
     pub fn validate(&self) -> Result<(), ParamError> {
         for i in 0..D {
-            require(true, "constant", self.constant[i], "finite values").map_err(|e| e.on_axis(i))?;
+            require(true, "constant", self.constant[i], "finite values")
+                .map_err(|e| e.on_axis(i))?;
             let b = self.noise_bound[i];
             require(b >= 0.0, "bound", b, "bound >= 0").map_err(|e| e.on_axis(i))?;
             for s in self.sinusoids() {
-                require(true, "amplitude", s.amplitude[i], "finite values").map_err(|e| e.on_axis(i))?;
+                require(true, "amplitude", s.amplitude[i], "finite values")
+                    .map_err(|e| e.on_axis(i))?;
                 require(true, "omega", s.omega[i], "finite values").map_err(|e| e.on_axis(i))?;
                 require(true, "phase", s.phase[i], "finite values").map_err(|e| e.on_axis(i))?;
             }

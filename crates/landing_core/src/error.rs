@@ -16,7 +16,12 @@ pub struct ParamError {
 
 impl ParamError {
     pub fn new(param: &'static str, value: f64, rule: &'static str) -> Self {
-        Self { param, value, rule, axis: None }
+        Self {
+            param,
+            value,
+            rule,
+            axis: None,
+        }
     }
 
     pub fn on_axis(mut self, axis: usize) -> Self {
@@ -39,7 +44,12 @@ impl std::error::Error for ParamError {}
 
 /// Checks a predicate on a value and produces the error. Keeps validators one line per rule.
 #[inline]
-pub fn require(ok: bool, param: &'static str, value: f64, rule: &'static str) -> Result<(), ParamError> {
+pub fn require(
+    ok: bool,
+    param: &'static str,
+    value: f64,
+    rule: &'static str,
+) -> Result<(), ParamError> {
     if ok && value.is_finite() {
         Ok(())
     } else if !value.is_finite() {

@@ -18,7 +18,10 @@ pub fn sgn(x: f64) -> f64 {
 /// `sig^a(x) = |x|^a sgn(x)` for a non-negative exponent (zero at zero).
 #[inline(always)]
 pub fn sig(x: f64, a: f64) -> f64 {
-    debug_assert!(a >= 0.0, "sig with a negative exponent needs a guard: use sig_guarded");
+    debug_assert!(
+        a >= 0.0,
+        "sig with a negative exponent needs a guard: use sig_guarded"
+    );
     sgn(x) * x.abs().powf(a)
 }
 

@@ -19,15 +19,24 @@ pub struct RefPoint<const D: usize> {
 pub enum Reference<const D: usize> {
     /// A fixed target state: the law drives q to `position` and q' to `velocity` (SPEC 4:
     /// seed 001 uses r_d = 0, v_d = 0).
-    Constant { position: SVector<f64, D>, velocity: SVector<f64, D> },
+    Constant {
+        position: SVector<f64, D>,
+        velocity: SVector<f64, D>,
+    },
     /// `p(t) = c0 + c1 t + c2 t^2 + c3 t^3` per axis on `[0, t_end]`; afterwards the end point is
     /// held (zero velocity and acceleration).
-    Cubic { coefficients: [SVector<f64, D>; 4], t_end: f64 },
+    Cubic {
+        coefficients: [SVector<f64, D>; 4],
+        t_end: f64,
+    },
 }
 
 impl<const D: usize> Default for Reference<D> {
     fn default() -> Self {
-        Self::Constant { position: SVector::zeros(), velocity: SVector::zeros() }
+        Self::Constant {
+            position: SVector::zeros(),
+            velocity: SVector::zeros(),
+        }
     }
 }
 
@@ -44,16 +53,24 @@ impl<const D: usize> Reference<D> {
         let t = t_end;
         let c2 = (pt - p0) * (3.0 / (t * t)) - (v0 * 2.0 + vt) / t;
         let c3 = (p0 - pt) * (2.0 / (t * t * t)) + (v0 + vt) / (t * t);
-        Ok(Self::Cubic { coefficients: [p0, v0, c2, c3], t_end })
+        Ok(Self::Cubic {
+            coefficients: [p0, v0, c2, c3],
+            t_end,
+        })
     }
 
     #[inline]
     pub fn at(&self, t: f64) -> RefPoint<D> {
         match *self {
-            Self::Constant { position, velocity } => {
-                RefPoint { position, velocity, acceleration: SVector::zeros() }
-            }
-            Self::Cubic { coefficients: [c0, c1, c2, c3], t_end } => {
+            Self::Constant { position, velocity } => RefPoint {
+                position,
+                velocity,
+                acceleration: SVector::zeros(),
+            },
+            Self::Cubic {
+                coefficients: [c0, c1, c2, c3],
+                t_end,
+            } => {
                 if t <= t_end {
                     RefPoint {
                         position: c0 + (c1 + (c2 + c3 * t) * t) * t,
@@ -82,11 +99,15 @@ impl<const D: usize> Reference<D> {
                     require(true, "velocity", *v, "finite values").map_err(|e| e.on_axis(i))?;
                 }
             }
-            Self::Cubic { coefficients, t_end } => {
+            Self::Cubic {
+                coefficients,
+                t_end,
+            } => {
                 require(*t_end > 0.0, "t_end", *t_end, "t_end > 0")?;
                 for c in coefficients {
                     for (i, v) in c.iter().enumerate() {
-                        require(true, "coefficients", *v, "finite values").map_err(|e| e.on_axis(i))?;
+                        require(true, "coefficients", *v, "finite values")
+                            .map_err(|e| e.on_axis(i))?;
                     }
                 }
             }

@@ -54,7 +54,11 @@ impl SimConfig {
             return Err(ParamError::new("dt", dt, "dt > 0 and finite"));
         }
         if !(t_final.is_finite() && t_final > 0.0) {
-            return Err(ParamError::new("t_final", t_final, "t_final > 0 and finite"));
+            return Err(ParamError::new(
+                "t_final",
+                t_final,
+                "t_final > 0 and finite",
+            ));
         }
         let ratio = t_final / dt;
         if ratio < 1.0 - 1e-9 {
@@ -62,7 +66,11 @@ impl SimConfig {
         }
         let steps = ratio.round();
         if (ratio - steps).abs() > 1e-9 * steps.max(1.0) {
-            return Err(ParamError::new("t_final", t_final, "t_final an integer multiple of dt"));
+            return Err(ParamError::new(
+                "t_final",
+                t_final,
+                "t_final an integer multiple of dt",
+            ));
         }
         if steps > MAX_STEPS as f64 {
             return Err(ParamError::new("t_final", t_final, "t_final / dt <= 2^40"));
@@ -70,7 +78,14 @@ impl SimConfig {
         if substeps == 0 {
             return Err(ParamError::new("substeps", 0.0, "substeps >= 1"));
         }
-        Ok(Self { dt, steps: steps as u64, substeps, record_every, seed, first_case: 0 })
+        Ok(Self {
+            dt,
+            steps: steps as u64,
+            substeps,
+            record_every,
+            seed,
+            first_case: 0,
+        })
     }
 
     /// The same configuration with the batch's cases numbered from `first_case`.
@@ -207,7 +222,11 @@ fn record<const D: usize, S: State, L: ControlLaw<D>>(
     let nd = L::DIAGNOSTICS.len() * D;
     out.states[slot * nx..(slot + 1) * nx].copy_from_slice(x.as_slice());
     out.controls[slot * D..(slot + 1) * D].copy_from_slice(u.as_slice());
-    law.diagnostics(memory, input, &mut out.diagnostics[slot * nd..(slot + 1) * nd]);
+    law.diagnostics(
+        memory,
+        input,
+        &mut out.diagnostics[slot * nd..(slot + 1) * nd],
+    );
 }
 
 /// Simulates one case and returns its metrics; the recording goes into `out`. `case` is the

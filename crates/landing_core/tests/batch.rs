@@ -3,6 +3,7 @@
 mod common;
 
 use common::*;
+use landing_core::SimConfig;
 use landing_core::batch::{Batch, PerCase, run_with_threads};
 use landing_core::control::{FixedTimeMss, MssVariant};
 use landing_core::disturbance::Disturbance;
@@ -10,7 +11,6 @@ use landing_core::integrator::Rk4;
 use landing_core::plant::MarsLander;
 use landing_core::reference::Reference;
 use landing_core::workloads::{mars_dispersed, mars_storm};
-use landing_core::SimConfig;
 use nalgebra::Vector3;
 
 fn dispersed(n: usize) -> Vec<MarsState> {
@@ -21,9 +21,15 @@ fn noisy() -> Disturbance<3> {
     mars_storm().with_noise(Vector3::repeat(0.5))
 }
 
-fn batch(x0: Vec<MarsState>, laws: PerCase<FixedTimeMss<3>>) -> Batch<3, MarsLander, FixedTimeMss<3>> {
+fn batch(
+    x0: Vec<MarsState>,
+    laws: PerCase<FixedTimeMss<3>>,
+) -> Batch<3, MarsLander, FixedTimeMss<3>> {
     Batch {
-        plants: PerCase::shared(MarsLander { thrust_limit: Vector3::repeat(50_000.0), ..Default::default() }),
+        plants: PerCase::shared(MarsLander {
+            thrust_limit: Vector3::repeat(50_000.0),
+            ..Default::default()
+        }),
         laws,
         references: PerCase::shared(Reference::default()),
         disturbances: PerCase::shared(noisy()),
@@ -33,7 +39,10 @@ fn batch(x0: Vec<MarsState>, laws: PerCase<FixedTimeMss<3>>) -> Batch<3, MarsLan
 
 #[test]
 fn results_do_not_depend_on_the_thread_count() {
-    let b = batch(dispersed(37), PerCase::shared(spec_gains(MssVariant::Printed)));
+    let b = batch(
+        dispersed(37),
+        PerCase::shared(spec_gains(MssVariant::Printed)),
+    );
     let cfg = SimConfig::new(2.0, 0.001, 2, 50, 9).unwrap();
     let one = run_with_threads(&b, Rk4, &cfg, Some(1)).unwrap();
     let two = run_with_threads(&b, Rk4, &cfg, Some(2)).unwrap();
@@ -55,17 +64,38 @@ fn a_case_is_the_same_alone_or_in_a_batch() {
     // per-case gains: each case of the batch equals its own single-case run
     let x0 = dispersed(6);
     let laws: Vec<_> = (0..6)
-        .map(|i| FixedTimeMss { alpha1: Vector3::repeat(0.5 + 0.1 * i as f64), ..spec_gains(MssVariant::Printed) })
+        .map(|i| FixedTimeMss {
+            alpha1: Vector3::repeat(0.5 + 0.1 * i as f64),
+            ..spec_gains(MssVariant::Printed)
+        })
         .collect();
     let cfg = SimConfig::new(1.0, 0.001, 1, 100, 3).unwrap();
-    let all = run_with_threads(&batch(x0.clone(), PerCase::from_vec(laws.clone())), Rk4, &cfg, Some(2)).unwrap();
+    let all = run_with_threads(
+        &batch(x0.clone(), PerCase::from_vec(laws.clone())),
+        Rk4,
+        &cfg,
+        Some(2),
+    )
+    .unwrap();
     for i in 0..6 {
         // alone, the case keeps its global index (and so its random streams)
         let alone_cfg = cfg.with_first_case(i as u64);
-        let alone = run_with_threads(&batch(vec![x0[i]], PerCase::shared(laws[i])), Rk4, &alone_cfg, Some(1)).unwrap();
-        assert_eq!(bits(&all.final_state[i * 7..(i + 1) * 7]), bits(&alone.final_state));
+        let alone = run_with_threads(
+            &batch(vec![x0[i]], PerCase::shared(laws[i])),
+            Rk4,
+            &alone_cfg,
+            Some(1),
+        )
+        .unwrap();
+        assert_eq!(
+            bits(&all.final_state[i * 7..(i + 1) * 7]),
+            bits(&alone.final_state)
+        );
         let nr = all.n_records();
-        assert_eq!(bits(&all.states[i * nr * 7..(i + 1) * nr * 7]), bits(&alone.states));
+        assert_eq!(
+            bits(&all.states[i * nr * 7..(i + 1) * nr * 7]),
+            bits(&alone.states)
+        );
     }
     // and the gains did make a difference
     assert_ne!(bits(&all.final_state[0..7]), bits(&all.final_state[7..14]));
@@ -75,15 +105,37 @@ fn a_case_is_the_same_alone_or_in_a_batch() {
 fn chunks_of_a_campaign_reproduce_it() {
     let x0 = dispersed(10);
     let cfg = SimConfig::new(0.5, 0.001, 1, 0, 5).unwrap();
-    let whole = run_with_threads(&batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed))), Rk4, &cfg, None).unwrap();
+    let whole = run_with_threads(
+        &batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed))),
+        Rk4,
+        &cfg,
+        None,
+    )
+    .unwrap();
     let mut pieces = Vec::new();
     for (start, end) in [(0, 3), (3, 4), (4, 10)] {
-        let part = batch(x0[start..end].to_vec(), PerCase::shared(spec_gains(MssVariant::Printed)));
-        pieces.extend(run_with_threads(&part, Rk4, &cfg.with_first_case(start as u64), Some(1)).unwrap().final_state);
+        let part = batch(
+            x0[start..end].to_vec(),
+            PerCase::shared(spec_gains(MssVariant::Printed)),
+        );
+        pieces.extend(
+            run_with_threads(&part, Rk4, &cfg.with_first_case(start as u64), Some(1))
+                .unwrap()
+                .final_state,
+        );
     }
     assert_eq!(bits(&whole.final_state), bits(&pieces));
     // and the noise matters: numbering the pieces from 0 changes them
-    let wrong = run_with_threads(&batch(x0[3..4].to_vec(), PerCase::shared(spec_gains(MssVariant::Printed))), Rk4, &cfg, None).unwrap();
+    let wrong = run_with_threads(
+        &batch(
+            x0[3..4].to_vec(),
+            PerCase::shared(spec_gains(MssVariant::Printed)),
+        ),
+        Rk4,
+        &cfg,
+        None,
+    )
+    .unwrap();
     assert_ne!(bits(&wrong.final_state), bits(&whole.final_state[21..28]));
 }
 
@@ -100,25 +152,48 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     b.plants = PerCase::from_vec(plants);
     let cfg = SimConfig::new(1.0, 0.01, 1, 10, 0).unwrap();
     let out = run_with_threads(&b, Rk4, &cfg, Some(2)).unwrap();
-    let flags: Vec<bool> = out.metrics.iter().map(|m| m.diverged_at.is_some()).collect();
+    let flags: Vec<bool> = out
+        .metrics
+        .iter()
+        .map(|m| m.diverged_at.is_some())
+        .collect();
     assert_eq!(flags, [false, false, true, false]);
     assert!(out.final_state[14..21].iter().all(|v| v.is_nan()));
     assert!(out.metrics[2].final_error.iter().all(|v| v.is_nan()));
     // the healthy cases equal a batch without the bad one
     let mut clean = x0.clone();
     clean[2] = x0[0];
-    let ref_out = run_with_threads(&batch(clean, PerCase::shared(spec_gains(MssVariant::Printed))), Rk4, &cfg, Some(1)).unwrap();
+    let ref_out = run_with_threads(
+        &batch(clean, PerCase::shared(spec_gains(MssVariant::Printed))),
+        Rk4,
+        &cfg,
+        Some(1),
+    )
+    .unwrap();
     for i in [0usize, 1, 3] {
-        assert_eq!(bits(&out.final_state[i * 7..(i + 1) * 7]), bits(&ref_out.final_state[i * 7..(i + 1) * 7]));
-        assert!(out.final_state[i * 7..(i + 1) * 7].iter().all(|v| v.is_finite()));
+        assert_eq!(
+            bits(&out.final_state[i * 7..(i + 1) * 7]),
+            bits(&ref_out.final_state[i * 7..(i + 1) * 7])
+        );
+        assert!(
+            out.final_state[i * 7..(i + 1) * 7]
+                .iter()
+                .all(|v| v.is_finite())
+        );
     }
 }
 
 #[test]
 fn recording_keeps_every_kth_instant_and_the_last() {
-    let b = batch(dispersed(2), PerCase::shared(spec_gains(MssVariant::Printed)));
+    let b = batch(
+        dispersed(2),
+        PerCase::shared(spec_gains(MssVariant::Printed)),
+    );
     let cfg = SimConfig::new(1.0, 0.1, 1, 3, 0).unwrap();
-    assert_eq!(cfg.record_times(), vec![0.0, 0.30000000000000004, 0.6000000000000001, 0.9, 1.0]);
+    assert_eq!(
+        cfg.record_times(),
+        vec![0.0, 0.30000000000000004, 0.6000000000000001, 0.9, 1.0]
+    );
     let out = run_with_threads(&b, Rk4, &cfg, None).unwrap();
     assert_eq!(out.n_records(), 5);
     // first record is x0, last equals the final state
@@ -136,8 +211,17 @@ fn recording_keeps_every_kth_instant_and_the_last() {
 fn horizon_must_be_whole_periods() {
     assert!(SimConfig::new(1.0, 0.3, 1, 1, 0).is_err());
     assert!(SimConfig::new(8000.0, 0.01, 1, 1, 0).is_ok());
-    assert_eq!(SimConfig::new(8000.0, 0.01, 1, 1, 0).unwrap().steps, 800_000);
-    assert_eq!(SimConfig::new(-1.0, 0.1, 1, 1, 0).unwrap_err().param, "t_final");
+    assert_eq!(
+        SimConfig::new(8000.0, 0.01, 1, 1, 0).unwrap().steps,
+        800_000
+    );
+    assert_eq!(
+        SimConfig::new(-1.0, 0.1, 1, 1, 0).unwrap_err().param,
+        "t_final"
+    );
     assert_eq!(SimConfig::new(1.0, 0.0, 1, 1, 0).unwrap_err().param, "dt");
-    assert_eq!(SimConfig::new(1.0, 0.1, 0, 1, 0).unwrap_err().param, "substeps");
+    assert_eq!(
+        SimConfig::new(1.0, 0.1, 0, 1, 0).unwrap_err().param,
+        "substeps"
+    );
 }

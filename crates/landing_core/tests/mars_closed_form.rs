@@ -18,13 +18,24 @@ const G: f64 = 3.7114;
 fn free_fall_matches_the_parabola() {
     let x0 = mars_state([10.0, -20.0, 1500.0], [3.0, 4.0, -75.0], 1905.0);
     let cfg = SimConfig::new(12.0, 0.01, 1, 0, 0).unwrap();
-    let coast = OpenLoop { acceleration: Vector3::zeros() };
+    let coast = OpenLoop {
+        acceleration: Vector3::zeros(),
+    };
     let out = run_one(no_drag(), coast, Rk4, x0, Disturbance::none(), &cfg);
     let x = final_state(&out, 0);
     let t = 12.0;
-    let expect = [10.0 + 3.0 * t, -20.0 + 4.0 * t, 1500.0 - 75.0 * t - 0.5 * G * t * t];
+    let expect = [
+        10.0 + 3.0 * t,
+        -20.0 + 4.0 * t,
+        1500.0 - 75.0 * t - 0.5 * G * t * t,
+    ];
     for i in 0..3 {
-        assert!((x[i] - expect[i]).abs() < 1e-9, "axis {i}: {} vs {}", x[i], expect[i]);
+        assert!(
+            (x[i] - expect[i]).abs() < 1e-9,
+            "axis {i}: {} vs {}",
+            x[i],
+            expect[i]
+        );
     }
     assert!((x[5] - (-75.0 - G * t)).abs() < 1e-10);
     assert_eq!(x[6], 1905.0, "no thrust, no mass flow");
@@ -36,7 +47,9 @@ fn touchdown_is_the_interpolated_first_crossing() {
     // free fall from 100 m at -10 m/s: z(t) = 100 - 10 t - g t^2 / 2 = 0
     let x0 = mars_state([0.0, 0.0, 100.0], [0.0, 0.0, -10.0], 1000.0);
     let cfg = SimConfig::new(10.0, 0.01, 1, 0, 0).unwrap();
-    let coast = OpenLoop { acceleration: Vector3::zeros() };
+    let coast = OpenLoop {
+        acceleration: Vector3::zeros(),
+    };
     let out = run_one(no_drag(), coast, Rk4, x0, Disturbance::none(), &cfg);
     let td = out.metrics[0].touchdown.expect("it lands");
     let t_star = (-10.0 + (100.0 + 2.0 * G * 100.0f64).sqrt()) / G;
@@ -54,13 +67,18 @@ fn constant_thrust_follows_the_rocket_equation() {
     // linearly: m(t) = m0 - b t with b = F / c; v_x = v0 + c ln(m0 / m);
     // x = x0 + v0 t + c (t + (m / b) ln(m / m0)).
     let fmax = 20_000.0;
-    let plant = MarsLander { thrust_limit: Vector3::repeat(fmax), ..no_drag() };
+    let plant = MarsLander {
+        thrust_limit: Vector3::repeat(fmax),
+        ..no_drag()
+    };
     let c = plant.isp * plant.g0;
     let b = fmax / c;
     let (m0, vx0, t) = (1905.0, 5.0, 20.0);
     let x0 = mars_state([0.0, 0.0, 5000.0], [vx0, 0.0, 0.0], m0);
     let cfg = SimConfig::new(t, 0.01, 1, 0, 0).unwrap();
-    let push = OpenLoop { acceleration: Vector3::new(1e6, 0.0, 0.0) };
+    let push = OpenLoop {
+        acceleration: Vector3::new(1e6, 0.0, 0.0),
+    };
     let out = run_one(plant, push, Rk4, x0, Disturbance::none(), &cfg);
     let x = final_state(&out, 0);
     let m = m0 - b * t;
@@ -92,10 +110,16 @@ fn one_step_zero_order_hold_by_hand() {
     let plant = MarsLander::default();
     let x0 = nominal();
     let dt = 0.1;
-    let (r, v, m) = (Vector3::new(x0[0], x0[1], x0[2]), Vector3::new(x0[3], x0[4], x0[5]), x0[6]);
+    let (r, v, m) = (
+        Vector3::new(x0[0], x0[1], x0[2]),
+        Vector3::new(x0[3], x0[4], x0[5]),
+        x0[6],
+    );
     let drag = |i: usize| -0.699 * v[i] * v[i].abs() * (-0.0009 * r[2]).exp() / (plant.area[i] * m);
     let gvec = [0.0, 0.0, -G];
-    let f: Vec<f64> = (0..3).map(|i| m * eq25_axis(r[i], v[i], gvec[i] + drag(i))).collect();
+    let f: Vec<f64> = (0..3)
+        .map(|i| m * eq25_axis(r[i], v[i], gvec[i] + drag(i)))
+        .collect();
     let fnorm = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
     let mut expect = [0.0; 7];
     for i in 0..3 {
@@ -105,10 +129,22 @@ fn one_step_zero_order_hold_by_hand() {
     expect[6] = m - dt * fnorm / (225.0 * 9.807);
 
     let cfg = SimConfig::new(dt, dt, 1, 1, 0).unwrap();
-    let out = run_one(plant, spec_gains(MssVariant::Printed), Euler, x0, Disturbance::none(), &cfg);
+    let out = run_one(
+        plant,
+        spec_gains(MssVariant::Printed),
+        Euler,
+        x0,
+        Disturbance::none(),
+        &cfg,
+    );
     let x1 = final_state(&out, 0);
     for i in 0..7 {
-        assert!((x1[i] - expect[i]).abs() <= 1e-9 * expect[i].abs().max(1.0), "component {i}: {} vs {}", x1[i], expect[i]);
+        assert!(
+            (x1[i] - expect[i]).abs() <= 1e-9 * expect[i].abs().max(1.0),
+            "component {i}: {} vs {}",
+            x1[i],
+            expect[i]
+        );
     }
     // the recorded command at t = 0 is the held thrust
     for (u, f) in out.controls[..3].iter().zip(&f) {
@@ -117,9 +153,29 @@ fn one_step_zero_order_hold_by_hand() {
     // with substeps the command is still computed once: x1 differs from a 10-step Euler run
     // with a new command every step
     let cfg_sub = SimConfig::new(dt, dt, 10, 0, 0).unwrap();
-    let held = final_state(&run_one(plant, spec_gains(MssVariant::Printed), Euler, x0, Disturbance::none(), &cfg_sub), 0);
+    let held = final_state(
+        &run_one(
+            plant,
+            spec_gains(MssVariant::Printed),
+            Euler,
+            x0,
+            Disturbance::none(),
+            &cfg_sub,
+        ),
+        0,
+    );
     let cfg_fast = SimConfig::new(dt, dt / 10.0, 1, 0, 0).unwrap();
-    let fast = final_state(&run_one(plant, spec_gains(MssVariant::Printed), Euler, x0, Disturbance::none(), &cfg_fast), 0);
+    let fast = final_state(
+        &run_one(
+            plant,
+            spec_gains(MssVariant::Printed),
+            Euler,
+            x0,
+            Disturbance::none(),
+            &cfg_fast,
+        ),
+        0,
+    );
     assert!((held - fast).norm() > 1e-3);
 }
 
@@ -167,7 +223,11 @@ fn law_input_drift_is_the_modelled_acceleration() {
         dt: 0.01,
         e: Vector3::zeros(),
         de: Vector3::zeros(),
-        reference: RefPoint { position: Vector3::zeros(), velocity: Vector3::zeros(), acceleration: Vector3::zeros() },
+        reference: RefPoint {
+            position: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            acceleration: Vector3::zeros(),
+        },
         drift: d,
         inertia: plant.inertia(&x),
     };

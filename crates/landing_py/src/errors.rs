@@ -52,8 +52,15 @@ pub fn param_error(e: &ParamError, case: Option<usize>) -> InputError {
     if let Some(c) = case {
         where_.push(format!("case {c}"));
     }
-    let at = if where_.is_empty() { String::new() } else { format!(" ({})", where_.join(", ")) };
-    InputError::Value(format!("{} = {} violates {}{}", e.param, e.value, e.rule, at))
+    let at = if where_.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", where_.join(", "))
+    };
+    InputError::Value(format!(
+        "{} = {} violates {}{}",
+        e.param, e.value, e.rule, at
+    ))
 }
 
 fn landing_error<'py>(py: Python<'py>, name: &str) -> Option<Bound<'py, PyType>> {
@@ -81,10 +88,18 @@ pub fn to_pyerr(py: Python<'_>, e: InputError) -> PyErr {
 pub fn batch_error(py: Python<'_>, e: BatchError) -> PyErr {
     match e {
         BatchError::Allocation { .. } => pyo3::exceptions::PyMemoryError::new_err(e.to_string()),
-        BatchError::Length { .. } => raise(py, "ParameterError", PyValueError::new_err::<String>, e.to_string()),
-        BatchError::ThreadPool(_) => {
-            raise(py, "SimulationError", PyRuntimeError::new_err::<String>, e.to_string())
-        }
+        BatchError::Length { .. } => raise(
+            py,
+            "ParameterError",
+            PyValueError::new_err::<String>,
+            e.to_string(),
+        ),
+        BatchError::ThreadPool(_) => raise(
+            py,
+            "SimulationError",
+            PyRuntimeError::new_err::<String>,
+            e.to_string(),
+        ),
     }
 }
 

@@ -27,7 +27,9 @@ use landing_core::{BatchError, SimConfig};
 
 use errors::{InputError, batch_error, internal_error, param_error, to_pyerr};
 use params::Params;
-use specs::{LawSpec, PlantSpec, kind_of, parse_disturbance, parse_law, parse_plant, parse_reference};
+use specs::{
+    LawSpec, PlantSpec, kind_of, parse_disturbance, parse_law, parse_plant, parse_reference,
+};
 
 /// What a batch needs besides its law, owned, ready to cross into the GIL-free region.
 struct Setting<const D: usize, P: Plant<D>> {
@@ -48,8 +50,22 @@ struct Job<const D: usize, P: Plant<D>> {
 impl<const D: usize, P: Plant<D>> Setting<D, P> {
     /// The dispatch on the integrator, once per batch.
     fn run<L: ControlLaw<D>>(self, laws: PerCase<L>) -> Result<BatchOutput<D>, BatchError> {
-        let Setting { plants, references, disturbances, x0, integrator, cfg, threads } = self;
-        let batch = Batch { plants, laws, references, disturbances, x0 };
+        let Setting {
+            plants,
+            references,
+            disturbances,
+            x0,
+            integrator,
+            cfg,
+            threads,
+        } = self;
+        let batch = Batch {
+            plants,
+            laws,
+            references,
+            disturbances,
+            x0,
+        };
         match integrator {
             IntegratorKind::Rk4 => run_with_threads(&batch, Rk4, &cfg, threads),
             IntegratorKind::Euler => run_with_threads(&batch, Euler, &cfg, threads),
@@ -98,7 +114,9 @@ fn read_x0<const D: usize, P: Plant<D>>(
 }
 
 fn table<'py>(obj: &Bound<'py, PyAny>, what: &str) -> Result<Bound<'py, PyDict>, InputError> {
-    obj.clone().cast_into::<PyDict>().map_err(|_| InputError::Type(format!("{what} must be a table")))
+    obj.clone()
+        .cast_into::<PyDict>()
+        .map_err(|_| InputError::Type(format!("{what} must be a table")))
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -132,7 +150,18 @@ fn prepare<'py, const D: usize, P: Plant<D>>(
             parse_disturbance::<D>(&mut p).map_err(|e| e.context(&p.owner))?
         }
     };
-    Ok(Job { law, setting: Setting { plants, references, disturbances, x0, integrator, cfg, threads } })
+    Ok(Job {
+        law,
+        setting: Setting {
+            plants,
+            references,
+            disturbances,
+            x0,
+            integrator,
+            cfg,
+            threads,
+        },
+    })
 }
 
 /// Runs a prepared job without the GIL, turning a panic into an exception.
@@ -184,7 +213,9 @@ fn simulate_batch<'py>(
             ))
         })?;
         if substeps < 1 || substeps > u32::MAX as i64 {
-            return Err(InputError::Value(format!("substeps = {substeps} violates substeps >= 1")));
+            return Err(InputError::Value(format!(
+                "substeps = {substeps} violates substeps >= 1"
+            )));
         }
         if record_every < 0 {
             return Err(InputError::Value(format!(
@@ -195,7 +226,9 @@ fn simulate_batch<'py>(
             None => None,
             Some(k) if k >= 1 => Some(k as usize),
             Some(k) => {
-                return Err(InputError::Value(format!("threads = {k} violates threads >= 1")));
+                return Err(InputError::Value(format!(
+                    "threads = {k} violates threads >= 1"
+                )));
             }
         };
         let cfg = SimConfig::new(t_final, dt, substeps as u32, record_every as u64, seed)
@@ -203,8 +236,14 @@ fn simulate_batch<'py>(
             .with_first_case(first_case);
         let plant = table(plant, "plant")?;
         let controller = table(controller, "controller")?;
-        let reference = reference.as_ref().map(|r| table(r, "reference")).transpose()?;
-        let disturbance = disturbance.as_ref().map(|d| table(d, "disturbance")).transpose()?;
+        let reference = reference
+            .as_ref()
+            .map(|r| table(r, "reference"))
+            .transpose()?;
+        let disturbance = disturbance
+            .as_ref()
+            .map(|d| table(d, "disturbance"))
+            .transpose()?;
         let n = Some(x0.shape()[0]);
         let kind = kind_of(&plant, "plant")?;
         let mut p = Params::new(format!("plant ({kind})"), plant.clone(), n);
@@ -260,7 +299,11 @@ fn check_controller(py: Python<'_>, owner: &str, table: Bound<'_, PyDict>) -> Py
 /// Validates a reference or disturbance table (`what` is "reference" or "disturbance").
 #[pyfunction]
 fn check_signal(py: Python<'_>, owner: &str, what: &str, table: Bound<'_, PyDict>) -> PyResult<()> {
-    fn one<const D: usize>(what: &str, owner: &str, table: &Bound<'_, PyDict>) -> Result<(), InputError> {
+    fn one<const D: usize>(
+        what: &str,
+        owner: &str,
+        table: &Bound<'_, PyDict>,
+    ) -> Result<(), InputError> {
         let mut p = Params::new(owner, table.clone(), None);
         if what == "reference" {
             let kind = kind_of(table, "reference")?;
@@ -296,7 +339,9 @@ fn evaluate_reference<'py>(
         let mut p = Params::new(format!("reference ({kind})"), table.clone(), None);
         let refs = parse_reference::<D>(&kind, &mut p).map_err(|e| e.context(&p.owner))?;
         if refs.len() != 1 {
-            return Err(InputError::Shape("evaluate() needs a reference shared by all cases".into()));
+            return Err(InputError::Shape(
+                "evaluate() needs a reference shared by all cases".into(),
+            ));
         }
         let r = refs.get(0);
         let mut pos = Vec::with_capacity(t.len() * D);
@@ -317,7 +362,9 @@ fn evaluate_reference<'py>(
     let r = match axes {
         3 => eval::<3>(py, &table, &t),
         2 => eval::<2>(py, &table, &t),
-        _ => Err(InputError::Value(format!("axes = {axes} violates axes in (2, 3)"))),
+        _ => Err(InputError::Value(format!(
+            "axes = {axes} violates axes in (2, 3)"
+        ))),
     };
     r.map_err(|e| to_pyerr(py, e))
 }
@@ -347,14 +394,19 @@ fn cubic_from_boundary(
         let d = p0.len();
         for (name, v) in [("v0", &v0), ("pT", &pt), ("vT", &vt)] {
             if v.len() != d {
-                return Err(InputError::Shape(format!("{name} has {} axes, p0 has {d}", v.len())));
+                return Err(InputError::Shape(format!(
+                    "{name} has {} axes, p0 has {d}",
+                    v.len()
+                )));
             }
         }
         let all = [p0.as_slice(), v0.as_slice(), pt.as_slice(), vt.as_slice()];
         match d {
             3 => fit::<3>(all, t_end),
             2 => fit::<2>(all, t_end),
-            _ => Err(InputError::Shape(format!("p0 has {d} axes; 2 or 3 are supported"))),
+            _ => Err(InputError::Shape(format!(
+                "p0 has {d} axes; 2 or 3 are supported"
+            ))),
         }
     };
     run().map_err(|e| to_pyerr(py, e))
@@ -374,7 +426,10 @@ fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> 
         "mars_lander" => info::<3, landing_core::plant::MarsLander>(py),
         other => Err(to_pyerr(
             py,
-            InputError::Value(format!("unknown plant kind {other:?}; known: {:?}", PlantSpec::KINDS)),
+            InputError::Value(format!(
+                "unknown plant kind {other:?}; known: {:?}",
+                PlantSpec::KINDS
+            )),
         )),
     }
 }

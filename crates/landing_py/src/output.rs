@@ -10,11 +10,22 @@ fn array1<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_vec(py, v)
 }
 
-pub fn array2<'py>(py: Python<'py>, v: Vec<f64>, a: usize, b: usize) -> PyResult<Bound<'py, PyAny>> {
+pub fn array2<'py>(
+    py: Python<'py>,
+    v: Vec<f64>,
+    a: usize,
+    b: usize,
+) -> PyResult<Bound<'py, PyAny>> {
     Ok(array1(py, v).reshape([a, b])?.into_any())
 }
 
-fn array3<'py>(py: Python<'py>, v: Vec<f64>, a: usize, b: usize, c: usize) -> PyResult<Bound<'py, PyAny>> {
+fn array3<'py>(
+    py: Python<'py>,
+    v: Vec<f64>,
+    a: usize,
+    b: usize,
+    c: usize,
+) -> PyResult<Bound<'py, PyAny>> {
     Ok(array1(py, v).reshape([a, b, c])?.into_any())
 }
 
@@ -34,22 +45,50 @@ pub fn to_dict<'py, const D: usize>(
     let cols = |f: &dyn Fn(usize) -> [f64; D]| (0..n).flat_map(f).collect::<Vec<f64>>();
     let nan = f64::NAN;
     let td = |i: usize| m[i].touchdown;
-    metrics.set_item("final_position_error", array1(py, col(&|i| m[i].final_error.norm())))?;
-    metrics.set_item("final_velocity_error", array1(py, col(&|i| m[i].final_rate_error.norm())))?;
-    metrics.set_item("final_error", array2(py, cols(&|i| m[i].final_error.into()), n, D)?)?;
-    metrics.set_item("final_rate_error", array2(py, cols(&|i| m[i].final_rate_error.into()), n, D)?)?;
+    metrics.set_item(
+        "final_position_error",
+        array1(py, col(&|i| m[i].final_error.norm())),
+    )?;
+    metrics.set_item(
+        "final_velocity_error",
+        array1(py, col(&|i| m[i].final_rate_error.norm())),
+    )?;
+    metrics.set_item(
+        "final_error",
+        array2(py, cols(&|i| m[i].final_error.into()), n, D)?,
+    )?;
+    metrics.set_item(
+        "final_rate_error",
+        array2(py, cols(&|i| m[i].final_rate_error.into()), n, D)?,
+    )?;
     metrics.set_item("fuel_used", array1(py, col(&|i| m[i].fuel_used)))?;
     metrics.set_item("peak_command", array1(py, col(&|i| m[i].peak_command)))?;
-    metrics.set_item("peak_command_axis", array2(py, cols(&|i| m[i].peak_command_axis.into()), n, D)?)?;
+    metrics.set_item(
+        "peak_command_axis",
+        array2(py, cols(&|i| m[i].peak_command_axis.into()), n, D)?,
+    )?;
     metrics.set_item("control_effort", array1(py, col(&|i| m[i].control_effort)))?;
-    metrics.set_item("touchdown_time", array1(py, col(&|i| td(i).map_or(nan, |t| t.time))))?;
+    metrics.set_item(
+        "touchdown_time",
+        array1(py, col(&|i| td(i).map_or(nan, |t| t.time))),
+    )?;
     metrics.set_item(
         "touchdown_position",
-        array2(py, cols(&|i| td(i).map_or([nan; D], |t| t.position.into())), n, D)?,
+        array2(
+            py,
+            cols(&|i| td(i).map_or([nan; D], |t| t.position.into())),
+            n,
+            D,
+        )?,
     )?;
     metrics.set_item(
         "touchdown_velocity",
-        array2(py, cols(&|i| td(i).map_or([nan; D], |t| t.velocity.into())), n, D)?,
+        array2(
+            py,
+            cols(&|i| td(i).map_or([nan; D], |t| t.velocity.into())),
+            n,
+            D,
+        )?,
     )?;
     metrics.set_item(
         "touchdown_speed",
@@ -57,13 +96,22 @@ pub fn to_dict<'py, const D: usize>(
     )?;
     let diverged: Vec<bool> = m.iter().map(|c| c.diverged_at.is_some()).collect();
     metrics.set_item("diverged", PyArray1::from_vec(py, diverged))?;
-    metrics.set_item("diverged_time", array1(py, col(&|i| m[i].diverged_at.unwrap_or(nan))))?;
+    metrics.set_item(
+        "diverged_time",
+        array1(py, col(&|i| m[i].diverged_at.unwrap_or(nan))),
+    )?;
 
     d.set_item("t", array1(py, out.times))?;
     d.set_item("states", array3(py, out.states, n, nr, out.state_dim)?)?;
     d.set_item("controls", array3(py, out.controls, n, nr, D)?)?;
-    d.set_item("diagnostics", array3(py, out.diagnostics, n, nr, out.diagnostic_dim)?)?;
-    d.set_item("final_state", array2(py, out.final_state, n, out.state_dim)?)?;
+    d.set_item(
+        "diagnostics",
+        array3(py, out.diagnostics, n, nr, out.diagnostic_dim)?,
+    )?;
+    d.set_item(
+        "final_state",
+        array2(py, out.final_state, n, out.state_dim)?,
+    )?;
     d.set_item("metrics", metrics)?;
     d.set_item("state_names", state_names.to_vec())?;
     d.set_item("control_names", control_names.to_vec())?;

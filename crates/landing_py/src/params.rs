@@ -37,18 +37,34 @@ struct Array {
 fn shape_str(shape: &[usize]) -> String {
     match shape {
         [a] => format!("({a},)"),
-        _ => format!("({})", shape.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(", ")),
+        _ => format!(
+            "({})",
+            shape
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
     }
 }
 
 impl<'py> Params<'py> {
     pub fn new(owner: impl Into<String>, dict: Bound<'py, PyDict>, n: Option<usize>) -> Self {
-        Self { owner: owner.into(), dict, n, per_case: false }
+        Self {
+            owner: owner.into(),
+            dict,
+            n,
+            per_case: false,
+        }
     }
 
     /// How many values each per-case table holds: N if any parameter was per case, else 1.
     pub fn count(&self) -> usize {
-        if self.per_case { self.n.unwrap_or(1) } else { 1 }
+        if self.per_case {
+            self.n.unwrap_or(1)
+        } else {
+            1
+        }
     }
 
     fn raw(&self, key: &str) -> Result<Option<Bound<'py, PyAny>>, InputError> {
@@ -59,15 +75,25 @@ impl<'py> Params<'py> {
     }
 
     fn array(&self, key: &str) -> Result<Option<Array>, InputError> {
-        let Some(obj) = self.raw(key)? else { return Ok(None) };
+        let Some(obj) = self.raw(key)? else {
+            return Ok(None);
+        };
         let arr: PyReadonlyArrayDyn<'py, f64> = obj.extract().map_err(|_| {
-            InputError::Type(format!("{key} must be a real number or an array of real numbers"))
+            InputError::Type(format!(
+                "{key} must be a real number or an array of real numbers"
+            ))
         })?;
         let shape = arr.shape().to_vec();
         let data: Vec<f64> = arr.as_array().iter().copied().collect();
         if let Some((i, v)) = data.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            let at = if data.len() > 1 { format!(" (entry {i})") } else { String::new() };
-            return Err(InputError::Value(format!("{key} = {v} violates finite values{at}")));
+            let at = if data.len() > 1 {
+                format!(" (entry {i})")
+            } else {
+                String::new()
+            };
+            return Err(InputError::Value(format!(
+                "{key} = {v} violates finite values{at}"
+            )));
         }
         Ok(Some(Array { data, shape }))
     }
@@ -115,10 +141,14 @@ impl<'py> Params<'py> {
         &mut self,
         key: &str,
     ) -> Result<Option<Vec<SVector<f64, D>>>, InputError> {
-        let Some(a) = self.array(key)? else { return Ok(None) };
+        let Some(a) = self.array(key)? else {
+            return Ok(None);
+        };
         let repeat = |v: &[f64]| v.iter().map(|&x| SVector::repeat(x)).collect::<Vec<_>>();
         let rows = |v: &[f64]| {
-            v.chunks_exact(D).map(SVector::<f64, D>::from_column_slice).collect::<Vec<_>>()
+            v.chunks_exact(D)
+                .map(SVector::<f64, D>::from_column_slice)
+                .collect::<Vec<_>>()
         };
         let out = match a.shape.as_slice() {
             [] | [1] => repeat(&a.data),
@@ -148,9 +178,14 @@ impl<'py> Params<'py> {
 
     /// A nested table (e.g. one sinusoid of a disturbance), sharing this table's case count.
     pub fn list_of_dicts(&self, key: &str) -> Result<Vec<Bound<'py, PyDict>>, InputError> {
-        let Some(obj) = self.raw(key)? else { return Ok(Vec::new()) };
+        let Some(obj) = self.raw(key)? else {
+            return Ok(Vec::new());
+        };
         let mut out = Vec::new();
-        for item in obj.try_iter().map_err(|_| InputError::Type(format!("{key} must be a list")))? {
+        for item in obj
+            .try_iter()
+            .map_err(|_| InputError::Type(format!("{key} must be a list")))?
+        {
             let item = item?;
             out.push(
                 item.cast_into::<PyDict>()
@@ -169,7 +204,12 @@ impl<'py> Params<'py> {
     }
 
     pub fn child(&self, dict: Bound<'py, PyDict>) -> Params<'py> {
-        Params { owner: self.owner.clone(), dict, n: self.n, per_case: false }
+        Params {
+            owner: self.owner.clone(),
+            dict,
+            n: self.n,
+            per_case: false,
+        }
     }
 
     /// One of a fixed set of names.
@@ -182,13 +222,16 @@ impl<'py> Params<'py> {
         if names.contains(&s.as_str()) {
             Ok(s)
         } else {
-            Err(InputError::Value(format!("{key} = {s:?} is not one of {names:?}")))
+            Err(InputError::Value(format!(
+                "{key} = {s:?} is not one of {names:?}"
+            )))
         }
     }
 
     pub fn flag(&self, key: &str) -> Result<bool, InputError> {
         let obj = self.raw(key)?.ok_or_else(|| self.required(key))?;
-        obj.extract::<bool>().map_err(|_| InputError::Type(format!("{key} must be True or False")))
+        obj.extract::<bool>()
+            .map_err(|_| InputError::Type(format!("{key} must be True or False")))
     }
 
     /// `count` values built by `make(case)`, each checked by `validate`.

@@ -54,7 +54,9 @@ pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputErr
                 |i| MarsLander {
                     isp: pick(&isp, i),
                     area: pick(&area, i),
-                    gravity: Uniform { g0: pick(&gravity, i) },
+                    gravity: Uniform {
+                        g0: pick(&gravity, i),
+                    },
                     g0: pick(&g0, i),
                     drag,
                     drag_coefficient: pick(&kd, i),
@@ -95,7 +97,9 @@ impl<const D: usize> LawSpec<D> {
 pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSpec<D>, InputError> {
     match kind {
         "fixed_time_mss" => {
-            let names = ["beta1", "beta2", "q1", "q2", "alpha1", "alpha2", "gamma1", "gamma2"];
+            let names = [
+                "beta1", "beta2", "q1", "q2", "alpha1", "alpha2", "gamma1", "gamma2",
+            ];
             let mut g: Vec<Vec<SVector<f64, D>>> = Vec::with_capacity(8);
             for name in names {
                 g.push(p.axes::<D>(name)?);
@@ -124,9 +128,10 @@ pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSp
             let b1 = p.axes::<D>("b1")?;
             let b2 = p.axes::<D>("b2")?;
             let c = p.axes::<D>("c")?;
-            let variant =
-                SuperTwistingVariant::from_name(&p.choice("variant", &SuperTwistingVariant::NAMES)?)
-                    .expect("checked by choice");
+            let variant = SuperTwistingVariant::from_name(
+                &p.choice("variant", &SuperTwistingVariant::NAMES)?,
+            )
+            .expect("checked by choice");
             let floor = p.scalar("s_floor")?;
             let laws = p.build(
                 |i| SuperTwisting {
@@ -142,7 +147,12 @@ pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSp
         }
         "open_loop" => {
             let a = p.axes::<D>("acceleration")?;
-            let laws = p.build(|i| OpenLoop { acceleration: pick(&a, i) }, ControlLaw::validate)?;
+            let laws = p.build(
+                |i| OpenLoop {
+                    acceleration: pick(&a, i),
+                },
+                ControlLaw::validate,
+            )?;
             Ok(LawSpec::OpenLoop(laws))
         }
         other => Err(InputError::Value(format!(
@@ -158,19 +168,30 @@ pub fn parse_reference<const D: usize>(
     match kind {
         "constant" => {
             let pos = p.axes::<D>("position")?;
-            let vel = p.opt_axes::<D>("velocity")?.unwrap_or_else(|| vec![SVector::zeros()]);
+            let vel = p
+                .opt_axes::<D>("velocity")?
+                .unwrap_or_else(|| vec![SVector::zeros()]);
             p.build(
-                |i| Reference::Constant { position: pick(&pos, i), velocity: pick(&vel, i) },
+                |i| Reference::Constant {
+                    position: pick(&pos, i),
+                    velocity: pick(&vel, i),
+                },
                 Reference::validate,
             )
         }
         "cubic" => {
-            let c: Vec<Vec<SVector<f64, D>>> =
-                (0..4).map(|j| p.axes::<D>(&format!("c{j}"))).collect::<Result<_, _>>()?;
+            let c: Vec<Vec<SVector<f64, D>>> = (0..4)
+                .map(|j| p.axes::<D>(&format!("c{j}")))
+                .collect::<Result<_, _>>()?;
             let t_end = p.scalar("t_end")?;
             p.build(
                 |i| Reference::Cubic {
-                    coefficients: [pick(&c[0], i), pick(&c[1], i), pick(&c[2], i), pick(&c[3], i)],
+                    coefficients: [
+                        pick(&c[0], i),
+                        pick(&c[1], i),
+                        pick(&c[2], i),
+                        pick(&c[3], i),
+                    ],
                     t_end: pick(&t_end, i),
                 },
                 Reference::validate,
@@ -190,7 +211,11 @@ pub fn parse_disturbance<const D: usize>(
 ) -> Result<PerCase<Disturbance<D>>, InputError> {
     enum Part<const D: usize> {
         Constant(Vec<SVector<f64, D>>),
-        Sinusoid(Vec<SVector<f64, D>>, Vec<SVector<f64, D>>, Vec<SVector<f64, D>>),
+        Sinusoid(
+            Vec<SVector<f64, D>>,
+            Vec<SVector<f64, D>>,
+            Vec<SVector<f64, D>>,
+        ),
         Noise(Vec<SVector<f64, D>>),
     }
     let mut parts = Vec::new();
@@ -202,7 +227,11 @@ pub fn parse_disturbance<const D: usize>(
             "constant" => Part::Constant(c.axes::<D>("value")?),
             "sinusoid" => {
                 n_sinusoids += 1;
-                Part::Sinusoid(c.axes::<D>("amplitude")?, c.axes::<D>("omega")?, c.axes::<D>("phase")?)
+                Part::Sinusoid(
+                    c.axes::<D>("amplitude")?,
+                    c.axes::<D>("omega")?,
+                    c.axes::<D>("phase")?,
+                )
             }
             "uniform_noise" => Part::Noise(c.axes::<D>("bound")?),
             other => {

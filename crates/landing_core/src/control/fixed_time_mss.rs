@@ -75,10 +75,20 @@ impl AxisPowers {
     fn new(s1: f64, q1: f64, q2: f64) -> Self {
         let abs = s1.abs();
         if abs == 0.0 {
-            return Self { abs, p1: 0.0, p2: 0.0, sign: 0.0 };
+            return Self {
+                abs,
+                p1: 0.0,
+                p2: 0.0,
+                sign: 0.0,
+            };
         }
         let l = abs.ln();
-        Self { abs, p1: (q1 * l).exp(), p2: (q2 * l).exp(), sign: sgn(s1) }
+        Self {
+            abs,
+            p1: (q1 * l).exp(),
+            p2: (q2 * l).exp(),
+            sign: sgn(s1),
+        }
     }
 }
 
@@ -114,7 +124,11 @@ impl<const D: usize> FixedTimeMss<D> {
     /// applies (|s1| below the floor, where the power is taken at the floor).
     #[inline(always)]
     fn guarded(&self, p: &AxisPowers, shared: impl Fn() -> f64, e: f64) -> f64 {
-        if p.abs >= self.s1_floor { shared() } else { self.s1_floor.powf(e) }
+        if p.abs >= self.s1_floor {
+            shared()
+        } else {
+            self.s1_floor.powf(e)
+        }
     }
 }
 
@@ -154,7 +168,13 @@ impl<const D: usize> ControlLaw<D> for FixedTimeMss<D> {
                     -(b1 * q1 * t1 + b2 * q2 * t2) * input.de[i]
                 }
             };
-            let reach = -two_sig(s2, self.alpha1[i], self.gamma1[i], self.alpha2[i], self.gamma2[i]);
+            let reach = -two_sig(
+                s2,
+                self.alpha1[i],
+                self.gamma1[i],
+                self.alpha2[i],
+                self.gamma2[i],
+            );
             a[i] += cancel + reach;
         }
         a
@@ -168,12 +188,21 @@ impl<const D: usize> ControlLaw<D> for FixedTimeMss<D> {
     fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.beta1.as_slice(), "beta1", "beta1 > 0", |v| v > 0.0)?;
         require_axes(self.beta2.as_slice(), "beta2", "beta2 > 0", |v| v > 0.0)?;
-        require_axes(self.q1.as_slice(), "q1", "0 < q1 < 1", |v| v > 0.0 && v < 1.0)?;
+        require_axes(self.q1.as_slice(), "q1", "0 < q1 < 1", |v| {
+            v > 0.0 && v < 1.0
+        })?;
         require_axes(self.q2.as_slice(), "q2", "q2 > 1", |v| v > 1.0)?;
         require_axes(self.alpha1.as_slice(), "alpha1", "alpha1 > 0", |v| v > 0.0)?;
         require_axes(self.alpha2.as_slice(), "alpha2", "alpha2 > 0", |v| v > 0.0)?;
-        require_axes(self.gamma1.as_slice(), "gamma1", "0 < gamma1 < 1", |v| v > 0.0 && v < 1.0)?;
+        require_axes(self.gamma1.as_slice(), "gamma1", "0 < gamma1 < 1", |v| {
+            v > 0.0 && v < 1.0
+        })?;
         require_axes(self.gamma2.as_slice(), "gamma2", "gamma2 > 1", |v| v > 1.0)?;
-        require(self.s1_floor > 0.0, "s1_floor", self.s1_floor, "s1_floor > 0")
+        require(
+            self.s1_floor > 0.0,
+            "s1_floor",
+            self.s1_floor,
+            "s1_floor > 0",
+        )
     }
 }

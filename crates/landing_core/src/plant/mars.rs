@@ -81,7 +81,11 @@ impl MarsLander {
 
 #[inline(always)]
 fn split(x: &MarsState) -> (Vector3<f64>, Vector3<f64>, f64) {
-    (x.fixed_rows::<3>(0).into(), x.fixed_rows::<3>(3).into(), x[6])
+    (
+        x.fixed_rows::<3>(0).into(),
+        x.fixed_rows::<3>(3).into(),
+        x[6],
+    )
 }
 
 impl Plant<3> for MarsLander {
@@ -150,10 +154,25 @@ impl Plant<3> for MarsLander {
     fn validate(&self) -> Result<(), ParamError> {
         require(self.isp > 0.0, "isp", self.isp, "isp > 0")?;
         require_axes(self.area.as_slice(), "area", "area > 0", |a| a > 0.0)?;
-        require(self.gravity.g0 >= 0.0, "gravity", self.gravity.g0, "gravity >= 0")?;
+        require(
+            self.gravity.g0 >= 0.0,
+            "gravity",
+            self.gravity.g0,
+            "gravity >= 0",
+        )?;
         require(self.g0 > 0.0, "g0", self.g0, "g0 > 0")?;
-        require(self.drag_coefficient >= 0.0, "drag_coefficient", self.drag_coefficient, "drag_coefficient >= 0")?;
-        require(self.density_decay >= 0.0, "density_decay", self.density_decay, "density_decay >= 0")?;
+        require(
+            self.drag_coefficient >= 0.0,
+            "drag_coefficient",
+            self.drag_coefficient,
+            "drag_coefficient >= 0",
+        )?;
+        require(
+            self.density_decay >= 0.0,
+            "density_decay",
+            self.density_decay,
+            "density_decay >= 0",
+        )?;
         for (i, &l) in self.thrust_limit.iter().enumerate() {
             if l.is_nan() || l <= 0.0 {
                 return Err(ParamError::new("thrust_limit", l, "thrust_limit > 0").on_axis(i));
@@ -173,7 +192,12 @@ mod tests {
         let v = Vector3::new(100.0, -15.0, -75.0);
         let a = p.drag_acceleration(1500.0, &v, 1905.0);
         for i in 0..3 {
-            assert!(a[i] * v[i] < 0.0, "axis {i}: drag {} velocity {}", a[i], v[i]);
+            assert!(
+                a[i] * v[i] < 0.0,
+                "axis {i}: drag {} velocity {}",
+                a[i],
+                v[i]
+            );
         }
         // hand computation for x: 0.699 * 100^2 * exp(-0.0009 * 1500) / (6.0 * 1905)
         let ax = 0.699 * 1.0e4 * (-1.35f64).exp() / (6.0 * 1905.0);
@@ -184,7 +208,10 @@ mod tests {
 
     #[test]
     fn actuator_scales_by_mass_and_clips_per_axis() {
-        let p = MarsLander { thrust_limit: Vector3::repeat(50_000.0), ..Default::default() };
+        let p = MarsLander {
+            thrust_limit: Vector3::repeat(50_000.0),
+            ..Default::default()
+        };
         let x = MarsState::from([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2000.0]);
         let f = p.actuate(&x, &Vector3::new(10.0, -40.0, 30.0));
         assert_eq!(f, Vector3::new(20_000.0, -50_000.0, 50_000.0));
@@ -192,9 +219,15 @@ mod tests {
 
     #[test]
     fn validation_names_the_parameter() {
-        let p = MarsLander { isp: -1.0, ..Default::default() };
+        let p = MarsLander {
+            isp: -1.0,
+            ..Default::default()
+        };
         assert_eq!(p.validate().unwrap_err().param, "isp");
-        let p = MarsLander { area: Vector3::new(1.0, 0.0, 1.0), ..Default::default() };
+        let p = MarsLander {
+            area: Vector3::new(1.0, 0.0, 1.0),
+            ..Default::default()
+        };
         let e = p.validate().unwrap_err();
         assert_eq!((e.param, e.axis), ("area", Some(1)));
         assert!(MarsLander::default().validate().is_ok());

@@ -1,13 +1,13 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+use landing_core::SimConfig;
 use landing_core::batch::{Batch, BatchOutput, PerCase, run};
 use landing_core::control::{ControlLaw, FixedTimeMss, MssVariant};
 use landing_core::disturbance::Disturbance;
 use landing_core::integrator::Integrator;
 use landing_core::plant::{MarsLander, Plant};
 use landing_core::reference::Reference;
-use landing_core::SimConfig;
 use landing_core::workloads::{MARS_NOMINAL, spec_fixed_time_gains};
 use nalgebra::SVector;
 
@@ -46,7 +46,10 @@ pub fn run_one<L: ControlLaw<3>, I: Integrator>(
 }
 
 pub fn no_drag() -> MarsLander {
-    MarsLander { drag: false, ..Default::default() }
+    MarsLander {
+        drag: false,
+        ..Default::default()
+    }
 }
 
 pub fn final_state(out: &BatchOutput<3>, case: usize) -> MarsState {
