@@ -11,7 +11,7 @@ laws, references and disturbances, runs batches and reads the results.
 """
 
 from landing._core import __version__
-from landing import controllers, disturbances, errors, plants, reference
+from landing import controllers, dispersions, disturbances, errors, plants, reference
 from landing.errors import (
     DivergenceWarning,
     LandingError,
@@ -20,14 +20,22 @@ from landing.errors import (
     SimulationError,
 )
 from landing.simulation import Metrics, SimulationResult, simulate, simulate_batch
+from landing import plots, scenarios, theory
+from landing.montecarlo import MonteCarloResult, monte_carlo
 
 __all__ = [
     "__version__",
     "controllers",
+    "dispersions",
     "disturbances",
     "errors",
     "plants",
+    "plots",
     "reference",
+    "scenarios",
+    "theory",
+    "monte_carlo",
+    "MonteCarloResult",
     "simulate",
     "simulate_batch",
     "Metrics",

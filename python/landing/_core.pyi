@@ -26,6 +26,8 @@ def simulate_batch(
     record_every: int,
     seed: int,
     first_case: int,
+    settle_tolerance: float,
+    settle_relative: bool,
     threads: Optional[int],
 ) -> dict[str, Any]:
     """Run a batch. Returns t, states, controls, diagnostics, final_state, metrics (a dict of
@@ -53,3 +55,35 @@ def plant_info(kind: str) -> dict[str, Any]:
 
 def philox4x64(counter: tuple[int, int, int, int], key: tuple[int, int]) -> list[int]:
     """One Philox4x64-10 block (the generator behind every random draw)."""
+
+def fixed_time_bound(c1: float, e1: float, c2: float, e2: float) -> float:
+    """Seed 001 Lemma 2 (k = 1) for s' = -c1 sig^e1(s) - c2 sig^e2(s)."""
+
+def practical_time_bound(c1: float, e1: float, c2: float, e2: float, theta: float) -> float:
+    """Seed 001 Theorem 1 (k = 1): time to reach the practical neighbourhood."""
+
+def practical_radius(c1: float, e1: float, c2: float, e2: float, d_max: float, theta: float) -> float:
+    """Seed 001 eq. 38-39: radius of the practical neighbourhood."""
+
+def mss_bounds(
+    beta1: float, q1: float, beta2: float, q2: float,
+    alpha1: float, gamma1: float, alpha2: float, gamma2: float,
+    ap_max: float, theta1: float, theta2: float,
+) -> dict[str, float]:
+    """Seed 001 Theorems 2-4 on one axis: t1, t2, s2_radius, s2_time, s1_radius, s1_time,
+    printed_time, settle_time."""
+
+def min_final_time(r0: float, v0: float, a_max: float, g: float) -> tuple[float, float]:
+    """Seed 001 Remark 1 (sign-consistent): (tf1, tf2) on one axis."""
+
+def min_time_to_rest(r0: float, v0: float, a_max: float, g: float) -> float:
+    """Shortest time to rest at 0 on one axis (time-optimal bang-bang)."""
+
+def sample_dispersion(table: Table, seed: int, first_case: int, n: int) -> npt.NDArray[np.float64]:
+    """Cases first_case .. first_case + n of a dispersion, shape (n, components)."""
+
+def check_dispersion(table: Table) -> int:
+    """Validate a dispersion table; returns its number of components."""
+
+def disturbance_bound(table: Table, axes: int) -> list[float]:
+    """Per-axis bound on |d_i(t)| of a disturbance table."""

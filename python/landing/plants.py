@@ -14,7 +14,7 @@ import numpy as np
 from landing import _core
 from landing._table import ArrayLike, Table
 
-__all__ = ["Plant", "MarsLander"]
+__all__ = ["Plant", "MarsLander", "DoubleIntegrator"]
 
 
 class Plant(Table):
@@ -86,3 +86,17 @@ class MarsLander(Plant):
             [np.broadcast_to(r, shape + (3,)), np.broadcast_to(v, shape + (3,)), np.broadcast_to(m, shape)[..., None]],
             axis=-1,
         )
+
+
+@dataclass(eq=False)
+class DoubleIntegrator(Plant):
+    """``q'' = u + d`` on three axes: no drift, unit inertia.
+
+    The plant on which a law's reaching law holds exactly, used to check the theory's bounds
+    against simulation, and the simplest test bed for any law. State ``[x, y, z, vx, vy, vz]``;
+    the command is the acceleration, clipped per axis to ``acceleration_limit`` (None: none).
+    """
+
+    acceleration_limit: Optional[ArrayLike] = None
+
+    kind: ClassVar[str] = "double_integrator"

@@ -27,9 +27,13 @@ class Metrics(Mapping[str, np.ndarray]):
     - ``final_position_error`` (N,), ``final_velocity_error`` (N,): norms of the tracking
       error and its rate at t_final; ``final_error``, ``final_rate_error`` (N, D) per axis.
     - ``fuel_used`` (N,): m(0) - m(t_final), for plants with mass (NaN otherwise).
+    - ``fuel_to_settle`` (N,): m(0) - m(settle_time), the propellant spent until the error
+      settles (NaN if it does not, or the plant has no mass).
     - ``peak_command`` (N,): largest |u| applied (for the Mars lander, the peak thrust in N);
       ``peak_command_axis`` (N, D): largest |u_i|.
     - ``control_effort`` (N,): integral of |u| dt.
+    - ``settle_time`` (N,): first control instant from which |q - q_ref| stays within the
+      settle tolerance until t_final (NaN if it is outside at t_final).
     - ``touchdown_time``, ``touchdown_speed`` (N,), ``touchdown_position``,
       ``touchdown_velocity`` (N, D): first crossing of the surface, interpolated within the
       step; NaN if none (or the plant has no surface).
@@ -178,6 +182,7 @@ def simulate_batch(
     record_every: int = 1,
     seed: int = 0,
     first_case: int = 0,
+    settle_tolerance: Optional[float] = None,
     threads: Optional[int] = None,
 ) -> SimulationResult:
     """Simulate N cases of ``plant`` under ``controller`` in parallel (SPEC section 2 semantics).
@@ -200,6 +205,9 @@ def simulate_batch(
         (seed, first_case + i), never on the thread count or the batch size.
     first_case : global index of the first case, so that a slice of a campaign run alone
         (or in chunks) draws the same random numbers as in the whole batch.
+    settle_tolerance : the tolerance on the tracking-error norm |q - q_ref| behind
+        ``metrics["settle_time"]`` (the first control instant from which the error stays
+        within it), in units of q; None for 2 % of the initial error norm.
     threads : worker threads (default: all cores).
 
     Returns
@@ -215,7 +223,8 @@ def simulate_batch(
         )
     return _run(plant, controller, x, t_final=t_final, dt=dt, integrator=integrator,
                 substeps=substeps, reference=reference, disturbance=disturbance,
-                record_every=record_every, seed=seed, first_case=first_case, threads=threads)
+                record_every=record_every, seed=seed, first_case=first_case,
+                settle_tolerance=settle_tolerance, threads=threads)
 
 
 def _as_states(x0: Any) -> np.ndarray:
@@ -239,6 +248,7 @@ def _run(
     record_every: int = 1,
     seed: int = 0,
     first_case: int = 0,
+    settle_tolerance: Optional[float] = None,
     threads: Optional[int] = None,
 ) -> SimulationResult:
     """The shared body of simulate and simulate_batch (warnings point at their caller)."""
@@ -273,6 +283,8 @@ def _run(
         record_every=_int("record_every", record_every),
         seed=seed_i,
         first_case=first,
+        settle_tolerance=0.02 if settle_tolerance is None else _real("settle_tolerance", settle_tolerance),
+        settle_relative=settle_tolerance is None,
         threads=_int("threads", threads, optional=True),
     )
     axes = out["axes"]

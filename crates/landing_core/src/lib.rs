@@ -8,6 +8,7 @@
 
 pub mod batch;
 pub mod control;
+pub mod dispersion;
 pub mod disturbance;
 pub mod error;
 pub mod gravity;
@@ -18,8 +19,9 @@ pub mod reference;
 pub mod rng;
 pub mod rollout;
 pub mod state;
+pub mod theory;
 pub mod workloads;
 
 pub use batch::{Batch, BatchError, BatchOutput, PerCase};
 pub use error::ParamError;
-pub use rollout::{CaseMetrics, SimConfig, Touchdown};
+pub use rollout::{CaseMetrics, SimConfig, Tolerance, Touchdown};

@@ -18,6 +18,25 @@ use crate::plant::Plant;
 use crate::reference::Reference;
 use crate::state::State;
 
+/// Tolerance on the tracking-error norm |e| that defines the settle time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tolerance {
+    /// In units of q (m, rad).
+    Absolute(f64),
+    /// A fraction of the initial error norm (the classical 2 % settling time is `Relative(0.02)`).
+    Relative(f64),
+}
+
+impl Tolerance {
+    pub fn validate(&self) -> Result<(), ParamError> {
+        match *self {
+            Tolerance::Absolute(v) | Tolerance::Relative(v) => {
+                crate::error::require(v >= 0.0, "settle_tolerance", v, "settle_tolerance >= 0")
+            }
+        }
+    }
+}
+
 /// Horizon, step and recording of a batch.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SimConfig {
@@ -34,6 +53,8 @@ pub struct SimConfig {
     /// Global index of the batch's first case: case i draws from the streams of case
     /// `first_case + i`, so a slice of a campaign can be re-run alone with the same numbers.
     pub first_case: u64,
+    /// What "settled" means for the settle-time metric.
+    pub settle: Tolerance,
 }
 
 /// Largest number of control periods a batch may ask for (keeps k dt exact in f64 terms of
@@ -85,7 +106,15 @@ impl SimConfig {
             record_every,
             seed,
             first_case: 0,
+            settle: Tolerance::Relative(0.02),
         })
+    }
+
+    /// The same configuration with another settle tolerance.
+    pub fn with_settle(mut self, settle: Tolerance) -> Result<Self, ParamError> {
+        settle.validate()?;
+        self.settle = settle;
+        Ok(self)
     }
 
     /// The same configuration with the batch's cases numbered from `first_case`.
@@ -139,12 +168,18 @@ pub struct CaseMetrics<const D: usize> {
     pub final_rate_error: SVector<f64, D>,
     /// m(0) - m(t_final) for plants with mass, else NaN.
     pub fuel_used: f64,
+    /// m(0) - m(settle_time): the propellant spent until the error settles (landing), for
+    /// plants with mass; NaN if it does not settle.
+    pub fuel_to_settle: f64,
     /// max over applied commands of |u| (Euclidean).
     pub peak_command: f64,
     /// max over applied commands of |u_i|, per axis.
     pub peak_command_axis: SVector<f64, D>,
     /// integral of |u| dt over the applied commands.
     pub control_effort: f64,
+    /// First control instant from which |e| stays within the settle tolerance until t_final
+    /// (0 if it always was; NaN if it is outside at t_final or the case diverged).
+    pub settle_time: f64,
     pub touchdown: Option<Touchdown<D>>,
     /// Time at which the state (or the command) stopped being admissible.
     pub diverged_at: Option<f64>,
@@ -156,9 +191,11 @@ impl<const D: usize> CaseMetrics<D> {
             final_error: SVector::repeat(f64::NAN),
             final_rate_error: SVector::repeat(f64::NAN),
             fuel_used: f64::NAN,
+            fuel_to_settle: f64::NAN,
             peak_command: 0.0,
             peak_command_axis: SVector::zeros(),
             control_effort: 0.0,
+            settle_time: f64::NAN,
             touchdown: None,
             diverged_at: None,
         }
@@ -259,6 +296,15 @@ where
     let mut memory = law.start(&input);
     let mut slot = 0usize;
     let mut next_record = 0u64;
+    let tolerance = match cfg.settle {
+        Tolerance::Absolute(v) => v,
+        Tolerance::Relative(f) => f * input.e.norm(),
+    };
+    // the last control instant at which |e| was outside the tolerance, and the mass at the
+    // instant after it (the settle instant, should the error stay inside from there on)
+    let mut last_outside: Option<u64> = None;
+    let mut settle_mass = m0;
+    let mut was_outside = false;
 
     'periods: for k in 0..cfg.steps {
         let t = k as f64 * cfg.dt;
@@ -273,6 +319,13 @@ where
             next_record += cfg.record_every;
         }
         metrics.add_command(&u, cfg.dt);
+        if input.e.norm() > tolerance {
+            last_outside = Some(k);
+            was_outside = true;
+        } else if was_outside {
+            settle_mass = plant.mass(&x);
+            was_outside = false;
+        }
 
         let held = disturbance.draw(&rng, k);
         law.advance(&mut memory, &input);
@@ -325,6 +378,15 @@ where
                 slot += 1;
             }
             out.final_state.copy_from_slice(x.as_slice());
+            if input.e.norm() <= tolerance {
+                if was_outside {
+                    settle_mass = plant.mass(&x);
+                }
+                metrics.settle_time = last_outside.map_or(0.0, |k| (k + 1) as f64 * cfg.dt);
+                if let (Some(m0), Some(ms)) = (m0, settle_mass) {
+                    metrics.fuel_to_settle = m0 - ms;
+                }
+            }
             metrics.final_error = input.e;
             metrics.final_rate_error = input.de;
             if let (Some(m0), Some(m)) = (m0, plant.mass(&x)) {

@@ -4,6 +4,7 @@
 //! batch runs with the GIL released. The Python package (`python/landing`) builds the parameter
 //! tables; nothing here holds simulation logic.
 
+mod analysis;
 mod errors;
 mod output;
 mod params;
@@ -19,11 +20,11 @@ use landing_core::batch::{Batch, BatchOutput, PerCase, run_with_threads};
 use landing_core::control::ControlLaw;
 use landing_core::disturbance::Disturbance;
 use landing_core::integrator::{Euler, IntegratorKind, Rk4};
-use landing_core::plant::Plant;
+use landing_core::plant::{DoubleIntegrator, MarsLander, Plant};
 use landing_core::reference::Reference;
 use landing_core::rng::philox4x64_10;
 use landing_core::state::State;
-use landing_core::{BatchError, SimConfig};
+use landing_core::{BatchError, SimConfig, Tolerance};
 
 use errors::{InputError, batch_error, internal_error, param_error, to_pyerr};
 use params::Params;
@@ -164,6 +165,12 @@ fn prepare<'py, const D: usize, P: Plant<D>>(
     })
 }
 
+/// A job for one of the plants (the dispatch on the plant, once per batch).
+enum Prepared {
+    Mars(Job<3, MarsLander>),
+    DoubleIntegrator(Job<3, DoubleIntegrator>),
+}
+
 /// Runs a prepared job without the GIL, turning a panic into an exception.
 fn execute<'py, const D: usize, P: Plant<D>>(
     py: Python<'py>,
@@ -187,7 +194,7 @@ fn execute<'py, const D: usize, P: Plant<D>>(
 
 /// See `landing.simulate_batch` for the documentation.
 #[pyfunction]
-#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, threads))]
+#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, threads))]
 #[allow(clippy::too_many_arguments)]
 fn simulate_batch<'py>(
     py: Python<'py>,
@@ -203,6 +210,8 @@ fn simulate_batch<'py>(
     record_every: i64,
     seed: u64,
     first_case: u64,
+    settle_tolerance: f64,
+    settle_relative: bool,
     threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let prepared = (|| -> Result<_, InputError> {
@@ -233,7 +242,13 @@ fn simulate_batch<'py>(
         };
         let cfg = SimConfig::new(t_final, dt, substeps as u32, record_every as u64, seed)
             .map_err(|e| param_error(&e, None))?
-            .with_first_case(first_case);
+            .with_first_case(first_case)
+            .with_settle(if settle_relative {
+                Tolerance::Relative(settle_tolerance)
+            } else {
+                Tolerance::Absolute(settle_tolerance)
+            })
+            .map_err(|e| param_error(&e, None))?;
         let plant = table(plant, "plant")?;
         let controller = table(controller, "controller")?;
         let reference = reference
@@ -248,8 +263,8 @@ fn simulate_batch<'py>(
         let kind = kind_of(&plant, "plant")?;
         let mut p = Params::new(format!("plant ({kind})"), plant.clone(), n);
         let spec = parse_plant(&kind, &mut p).map_err(|e| e.context(&p.owner))?;
-        match spec {
-            PlantSpec::Mars(plants) => prepare::<3, _>(
+        let prepared = match spec {
+            PlantSpec::Mars(plants) => Prepared::Mars(prepare::<3, _>(
                 plants,
                 &controller,
                 &x0,
@@ -258,11 +273,24 @@ fn simulate_batch<'py>(
                 integ,
                 cfg,
                 threads,
-            ),
-        }
+            )?),
+            PlantSpec::DoubleIntegrator(plants) => Prepared::DoubleIntegrator(prepare::<3, _>(
+                plants,
+                &controller,
+                &x0,
+                reference.as_ref(),
+                disturbance.as_ref(),
+                integ,
+                cfg,
+                threads,
+            )?),
+        };
+        Ok(prepared)
     })();
-    let job = prepared.map_err(|e| to_pyerr(py, e))?;
-    execute(py, job)
+    match prepared.map_err(|e| to_pyerr(py, e))? {
+        Prepared::Mars(job) => execute(py, job),
+        Prepared::DoubleIntegrator(job) => execute(py, job),
+    }
 }
 
 /// Validates a plant table without running anything (used by the constructors).
@@ -423,7 +451,8 @@ fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> 
         Ok(d)
     }
     match kind {
-        "mars_lander" => info::<3, landing_core::plant::MarsLander>(py),
+        "mars_lander" => info::<3, MarsLander>(py),
+        "double_integrator" => info::<3, DoubleIntegrator>(py),
         other => Err(to_pyerr(
             py,
             InputError::Value(format!(
@@ -451,6 +480,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cubic_from_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(philox4x64, m)?)?;
     m.add_function(wrap_pyfunction!(plant_info, m)?)?;
+    analysis::register(m)?;
     m.add("INTEGRATORS", IntegratorKind::NAMES.to_vec())?;
     m.add("PLANT_KINDS", PlantSpec::KINDS.to_vec())?;
     m.add("CONTROLLER_KINDS", specs::LAW_KINDS.to_vec())?;

@@ -62,12 +62,14 @@ pub fn to_dict<'py, const D: usize>(
         array2(py, cols(&|i| m[i].final_rate_error.into()), n, D)?,
     )?;
     metrics.set_item("fuel_used", array1(py, col(&|i| m[i].fuel_used)))?;
+    metrics.set_item("fuel_to_settle", array1(py, col(&|i| m[i].fuel_to_settle)))?;
     metrics.set_item("peak_command", array1(py, col(&|i| m[i].peak_command)))?;
     metrics.set_item(
         "peak_command_axis",
         array2(py, cols(&|i| m[i].peak_command_axis.into()), n, D)?,
     )?;
     metrics.set_item("control_effort", array1(py, col(&|i| m[i].control_effort)))?;
+    metrics.set_item("settle_time", array1(py, col(&|i| m[i].settle_time)))?;
     metrics.set_item(
         "touchdown_time",
         array1(py, col(&|i| td(i).map_or(nan, |t| t.time))),

@@ -13,7 +13,7 @@ use landing_core::control::{
 };
 use landing_core::disturbance::{Disturbance, MAX_SINUSOIDS, Sinusoid};
 use landing_core::gravity::Uniform;
-use landing_core::plant::MarsLander;
+use landing_core::plant::{DoubleIntegrator, MarsLander};
 use landing_core::reference::Reference;
 
 use crate::errors::InputError;
@@ -27,14 +27,15 @@ pub fn kind_of(dict: &Bound<'_, PyDict>, what: &str) -> Result<String, InputErro
 
 pub enum PlantSpec {
     Mars(PerCase<MarsLander>),
+    DoubleIntegrator(PerCase<DoubleIntegrator>),
 }
 
 impl PlantSpec {
-    pub const KINDS: [&'static str; 1] = ["mars_lander"];
+    pub const KINDS: [&'static str; 2] = ["mars_lander", "double_integrator"];
 
     pub fn axes(&self) -> usize {
         match self {
-            Self::Mars(_) => 3,
+            Self::Mars(_) | Self::DoubleIntegrator(_) => 3,
         }
     }
 }
@@ -68,6 +69,18 @@ pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputErr
                 |m: &MarsLander| landing_core::plant::Plant::validate(m),
             )?;
             Ok(PlantSpec::Mars(plants))
+        }
+        "double_integrator" => {
+            let limit = p.opt_axes::<3>("acceleration_limit")?;
+            let plants = p.build(
+                |i| DoubleIntegrator {
+                    acceleration_limit: limit
+                        .as_ref()
+                        .map_or(Vector3::repeat(f64::INFINITY), |l| pick(l, i)),
+                },
+                |d: &DoubleIntegrator| landing_core::plant::Plant::validate(d),
+            )?;
+            Ok(PlantSpec::DoubleIntegrator(plants))
         }
         other => Err(InputError::Value(format!(
             "unknown plant kind {other:?}; known: {:?}",

@@ -5,8 +5,10 @@
 //! command from the tracking errors and the plant's modelled drift; the plant's actuator turns
 //! it into the applied command (thrust, control acceleration, torque) and saturates it.
 
+mod double_integrator;
 mod mars;
 
+pub use double_integrator::DoubleIntegrator;
 pub use mars::MarsLander;
 
 use nalgebra::SVector;

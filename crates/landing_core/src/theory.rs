@@ -1,0 +1,314 @@
+//! Convergence bounds of the fixed-time laws (seed 001 section II and III; SPEC section 6).
+//!
+//! Every bound here is checked against simulation by `landing.theory` in Python.
+
+use crate::error::{ParamError, require};
+
+/// Lemma 2 with k = 1 on V = s^2 / 2 for the scalar reaching law
+/// `s' = -c1 sig^e1(s) - c2 sig^e2(s)`, 0 < e1 < 1 < e2 (seed eq. 3, 18, 26):
+///
+/// `T <= 1 / (c1 (1 - e1) 2^((e1 - 1)/2)) + 1 / (c2 (e2 - 1) 2^((e2 - 1)/2))`,
+///
+/// whatever s(0). (V' = -c1 2^((e1+1)/2) V^((e1+1)/2) - ..., and Lemma 2's
+/// `1/(alpha (1 - p)) + 1/(beta (g - 1))` with p = (e1+1)/2, g = (e2+1)/2.)
+pub fn fixed_time_bound(c1: f64, e1: f64, c2: f64, e2: f64) -> Result<f64, ParamError> {
+    check_reaching(c1, e1, c2, e2)?;
+    Ok(1.0 / (c1 * (1.0 - e1) * 2f64.powf((e1 - 1.0) / 2.0))
+        + 1.0 / (c2 * (e2 - 1.0) * 2f64.powf((e2 - 1.0) / 2.0)))
+}
+
+fn check_reaching(c1: f64, e1: f64, c2: f64, e2: f64) -> Result<(), ParamError> {
+    require(c1 > 0.0, "c1", c1, "c1 > 0")?;
+    require(c2 > 0.0, "c2", c2, "c2 > 0")?;
+    require(e1 > 0.0 && e1 < 1.0, "e1", e1, "0 < e1 < 1")?;
+    require(e2 > 1.0, "e2", e2, "e2 > 1")
+}
+
+fn check_theta(theta: f64) -> Result<(), ParamError> {
+    require(theta > 0.0 && theta < 1.0, "theta", theta, "0 < theta < 1")
+}
+
+/// Theorem 1 (k = 1) for `s' = -c1 sig^e1(s) - c2 sig^e2(s) + d`, |d| <= d_max: the time to
+/// reach the neighbourhood of [`practical_radius`], `fixed_time_bound / theta` (seed eq. 6, 40).
+pub fn practical_time_bound(c1: f64, e1: f64, c2: f64, e2: f64, theta: f64) -> Result<f64, ParamError> {
+    check_theta(theta)?;
+    Ok(fixed_time_bound(c1, e1, c2, e2)? / theta)
+}
+
+/// The neighbourhood that `s' = -c1 sig^e1(s) - c2 sig^e2(s) + d`, |d| <= d_max, reaches and
+/// keeps (seed eq. 38, 39): outside it `(1 - theta)(c1 |s|^e1 + c2 |s|^e2) >= d_max`, so V
+/// decreases at least at the rate of the law with gains theta c1, theta c2. Hence
+/// `|s| <= min{(d_max / ((1 - theta) c1))^(1/e1), (d_max / ((1 - theta) c2))^(1/e2)}`.
+pub fn practical_radius(c1: f64, e1: f64, c2: f64, e2: f64, d_max: f64, theta: f64) -> Result<f64, ParamError> {
+    check_reaching(c1, e1, c2, e2)?;
+    check_theta(theta)?;
+    require(d_max >= 0.0, "d_max", d_max, "d_max >= 0")?;
+    let k = d_max / (1.0 - theta);
+    Ok((k / c1).powf(1.0 / e1).min((k / c2).powf(1.0 / e2)))
+}
+
+/// Bounds of the fixed-time MSS guidance on one axis (seed Theorems 2 to 4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MssBounds {
+    /// Eq. 18: time for s1 to reach 0 once on s2 = 0.
+    pub t1: f64,
+    /// Eq. 26: time for s2 to reach 0 from anywhere (no disturbance).
+    pub t2: f64,
+    /// Eq. 39: neighbourhood of s2 under |a_p| <= ap_max.
+    pub s2_radius: f64,
+    /// Eq. 40: time to reach it.
+    pub s2_time: f64,
+    /// Eq. 31: neighbourhood of s1 = r - r_d once s2 is in its neighbourhood.
+    pub s1_radius: f64,
+    /// Eq. 45: time for s1 to reach its neighbourhood once s2 is in its own.
+    pub s1_time: f64,
+    /// Eq. 32 as printed: `max(s2_time, s1_time)`. s1 only follows its perturbed reaching law
+    /// once s2 is in its neighbourhood, so the times add up: see [`MssBounds::settle_time`].
+    pub printed_time: f64,
+}
+
+impl MssBounds {
+    /// A sound bound on the time after which s1 stays in its neighbourhood: s2 first reaches
+    /// its own (s2_time), then s1 reaches its (s1_time).
+    pub fn settle_time(&self) -> f64 {
+        self.s2_time + self.s1_time
+    }
+}
+
+/// Seed 001's bounds for one axis of `FixedTimeMss` with gains
+/// (beta1, q1, beta2, q2, alpha1, gamma1, alpha2, gamma2), disturbance bound `ap_max` on that
+/// axis and the splitting constants theta1 (for s2) and theta2 (for s1).
+#[allow(clippy::too_many_arguments)]
+pub fn mss_bounds(
+    beta1: f64,
+    q1: f64,
+    beta2: f64,
+    q2: f64,
+    alpha1: f64,
+    gamma1: f64,
+    alpha2: f64,
+    gamma2: f64,
+    ap_max: f64,
+    theta1: f64,
+    theta2: f64,
+) -> Result<MssBounds, ParamError> {
+    let rename = |e: ParamError, names: [&'static str; 4]| {
+        let param = match e.param {
+            "c1" => names[0],
+            "e1" => names[1],
+            "c2" => names[2],
+            "e2" => names[3],
+            "theta" => names[0],
+            other => other,
+        };
+        ParamError { param, ..e }
+    };
+    let s1_names = ["beta1", "q1", "beta2", "q2"];
+    let s2_names = ["alpha1", "gamma1", "alpha2", "gamma2"];
+    let t1 = fixed_time_bound(beta1, q1, beta2, q2).map_err(|e| rename(e, s1_names))?;
+    let t2 = fixed_time_bound(alpha1, gamma1, alpha2, gamma2).map_err(|e| rename(e, s2_names))?;
+    check_theta(theta1).map_err(|e| ParamError { param: "theta1", ..e })?;
+    check_theta(theta2).map_err(|e| ParamError { param: "theta2", ..e })?;
+    require(ap_max >= 0.0, "ap_max", ap_max, "ap_max >= 0")?;
+    let s2_radius = practical_radius(alpha1, gamma1, alpha2, gamma2, ap_max, theta1)?;
+    let s2_time = t2 / theta1;
+    let s1_radius = practical_radius(beta1, q1, beta2, q2, s2_radius, theta2)?;
+    let s1_time = t1 / theta2;
+    Ok(MssBounds {
+        t1,
+        t2,
+        s2_radius,
+        s2_time,
+        s1_radius,
+        s1_time,
+        printed_time: s2_time.max(s1_time),
+    })
+}
+
+/// Seed 001 Remark 1, written sign-consistently for any initial state: lower bounds on the
+/// final time under an acceleration limit `a_max` on one axis with gravity `g` on that axis
+/// (negative for z up).
+///
+/// - `tf1`: the first time the position can reach 0, pushing at full thrust towards the target
+///   with gravity: the smallest positive root of `r0 + v0 t + (a t^2)/2 = 0`,
+///   `a = -sgn(r0) a_max + g`. (The seed prints `(-v0 + sqrt(v0^2 - 2 a_max r0)) / a_max`,
+///   its root for r0 < 0 without gravity.)
+/// - `tf2`: the time to null the velocity at full thrust against it,
+///   `|v0| / (a_max - sgn(v0) g)` (the seed's `-v0 / (a_max - g)` for a falling lander with g
+///   taken positive).
+///
+/// Either is infinite when the thrust cannot overcome gravity in the needed direction.
+pub fn min_final_time(r0: f64, v0: f64, a_max: f64, g: f64) -> Result<(f64, f64), ParamError> {
+    require(a_max > 0.0, "a_max", a_max, "a_max > 0")?;
+    require(true, "r0", r0, "finite values")?;
+    require(true, "v0", v0, "finite values")?;
+    require(true, "g", g, "finite values")?;
+    let tf1 = if r0 == 0.0 {
+        0.0
+    } else {
+        let a = -r0.signum() * a_max + g;
+        smallest_positive_root(0.5 * a, v0, r0)
+    };
+    let tf2 = if v0 == 0.0 {
+        0.0
+    } else {
+        let decel = a_max - v0.signum() * g;
+        if decel > 0.0 { v0.abs() / decel } else { f64::INFINITY }
+    };
+    Ok((tf1, tf2))
+}
+
+/// The shortest time to bring one axis from (r0, v0) to rest at 0 with the acceleration
+/// limited to `[g - a_max, g + a_max]` (thrust up to `a_max` either way plus gravity `g`):
+/// the bang-bang solution of the time-optimal double integrator, one switch. Infinite when the
+/// thrust cannot overcome gravity. A true lower bound on any landing time on that axis when
+/// `a_max` is the largest acceleration the engine can give (thrust limit over the smallest
+/// mass).
+pub fn min_time_to_rest(r0: f64, v0: f64, a_max: f64, g: f64) -> Result<f64, ParamError> {
+    require(a_max > 0.0, "a_max", a_max, "a_max > 0")?;
+    require(true, "r0", r0, "finite values")?;
+    require(true, "v0", v0, "finite values")?;
+    require(true, "g", g, "finite values")?;
+    let (up, down) = (g + a_max, g - a_max);
+    if up <= 0.0 || down >= 0.0 {
+        return Ok(f64::INFINITY);
+    }
+    if r0 == 0.0 && v0 == 0.0 {
+        return Ok(0.0);
+    }
+    let mut best = f64::INFINITY;
+    // accelerate with `a` for t1, then with `b` (opposite sign) for t2 down to rest at 0:
+    // the second arc ends at the origin, so x1 = v1^2 / (2 b) with v1 = v0 + a t1
+    for (a, b) in [(up, down), (down, up)] {
+        // r0 + v0 t + a t^2 / 2 = (v0 + a t)^2 / (2 b)
+        let qa = 0.5 * a - a * a / (2.0 * b);
+        let qb = v0 - v0 * a / b;
+        let qc = r0 - v0 * v0 / (2.0 * b);
+        for t1 in nonnegative_roots(qa, qb, qc) {
+            let t2 = -(v0 + a * t1) / b;
+            if t2 >= -1e-12 {
+                best = best.min(t1 + t2.max(0.0));
+            }
+        }
+    }
+    Ok(best)
+}
+
+/// Non-negative roots of `a t^2 + b t + c = 0`.
+fn nonnegative_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+    let mut out = Vec::with_capacity(2);
+    if a == 0.0 {
+        if b != 0.0 && -c / b >= 0.0 {
+            out.push(-c / b);
+        }
+        return out;
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return out;
+    }
+    let q = -0.5 * (b + if b >= 0.0 { 1.0 } else { -1.0 } * disc.sqrt());
+    for t in [q / a, if q != 0.0 { c / q } else { 0.0 }] {
+        if t >= 0.0 {
+            out.push(t);
+        }
+    }
+    out
+}
+
+/// Smallest positive root of `a t^2 + b t + c = 0` (infinite if none).
+fn smallest_positive_root(a: f64, b: f64, c: f64) -> f64 {
+    let mut best = f64::INFINITY;
+    let mut consider = |t: f64| {
+        if t > 0.0 && t < best {
+            best = t;
+        }
+    };
+    if a == 0.0 {
+        if b != 0.0 {
+            consider(-c / b);
+        }
+        return best;
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return best;
+    }
+    // numerically stable pair of roots
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    if q != 0.0 {
+        consider(q / a);
+        consider(c / q);
+    } else {
+        consider(0.0);
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seed_bounds_from_the_spec_reconstruction() {
+        let t1 = fixed_time_bound(0.8, 0.95, 0.4, 1.05).unwrap();
+        let t2 = fixed_time_bound(0.9, 0.9, 0.5, 1.1).unwrap();
+        assert!((t1 - 74.5780).abs() < 5e-5, "{t1}");
+        assert!((t2 - 30.8217).abs() < 5e-5, "{t2}");
+    }
+
+    #[test]
+    fn radius_is_where_the_reaching_law_beats_the_disturbance() {
+        // at the radius, (1 - theta) times the larger-radius term equals d_max for the binding
+        // term
+        let (c1, e1, c2, e2, d, th) = (0.9, 0.9, 0.5, 1.1, 20.0, 0.2);
+        let r = practical_radius(c1, e1, c2, e2, d, th).unwrap();
+        let a = (1.0 - th) * c1 * r.powf(e1);
+        let b = (1.0 - th) * c2 * r.powf(e2);
+        assert!((a.max(b) - d).abs() < 1e-9 * d);
+        assert!(a.min(b) <= d);
+    }
+
+    #[test]
+    fn remark1_closed_forms() {
+        // seed nominal x axis without gravity: -2000 + 100 t + a t^2 / 2 = 0
+        let a = 50_000.0 / 1905.0;
+        let (tf1, tf2) = min_final_time(-2000.0, 100.0, a, 0.0).unwrap();
+        let expect = (-100.0 + (100.0f64 * 100.0 + 2.0 * a * 2000.0).sqrt()) / a;
+        assert!((tf1 - expect).abs() < 1e-12);
+        assert!((tf2 - 100.0 / a).abs() < 1e-12);
+        // falling lander: thrust up against gravity nulls the velocity in 75 / (a - g)
+        let (_, tf2) = min_final_time(1500.0, -75.0, a, -3.7114).unwrap();
+        assert!((tf2 - 75.0 / (a - 3.7114)).abs() < 1e-12);
+        // an engine weaker than gravity cannot stop a fall
+        assert_eq!(min_final_time(1500.0, -75.0, 2.0, -3.7114).unwrap().1, f64::INFINITY);
+    }
+
+    #[test]
+    fn time_to_rest_matches_the_symmetric_closed_form() {
+        // no gravity, from rest at distance d: accelerate half way, brake half way, 2 sqrt(d/a)
+        let t = min_time_to_rest(-2000.0, 0.0, 20.0, 0.0).unwrap();
+        assert!((t - 2.0 * (2000.0f64 / 20.0).sqrt()).abs() < 1e-9, "{t}");
+        // moving towards the target already: v_peak^2 = (v0^2 + 2 a d) / 2
+        let (a, d, v0) = (21.0, 2000.0, 100.0);
+        let vp = ((v0 * v0 + 2.0 * a * d) / 2.0f64).sqrt();
+        let t = min_time_to_rest(-d, v0, a, 0.0).unwrap();
+        assert!((t - ((vp - v0) / a + vp / a)).abs() < 1e-9, "{t}");
+        // just braking: from v0 towards the target exactly on the braking curve
+        let t = min_time_to_rest(-v0 * v0 / (2.0 * a), v0, a, 0.0).unwrap();
+        assert!((t - v0 / a).abs() < 1e-6, "{t}");
+        // gravity makes braking a fall harder than starting it
+        let falling = min_time_to_rest(1500.0, -75.0, 26.0, -3.7114).unwrap();
+        let no_g = min_time_to_rest(1500.0, -75.0, 26.0, 0.0).unwrap();
+        assert!(falling > 0.0 && no_g > 0.0 && falling.is_finite());
+        assert_eq!(min_time_to_rest(10.0, 0.0, 3.0, -3.7114).unwrap(), f64::INFINITY);
+    }
+
+    #[test]
+    fn invalid_gains_name_the_seed_symbol() {
+        let e = mss_bounds(0.8, 1.2, 0.4, 1.05, 0.9, 0.9, 0.5, 1.1, 20.0, 0.2, 0.1).unwrap_err();
+        assert_eq!(e.param, "q1");
+        let e = mss_bounds(0.8, 0.9, 0.4, 1.05, 0.9, 0.9, 0.5, 1.1, 20.0, 1.2, 0.1).unwrap_err();
+        assert_eq!(e.param, "theta1");
+    }
+}

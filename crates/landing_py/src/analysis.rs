@@ -1,0 +1,179 @@
+//! Bindings of the core's theory (convergence bounds) and dispersion sampling. Scalar in,
+//! scalar out: `landing.theory` broadcasts them over arrays.
+
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use landing_core::dispersion::{Component, Dispersion};
+use landing_core::{ParamError, theory};
+
+use crate::errors::{InputError, param_error, to_pyerr};
+use crate::params::Params;
+use crate::specs::kind_of;
+
+fn check<T>(py: Python<'_>, r: Result<T, ParamError>) -> PyResult<T> {
+    r.map_err(|e| to_pyerr(py, param_error(&e, None)))
+}
+
+/// Seed 001 Lemma 2 (k = 1) for s' = -c1 sig^e1(s) - c2 sig^e2(s).
+#[pyfunction]
+pub fn fixed_time_bound(py: Python<'_>, c1: f64, e1: f64, c2: f64, e2: f64) -> PyResult<f64> {
+    check(py, theory::fixed_time_bound(c1, e1, c2, e2))
+}
+
+/// Seed 001 Theorem 1 (k = 1): time to reach the practical neighbourhood.
+#[pyfunction]
+pub fn practical_time_bound(py: Python<'_>, c1: f64, e1: f64, c2: f64, e2: f64, theta: f64) -> PyResult<f64> {
+    check(py, theory::practical_time_bound(c1, e1, c2, e2, theta))
+}
+
+/// Seed 001 eq. 38-39: the practical neighbourhood's radius.
+#[pyfunction]
+pub fn practical_radius(
+    py: Python<'_>,
+    c1: f64,
+    e1: f64,
+    c2: f64,
+    e2: f64,
+    d_max: f64,
+    theta: f64,
+) -> PyResult<f64> {
+    check(py, theory::practical_radius(c1, e1, c2, e2, d_max, theta))
+}
+
+/// Seed 001 Theorems 2 to 4 for one axis of the fixed-time MSS guidance.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn mss_bounds<'py>(
+    py: Python<'py>,
+    beta1: f64,
+    q1: f64,
+    beta2: f64,
+    q2: f64,
+    alpha1: f64,
+    gamma1: f64,
+    alpha2: f64,
+    gamma2: f64,
+    ap_max: f64,
+    theta1: f64,
+    theta2: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let b = check(
+        py,
+        theory::mss_bounds(beta1, q1, beta2, q2, alpha1, gamma1, alpha2, gamma2, ap_max, theta1, theta2),
+    )?;
+    let d = PyDict::new(py);
+    d.set_item("t1", b.t1)?;
+    d.set_item("t2", b.t2)?;
+    d.set_item("s2_radius", b.s2_radius)?;
+    d.set_item("s2_time", b.s2_time)?;
+    d.set_item("s1_radius", b.s1_radius)?;
+    d.set_item("s1_time", b.s1_time)?;
+    d.set_item("printed_time", b.printed_time)?;
+    d.set_item("settle_time", b.settle_time())?;
+    Ok(d)
+}
+
+/// Seed 001 Remark 1 (sign-consistent): (tf1, tf2) lower bounds on one axis.
+#[pyfunction]
+pub fn min_final_time(py: Python<'_>, r0: f64, v0: f64, a_max: f64, g: f64) -> PyResult<(f64, f64)> {
+    check(py, theory::min_final_time(r0, v0, a_max, g))
+}
+
+/// Shortest time to rest at 0 on one axis (time-optimal bang-bang, gravity g).
+#[pyfunction]
+pub fn min_time_to_rest(py: Python<'_>, r0: f64, v0: f64, a_max: f64, g: f64) -> PyResult<f64> {
+    check(py, theory::min_time_to_rest(r0, v0, a_max, g))
+}
+
+fn parse_dispersion(table: &Bound<'_, PyDict>) -> Result<Dispersion, InputError> {
+    let kind = kind_of(table, "dispersion")?;
+    let mut p = Params::new(format!("dispersion ({kind})"), table.clone(), None);
+    let (a, b) = match kind.as_str() {
+        "normal" => ("mean", "std"),
+        "uniform" => ("low", "high"),
+        other => {
+            return Err(InputError::Value(format!(
+                "unknown dispersion kind {other:?}; known: [\"normal\", \"uniform\"]"
+            )));
+        }
+    };
+    let first = p.scalar(a)?;
+    let second = p.scalar(b)?;
+    if first.len() != second.len() && first.len() != 1 && second.len() != 1 {
+        return Err(InputError::Shape(format!(
+            "{a} has {} components and {b} has {}",
+            first.len(),
+            second.len()
+        )));
+    }
+    let n = first.len().max(second.len());
+    let pick = |v: &[f64], j: usize| v[if v.len() == 1 { 0 } else { j }];
+    let components = (0..n)
+        .map(|j| match kind.as_str() {
+            "normal" => Component::Normal { mean: pick(&first, j), std: pick(&second, j) },
+            _ => Component::Uniform { low: pick(&first, j), high: pick(&second, j) },
+        })
+        .collect();
+    let d = Dispersion { components };
+    d.validate().map_err(|e| {
+        let j = e.axis.unwrap_or(0);
+        InputError::Value(format!("{}[{j}] = {} violates {}", e.param, e.value, e.rule))
+    })?;
+    Ok(d)
+}
+
+/// Cases `first_case .. first_case + n` of a dispersion table, shape (n, components).
+#[pyfunction]
+pub fn sample_dispersion<'py>(
+    py: Python<'py>,
+    table: Bound<'py, PyDict>,
+    seed: u64,
+    first_case: u64,
+    n: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let d = parse_dispersion(&table).map_err(|e| to_pyerr(py, e.context("dispersion")))?;
+    let dim = d.dim();
+    let data = py.detach(|| d.sample(seed, first_case, n));
+    Ok(PyArray1::from_vec(py, data).reshape([n, dim])?.into_any())
+}
+
+/// Validates a dispersion table; returns its number of components.
+#[pyfunction]
+pub fn check_dispersion(py: Python<'_>, table: Bound<'_, PyDict>) -> PyResult<usize> {
+    parse_dispersion(&table).map(|d| d.dim()).map_err(|e| to_pyerr(py, e.context("dispersion")))
+}
+
+/// Per-axis bound on |d_i(t)| of a disturbance table shared by all cases: what the theory
+/// calls the disturbance's upper bound (|constant| + sum of |amplitudes| + noise bound).
+#[pyfunction]
+pub fn disturbance_bound(py: Python<'_>, table: Bound<'_, PyDict>, axes: usize) -> PyResult<Vec<f64>> {
+    fn bound<const D: usize>(table: &Bound<'_, PyDict>) -> Result<Vec<f64>, InputError> {
+        let mut p = Params::new("disturbance", table.clone(), None);
+        let d = crate::specs::parse_disturbance::<D>(&mut p).map_err(|e| e.context("disturbance"))?;
+        if d.len() != 1 {
+            return Err(InputError::Shape("the bound needs a disturbance shared by all cases".into()));
+        }
+        Ok(d.get(0).bound().as_slice().to_vec())
+    }
+    let r = match axes {
+        3 => bound::<3>(&table),
+        2 => bound::<2>(&table),
+        _ => Err(InputError::Value(format!("axes = {axes} violates axes in (2, 3)"))),
+    };
+    r.map_err(|e| to_pyerr(py, e))
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(fixed_time_bound, m)?)?;
+    m.add_function(wrap_pyfunction!(practical_time_bound, m)?)?;
+    m.add_function(wrap_pyfunction!(practical_radius, m)?)?;
+    m.add_function(wrap_pyfunction!(mss_bounds, m)?)?;
+    m.add_function(wrap_pyfunction!(min_final_time, m)?)?;
+    m.add_function(wrap_pyfunction!(min_time_to_rest, m)?)?;
+    m.add_function(wrap_pyfunction!(sample_dispersion, m)?)?;
+    m.add_function(wrap_pyfunction!(check_dispersion, m)?)?;
+    m.add_function(wrap_pyfunction!(disturbance_bound, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,99 @@
+"""Every number of docs/reproduction-mars.md: seed 001's printed figures beside ours.
+
+    python examples/mars_reproduction.py
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+import landing
+from landing import scenarios, theory
+
+NOMINAL_KEYS = ("settle_time", "fuel_to_settle", "peak_command", "final_position_error", "final_velocity_error")
+
+
+def line(label: str, ours: str, seed: str) -> None:
+    print(f"  {label:<52} {ours:<28} seed: {seed}")
+
+
+def nominal() -> None:
+    print("Part 1: nominal landing (Table I), fixed-time MSS, preset gains")
+    r = scenarios.mars_nominal().simulate()
+    m = r.metrics
+    line("peak thrust per axis / of |F|", f"{np.max(m['peak_command_axis']) / 1e3:.2f} / {m['peak_command'] / 1e3:.2f} kN",
+         "below 40 kN (Fig. 2(c))")
+    line("fuel to landing (|r| within 1 m)", f"{m['fuel_to_settle']:.2f} kg", "238.2907 kg (Fig. 4)")
+    line("landing time (|r| within 1 m from then on)", f"{m['settle_time']:.2f} s", "about 10-15 s (Fig. 2(a))")
+    line("final |r|, |v| at 60 s", f"{m['final_position_error']:.2e} m, {m['final_velocity_error']:.2e} m/s", "precise soft landing")
+    a_max = 40e3 / 1905.0
+    tf1, tf2 = theory.min_final_time(scenarios.MARS_NOMINAL_STATE[:3], scenarios.MARS_NOMINAL_STATE[3:6], a_max, [0, 0, -3.7114])
+    line("Remark 1 lower bound at 40 kN, max over axes", f"{max(tf1.max(), tf2.max()):.2f} s", "(not printed)")
+    rest = theory.min_time_to_rest(scenarios.MARS_NOMINAL_STATE[:3], scenarios.MARS_NOMINAL_STATE[3:6], a_max,
+                                   [0, 0, -3.7114])
+    line("fastest possible landing at 40 kN per axis (bang-bang)", f"{rest.max():.2f} s", "")
+
+    print("\nSuper-twisting baseline (eq. 46, B1, B2 as printed), nominal landing, 200 s")
+    for variant in ("printed", "standard"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", landing.DivergenceWarning)
+            m = scenarios.mars_super_twisting(variant).simulate().metrics
+        line(f"{variant}: landing time / fuel to landing", f"{m['settle_time']:.2f} s / {m['fuel_to_settle']:.1f} kg",
+             "30 s / 277.1288 kg (Fig. 5)")
+        line(f"{variant}: peak thrust, first ground crossing", f"{m['peak_command'] / 1e3:.1f} kN, {m['touchdown_time']:.2f} s", "")
+
+
+def bounds() -> None:
+    print("\nFixed-time bounds (eq. 18, 26)")
+    line("T1, T2 with the SPEC section 6 reconstruction",
+         f"{theory.fixed_time_bound(0.8, 0.95, 0.4, 1.05):.4f} s, {theory.fixed_time_bound(0.9, 0.9, 0.5, 1.1):.4f} s",
+         "74.5780 s, 30.8217 s")
+    b = scenarios.mars_monte_carlo().bounds()
+    line("T1, T2 with the preset gains", f"{b.t1[0]:.2f} s, {b.t2[0]:.2f} s", "")
+    line("s2 neighbourhood, time (eq. 39, 40; theta1 = 0.2)", f"{b.s2_radius[0]:.2f} m/s, {b.s2_time[0]:.1f} s", "26.5257 m, 131.5173 s")
+    line("s1 neighbourhood, time (eq. 31, 45; theta2 = 0.1)", f"{b.s1_radius[0]:.2f} m, {b.s1_time[0]:.1f} s", "23.8472 m, 85.8610 s")
+    line("s1 settles by (s2 time + s1 time; eq. 32 prints max)", f"{b.settle_time[0]:.1f} s", "")
+
+
+def monte_carlo() -> None:
+    print("\nPart 2: 300-case Monte Carlo (Table II, a_p = 20 sin t), seed 1")
+    mc = landing.monte_carlo(scenarios.mars_monte_carlo(), 300, seed=1)
+    m = mc.metrics
+    err = np.abs(m["final_error"])
+    tail = mc.t >= 40.0
+    amp = np.abs(mc.states[:, tail, :3]).max(axis=1)
+    line("cases diverged", f"{int(m['diverged'].sum())} of 300", "")
+    line("final |r_i| at 60 s, max over cases and axes", f"{err.max():.2f} m", "at most 23.8472 m per axis")
+    line("max |r_i| over t >= 40 s (steady oscillation)", f"{amp.max():.2f} m", "")
+    line("cases within the s1 neighbourhood at 60 s", f"{int(mc.within_radius_at_end().sum())} of 300", "all 300")
+    line("first ground crossing speed, median / max", f"{np.nanmedian(m['touchdown_speed']):.1f} / {np.nanmax(m['touchdown_speed']):.1f} m/s", "at most 1.5 m/s")
+    line("peak thrust, max over cases", f"{m['peak_command'].max() / 1e3:.1f} kN", "(no limit in part 2)")
+
+    print("\nPart 3: 50-case uniform sweep (Table III), 50 kN per axis, seed 1")
+    mc = landing.monte_carlo(scenarios.mars_thrust_limited(), 50, seed=1)
+    m = mc.metrics
+    line("cases landed precisely (|r| < 0.1 m at 60 s)", f"{int(np.sum(m['final_position_error'] < 0.1))} of 50", "all 50")
+    line("landing time (1 m), min / median / max", f"{np.nanmin(m['settle_time']):.1f} / {np.nanmedian(m['settle_time']):.1f} / {np.nanmax(m['settle_time']):.1f} s", "within 10 s")
+    a_max = 50e3 / 1905.0
+    tf1, tf2 = theory.min_final_time(mc.x0[:, :3], mc.x0[:, 3:6], a_max, [0, 0, -3.7114])
+    lower = np.maximum(tf1, tf2).max(axis=1)
+    line("Remark 1 lower bound per case, median / max", f"{np.median(lower):.1f} / {lower.max():.1f} s", "")
+    rest = theory.min_time_to_rest(mc.x0[:, :3], mc.x0[:, 3:6], a_max, [0, 0, -3.7114]).max(axis=1)
+    line("fastest possible landing per case (bang-bang), median / max", f"{np.median(rest):.1f} / {rest.max():.1f} s", "")
+    # a rigorous version: as if the lander weighed 1500 kg from the start (more than 400 kg of
+    # propellant gone, twice what any case here burns)
+    light = theory.min_time_to_rest(mc.x0[:, :3], mc.x0[:, 3:6], 50e3 / 1500.0, [0, 0, -3.7114]).max(axis=1)
+    line("cases that cannot land within 10 s even at 1500 kg", f"{int(np.sum(light > 10))} of 50 (min {light.min():.1f} s)", "")
+    line("peak thrust per axis, max over cases", f"{np.max(m['peak_command_axis']) / 1e3:.1f} kN", "limit 50 kN")
+
+
+def main() -> None:
+    nominal()
+    bounds()
+    monte_carlo()
+
+
+if __name__ == "__main__":
+    main()

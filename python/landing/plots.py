@@ -1,0 +1,214 @@
+"""Figures: each function takes a result and returns a matplotlib Figure (SPEC section 8).
+
+They accept a :class:`~landing.SimulationResult` (one case or a batch) or a
+:class:`~landing.MonteCarloResult`; a campaign's theoretical bounds, if any, are drawn.
+``save_all`` writes the standard set for a campaign.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Optional, Union
+
+import numpy as np
+
+from landing.montecarlo import MonteCarloResult
+from landing.simulation import SimulationResult
+
+__all__ = [
+    "trajectories_3d",
+    "landing_sites",
+    "final_velocities",
+    "sliding_variables",
+    "thrust",
+    "mass",
+    "positions",
+    "save_all",
+]
+
+AXES = ("x", "y", "z")
+Result = Union[SimulationResult, MonteCarloResult]
+
+
+def _figure(**kw: Any):
+    # pyplot keeps figures alive until closed; building Figure objects directly does not,
+    # so a campaign's figures are freed with their result
+    from matplotlib.figure import Figure
+
+    return Figure(**kw)
+
+
+def _parts(result: Result) -> tuple[SimulationResult, Any]:
+    if isinstance(result, MonteCarloResult):
+        return result.result, result.bounds
+    return result, None
+
+
+def _batched(a: np.ndarray, ndim: int) -> np.ndarray:
+    """Add the case axis to a single case's array."""
+    return a[None] if a.ndim == ndim - 1 else a
+
+
+def _need_records(res: SimulationResult) -> None:
+    if res.t.size == 0:
+        from landing.errors import ParameterError
+
+        raise ParameterError("this figure needs recorded trajectories: run with record_every >= 1")
+
+
+def trajectories_3d(result: Result, max_cases: int = 300):
+    """3D trajectories (seed 001 Fig. 7(a)), the target marked."""
+    res, _ = _parts(result)
+    _need_records(res)
+    s = _batched(res.states, 3)[:max_cases]
+    fig = _figure(figsize=(7, 6))
+    ax = fig.add_subplot(projection="3d")
+    for case in s:
+        ax.plot(case[:, 0], case[:, 1], case[:, 2], lw=0.6, alpha=0.6)
+    ax.scatter([0], [0], [0], color="k", marker="x", s=60, label="target")
+    ax.set_xlabel("crossrange x (m)")
+    ax.set_ylabel("downrange y (m)")
+    ax.set_zlabel("altitude z (m)")
+    ax.set_title(f"Trajectories ({s.shape[0]} cases)")
+    ax.legend()
+    return fig
+
+
+def _radius_box(ax, r: Optional[float]) -> None:
+    if r is not None and np.isfinite(r):
+        ax.add_patch(__import__("matplotlib.patches", fromlist=["Rectangle"]).Rectangle(
+            (-r, -r), 2 * r, 2 * r, fill=False, ls="--", color="tab:red", label=f"theory: |s1| <= {r:.4g} m"))
+
+
+def landing_sites(result: Result):
+    """Final positions on the XOY and XOZ planes (seed 001 Fig. 8(a), (b)), with the
+    theoretical s1 neighbourhood when the result carries bounds."""
+    res, bounds = _parts(result)
+    r = _batched(res.final_state, 2)[:, :3]
+    radius = None if bounds is None else float(np.max(bounds.s1_radius))
+    fig = _figure(figsize=(11, 5))
+    for k, (j, name) in enumerate(((1, "y"), (2, "z"))):
+        ax = fig.add_subplot(1, 2, k + 1)
+        ax.scatter(r[:, 0], r[:, j], s=8)
+        ax.axhline(0, color="0.7", lw=0.5)
+        ax.axvline(0, color="0.7", lw=0.5)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel(f"{name} (m)")
+        ax.set_title(f"Final positions, XO{name.upper()} plane")
+        span = max(float(np.nanmax(np.abs(r[:, [0, j]]))), 1e-6) * 1.3
+        if radius is not None and radius < 20 * span:
+            _radius_box(ax, radius)
+            ax.legend(loc="upper right")
+        elif radius is not None:
+            ax.text(0.02, 0.02, f"theory: |s1| <= {radius:.4g} m (off the plot)", transform=ax.transAxes, fontsize=8)
+        ax.set_aspect("equal", adjustable="datalim")
+    return fig
+
+
+def final_velocities(result: Result):
+    """Final velocities on the XOZ and XOY planes (seed 001 Fig. 8(c), (d))."""
+    res, _ = _parts(result)
+    v = _batched(res.final_state, 2)[:, 3:6]
+    fig = _figure(figsize=(11, 5))
+    for k, (j, name) in enumerate(((2, "z"), (1, "y"))):
+        ax = fig.add_subplot(1, 2, k + 1)
+        ax.scatter(v[:, 0], v[:, j], s=8, color="tab:green")
+        ax.axhline(0, color="0.7", lw=0.5)
+        ax.axvline(0, color="0.7", lw=0.5)
+        ax.set_xlabel("vx (m/s)")
+        ax.set_ylabel(f"v{name} (m/s)")
+        ax.set_title(f"Final velocities, XO{name.upper()} plane")
+    return fig
+
+
+def sliding_variables(result: Result, bounds: Any = None, max_cases: int = 300):
+    """s1 and s2 per axis against time (seed 001 Fig. 9, 10), with the theoretical
+    neighbourhoods (dashed) and the times from which they hold (dotted), when known."""
+    res, b = _parts(result)
+    _need_records(res)
+    b = bounds if bounds is not None else b
+    fig = _figure(figsize=(12, 7), layout="constrained")
+    for row, (name, unit) in enumerate((("s1", "m"), ("s2", "m/s"))):
+        sig = _batched(res.diagnostics[name], 3)[:max_cases]
+        for j in range(3):
+            ax = fig.add_subplot(2, 3, 3 * row + j + 1)
+            ax.plot(res.t, sig[:, :, j].T, lw=0.5, alpha=0.6)
+            ax.set_title(f"{name}, {AXES[j]} axis")
+            ax.set_xlabel("t (s)")
+            ax.set_ylabel(f"{name} ({unit})")
+            if b is not None:
+                radius = float(np.ravel(b.s1_radius if name == "s1" else b.s2_radius)[j])
+                when = float(np.ravel(b.settle_time if name == "s1" else b.s2_time)[j])
+                span = float(np.nanmax(np.abs(sig[:, :, j]))) or 1.0
+                if radius < 5 * span:
+                    for sgn in (-1, 1):
+                        ax.axhline(sgn * radius, ls="--", color="tab:red", lw=1)
+                else:
+                    ax.text(0.02, 0.95, f"radius {radius:.4g} {unit} (off the plot)", transform=ax.transAxes, fontsize=8, va="top")
+                if when <= res.t[-1]:
+                    ax.axvline(when, ls=":", color="tab:red", lw=1)
+                else:
+                    ax.text(0.02, 0.85, f"bound time {when:.4g} s (beyond the run)", transform=ax.transAxes, fontsize=8, va="top")
+    return fig
+
+
+def _per_axis(result: Result, index: Any, ylabel: str, title: str, max_cases: int):
+    res, _ = _parts(result)
+    _need_records(res)
+    fig = _figure(figsize=(12, 3.8), layout="constrained")
+    for j in range(3):
+        ax = fig.add_subplot(1, 3, j + 1)
+        data = index(res)[:max_cases, :, j]
+        ax.plot(res.t, data.T, lw=0.5, alpha=0.6)
+        ax.set_title(f"{title}, {AXES[j]} axis")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(ylabel)
+    return fig
+
+
+def thrust(result: Result, max_cases: int = 300):
+    """Applied thrust per axis against time (seed 001 Fig. 2(c), 12)."""
+    return _per_axis(result, lambda r: _batched(r.controls, 3), "thrust (N)", "Thrust", max_cases)
+
+
+def positions(result: Result, max_cases: int = 300):
+    """Position per axis against time (seed 001 Fig. 2(a), 11)."""
+    return _per_axis(result, lambda r: _batched(r.states, 3)[:, :, :3], "position (m)", "Position", max_cases)
+
+
+def mass(result: Result, max_cases: int = 300):
+    """Lander mass against time (seed 001 Fig. 4)."""
+    res, _ = _parts(result)
+    _need_records(res)
+    m = _batched(res.states, 3)[:max_cases, :, res.state_names.index("m")]
+    fig = _figure(figsize=(6, 4), layout="constrained")
+    ax = fig.add_subplot()
+    ax.plot(res.t, m.T, lw=0.6, alpha=0.7)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("mass (kg)")
+    ax.set_title("Mass")
+    return fig
+
+
+def save_all(result: Result, folder: Union[str, Path], dpi: int = 120) -> list[Path]:
+    """Write the standard figures of a Mars campaign as PNG files into ``folder``."""
+    out = Path(folder)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    makers = {
+        "trajectories_3d": trajectories_3d,
+        "landing_sites": landing_sites,
+        "final_velocities": final_velocities,
+        "positions": positions,
+        "thrust": thrust,
+        "mass": mass,
+    }
+    res, _ = _parts(result)
+    if {"s1", "s2"} <= set(res.diagnostics):
+        makers["sliding_variables"] = sliding_variables
+    for name, make in makers.items():
+        fig = make(result)
+        path = out / f"{name}.png"
+        fig.savefig(path, dpi=dpi)
+        written.append(path)
+    return written

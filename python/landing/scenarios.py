@@ -1,0 +1,203 @@
+"""Scenarios: a plant, a law, a reference, dispersions, a horizon and a step, as data.
+
+A scenario prints as what it is and is overridden with :meth:`Scenario.replace`; the presets
+reproduce the seeds' experiments. Gains the seeds do not print come from documented studies
+(docs/parameters.md).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any, Optional
+
+import numpy as np
+
+from landing import controllers, disturbances, dispersions, plants
+from landing.controllers import Controller
+from landing.dispersions import Dispersion
+from landing.disturbances import DisturbanceLike
+from landing.errors import ParameterError
+from landing.plants import Plant
+from landing.reference import Reference
+from landing.simulation import SimulationResult, simulate, simulate_batch
+
+__all__ = [
+    "Scenario",
+    "MARS_FIXED_TIME_GAINS",
+    "MARS_NOMINAL_STATE",
+    "MARS_SUPER_TWISTING_C",
+    "mars_nominal",
+    "mars_super_twisting",
+    "mars_monte_carlo",
+    "mars_thrust_limited",
+]
+
+
+@dataclass(eq=False)
+class Scenario:
+    """Everything a run needs but the number of cases and the seed.
+
+    ``x0`` is the nominal initial state; ``dispersion`` (if any) draws the initial states of
+    a Monte Carlo campaign. ``theta`` holds the splitting constants (theta1, theta2) of seed
+    001's practical fixed-time analysis, for the bounds a campaign is checked against.
+    """
+
+    name: str
+    plant: Plant
+    controller: Controller
+    x0: Any
+    t_final: float
+    dt: float
+    dispersion: Optional[Dispersion] = None
+    reference: Optional[Reference] = None
+    disturbance: DisturbanceLike = None
+    integrator: str = "rk4"
+    substeps: int = 1
+    record_every: int = 1
+    settle_tolerance: Optional[float] = None
+    theta: Optional[tuple[float, float]] = None
+    description: str = ""
+
+    def replace(self, **changes: Any) -> "Scenario":
+        """A copy with some fields changed, e.g. ``s.replace(dt=1e-2)``."""
+        return dataclasses.replace(self, **changes)
+
+    def run_options(self, **overrides: Any) -> dict[str, Any]:
+        """The keyword arguments of :func:`landing.simulate_batch` this scenario stands for."""
+        opts = dict(
+            t_final=self.t_final, dt=self.dt, integrator=self.integrator, substeps=self.substeps,
+            reference=self.reference, disturbance=self.disturbance, record_every=self.record_every,
+            settle_tolerance=self.settle_tolerance,
+        )
+        opts.update(overrides)
+        return opts
+
+    def simulate(self, **overrides: Any) -> SimulationResult:
+        """The nominal case (``x0``) alone."""
+        return simulate(self.plant, self.controller, np.asarray(self.x0, dtype=float), **self.run_options(**overrides))
+
+    def simulate_batch(self, x0: Any, **overrides: Any) -> SimulationResult:
+        """Given initial states under this scenario."""
+        return simulate_batch(self.plant, self.controller, x0, **self.run_options(**overrides))
+
+    def initial_states(self, n: int, seed: int = 0, first_case: int = 0) -> np.ndarray:
+        """Cases ``first_case .. first_case + n`` of the dispersion (the nominal state repeated
+        if there is none)."""
+        if self.dispersion is None:
+            return np.tile(np.asarray(self.x0, dtype=float), (n, 1))
+        x = self.dispersion.sample(n, seed=seed, first_case=first_case)
+        if x.shape[1] != self.plant.state_dim:
+            raise ParameterError(
+                f"scenario {self.name!r}: the dispersion has {x.shape[1]} components, the plant's "
+                f"state has {self.plant.state_dim}"
+            )
+        return x
+
+    def bounds(self):
+        """Seed 001's practical fixed-time bounds for this scenario's law and disturbance (None
+        unless the law is FixedTimeMSS and ``theta`` is set)."""
+        from landing import theory
+
+        if self.theta is None or not isinstance(self.controller, controllers.FixedTimeMSS):
+            return None
+        ap_max = theory.disturbance_bound(self.disturbance, self.plant.axes)
+        return theory.mss_bounds(self.controller, ap_max, *self.theta)
+
+    def __str__(self) -> str:
+        lines = [f"Scenario {self.name!r}" + (f": {self.description}" if self.description else "")]
+        for f in dataclasses.fields(self):
+            if f.name in ("name", "description"):
+                continue
+            value = getattr(self, f.name)
+            text = np.array2string(np.asarray(value), precision=6) if f.name == "x0" else repr(value)
+            lines.append(f"  {f.name:<16} {text}")
+        return "\n".join(lines)
+
+
+#: Seed 001 Table I initial state [r (m), v (m/s), m (kg)].
+MARS_NOMINAL_STATE = np.array([-2000.0, 1000.0, 1500.0, 100.0, -15.0, -75.0, 1905.0])
+
+#: Fixed-time MSS gains for the Mars lander, from the tuning study in docs/parameters.md
+#: (the seed does not print its gains).
+MARS_FIXED_TIME_GAINS: dict[str, Any] = dict(
+    beta1=1.3, q1=0.589, beta2=0.0242, q2=1.18, alpha1=4.89, gamma1=0.319, alpha2=0.0129, gamma2=1.42,
+)
+
+
+def _mars_law(**overrides: Any) -> controllers.FixedTimeMSS:
+    return controllers.FixedTimeMSS(**{**MARS_FIXED_TIME_GAINS, **overrides})
+
+
+def mars_nominal(**overrides: Any) -> Scenario:
+    """Seed 001 part 1: the nominal landing from Table I, no disturbance, no thrust limit."""
+    s = Scenario(
+        name="mars_nominal",
+        description="seed 001 part 1, nominal landing (Table I)",
+        plant=plants.MarsLander(),
+        controller=_mars_law(),
+        x0=MARS_NOMINAL_STATE.copy(),
+        t_final=60.0,
+        dt=1e-3,
+        record_every=10,
+        settle_tolerance=1.0,
+    )
+    return s.replace(**overrides)
+
+
+#: Slope of the standard super-twisting variant's sliding variable on the Mars lander, from
+#: examples/studies/mars_super_twisting.py (the seed's law has none).
+MARS_SUPER_TWISTING_C = 0.1
+
+
+def mars_super_twisting(variant: str = "printed", **overrides: Any) -> Scenario:
+    """The seed's super-twisting baseline (eq. 46, B1, B2 as printed) on the nominal landing,
+    over 200 s: with these gains neither variant lands within the fixed-time preset's 60 s."""
+    law = controllers.SuperTwisting(variant=variant, c=MARS_SUPER_TWISTING_C)
+    return mars_nominal(
+        name=f"mars_super_twisting_{variant}",
+        description=f"seed 001 super-twisting baseline ({variant} variant), nominal landing",
+        controller=law,
+        t_final=200.0,
+    ).replace(**overrides)
+
+
+def mars_monte_carlo(**overrides: Any) -> Scenario:
+    """Seed 001 part 2: Table II normal dispersions, a_p = 20 sin t on every axis,
+    theta1 = 0.2, theta2 = 0.1; run it with ``landing.monte_carlo(scenario, 300)``."""
+    sd = np.array([100.0, 100.0, 100.0, 10.0, 10.0, 10.0, 20.0])
+    s = Scenario(
+        name="mars_monte_carlo",
+        description="seed 001 part 2, 300-case Monte Carlo under a_p = 20 sin t (Table II)",
+        plant=plants.MarsLander(),
+        controller=_mars_law(),
+        x0=MARS_NOMINAL_STATE.copy(),
+        dispersion=dispersions.Normal(mean=MARS_NOMINAL_STATE, std=sd),
+        disturbance=disturbances.Sinusoid(amplitude=20.0, omega=1.0),
+        t_final=60.0,
+        dt=1e-3,
+        record_every=50,
+        settle_tolerance=1.0,
+        theta=(0.2, 0.1),
+    )
+    return s.replace(**overrides)
+
+
+def mars_thrust_limited(**overrides: Any) -> Scenario:
+    """Seed 001 part 3: Table III uniform initial positions and velocities (mass 1905 kg),
+    50 kN per axis; run it with ``landing.monte_carlo(scenario, 50)``."""
+    low = np.array([-1000.0, 0.0, 1000.0, -15.0, -100.0, -75.0, 1905.0])
+    high = np.array([200.0, 2000.0, 1500.0, 45.0, 0.0, 0.0, 1905.0])
+    s = Scenario(
+        name="mars_thrust_limited",
+        description="seed 001 part 3, 50-case uniform sweep (Table III), 50 kN per axis",
+        plant=plants.MarsLander(thrust_limit=50_000.0),
+        controller=_mars_law(),
+        x0=0.5 * (low + high),
+        dispersion=dispersions.Uniform(low=low, high=high),
+        t_final=60.0,
+        dt=1e-3,
+        record_every=50,
+        settle_tolerance=1.0,
+    )
+    return s.replace(**overrides)

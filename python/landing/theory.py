@@ -1,0 +1,354 @@
+"""Convergence bounds of the fixed-time laws, and their checks against simulation (SPEC 6).
+
+The formulas are computed by the Rust core (``landing_core::theory``) and broadcast here over
+arrays. Every bound comes with a check that simulates the system it speaks about and reports
+each case that violates it:
+
+- :func:`check_fixed_time_bound`: the scalar reaching law ``s' = -c1 sig^e1(s) - c2 sig^e2(s)``
+  (seed 001 Lemma 2; eq. 18 with the beta gains, eq. 26 with the alpha gains) from any s(0).
+- :func:`check_practical_bound`: the same law with a bounded disturbance (Theorem 1; eq. 38
+  to 40 for s2, eq. 31 and 45 for s1).
+- :func:`check_mss`: a recorded run of :class:`~landing.controllers.FixedTimeMSS` against its
+  practical neighbourhoods and times (Theorem 4).
+- :func:`min_final_time`: seed Remark 1.
+
+A scalar reaching law is simulated where the library realises it: the exact variant of
+FixedTimeMSS on a :class:`~landing.plants.DoubleIntegrator` makes its second sliding variable
+obey ``s2' = -alpha1 sig^gamma1(s2) - alpha2 sig^gamma2(s2) + d`` (no drift, unit inertia).
+With negligible first-surface gains (beta = 1e-20), s2 is the velocity itself, so each axis of
+the double integrator's velocity is one run of the scalar law.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+import numpy as np
+
+from landing import _core
+from landing.controllers import FixedTimeMSS
+from landing.disturbances import DisturbanceLike, Sinusoid, as_table
+from landing.errors import ParameterError
+from landing.plants import DoubleIntegrator
+from landing.simulation import SimulationResult, simulate_batch
+
+__all__ = [
+    "fixed_time_bound",
+    "practical_time_bound",
+    "practical_radius",
+    "MSSBounds",
+    "mss_bounds",
+    "disturbance_bound",
+    "min_final_time",
+    "min_time_to_rest",
+    "chattering_band",
+    "entry_time",
+    "settle_time",
+    "BoundCheck",
+    "check_fixed_time_bound",
+    "check_practical_bound",
+    "check_mss",
+]
+
+
+def _vectorized(fn, *args):
+    out = np.vectorize(fn, otypes=[float])(*[np.asarray(a, dtype=float) for a in args])
+    return float(out) if out.ndim == 0 else out
+
+
+def fixed_time_bound(c1, e1, c2, e2):
+    """Seed 001 Lemma 2 with k = 1 on V = s^2/2 for ``s' = -c1 sig^e1(s) - c2 sig^e2(s)``:
+    ``T <= 1/(c1 (1-e1) 2^((e1-1)/2)) + 1/(c2 (e2-1) 2^((e2-1)/2))``, whatever s(0).
+
+    Eq. 18 is this with (beta1, q1, beta2, q2), eq. 26 with (alpha1, gamma1, alpha2, gamma2).
+    Arrays broadcast."""
+    return _vectorized(_core.fixed_time_bound, c1, e1, c2, e2)
+
+
+def practical_time_bound(c1, e1, c2, e2, theta):
+    """Theorem 1 (k = 1): time to reach the practical neighbourhood, the fixed-time bound / theta."""
+    return _vectorized(_core.practical_time_bound, c1, e1, c2, e2, theta)
+
+
+def practical_radius(c1, e1, c2, e2, d_max, theta):
+    """Eq. 38-39: ``min{(d_max/((1-theta) c1))^(1/e1), (d_max/((1-theta) c2))^(1/e2)}``, the
+    neighbourhood that ``s' = -c1 sig^e1(s) - c2 sig^e2(s) + d``, |d| <= d_max, reaches."""
+    return _vectorized(_core.practical_radius, c1, e1, c2, e2, d_max, theta)
+
+
+@dataclass(frozen=True)
+class MSSBounds:
+    """Seed 001's bounds for FixedTimeMSS, per axis (shape (3,), or (N, 3) for per-case gains).
+
+    t1, t2 : eq. 18 and 26, without disturbance (s).
+    s2_radius, s2_time : eq. 39 and 40, the neighbourhood of s2 under |a_p| <= ap_max.
+    s1_radius, s1_time : eq. 31 and 45, that of s1 = r - r_d once s2 is in its own.
+    printed_time : eq. 32 as printed, max(s2_time, s1_time).
+    settle_time : s2_time + s1_time, the sound bound: s1 obeys its perturbed reaching law
+        only once s2 is in its neighbourhood.
+    """
+
+    t1: np.ndarray
+    t2: np.ndarray
+    s2_radius: np.ndarray
+    s2_time: np.ndarray
+    s1_radius: np.ndarray
+    s1_time: np.ndarray
+    printed_time: np.ndarray
+    settle_time: np.ndarray
+    ap_max: np.ndarray
+    theta1: float
+    theta2: float
+
+    def __str__(self) -> str:
+        def fmt(a: np.ndarray) -> str:
+            return np.array2string(np.asarray(a), precision=4, floatmode="maxprec")
+
+        return (
+            f"MSSBounds(theta1={self.theta1}, theta2={self.theta2}, ap_max={fmt(self.ap_max)})\n"
+            f"  T1 (eq. 18)            {fmt(self.t1)} s\n"
+            f"  T2 (eq. 26)            {fmt(self.t2)} s\n"
+            f"  |s2| radius (eq. 39)   {fmt(self.s2_radius)} m/s, reached by {fmt(self.s2_time)} s (eq. 40)\n"
+            f"  |s1| radius (eq. 31)   {fmt(self.s1_radius)} m, {fmt(self.s1_time)} s later (eq. 45)\n"
+            f"  eq. 32 as printed      {fmt(self.printed_time)} s; sound total {fmt(self.settle_time)} s"
+        )
+
+
+def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2: float = 0.5) -> MSSBounds:
+    """The bounds of seed 001 Theorems 2-4 for a FixedTimeMSS law (per axis), under a
+    disturbance bounded by ``ap_max`` per axis (see :func:`disturbance_bound`)."""
+    if not isinstance(law, FixedTimeMSS):
+        raise ParameterError(f"mss_bounds takes a FixedTimeMSS law, got {type(law).__name__}")
+    names = ("beta1", "q1", "beta2", "q2", "alpha1", "gamma1", "alpha2", "gamma2")
+    gains = [np.asarray(getattr(law, n), dtype=float) for n in names]
+    args = np.broadcast_arrays(*[np.broadcast_to(g, np.broadcast_shapes(g.shape, (3,))) if g.ndim <= 1 else g
+                                 for g in gains], np.asarray(ap_max, dtype=float))
+    shape = args[0].shape
+    keys = ("t1", "t2", "s2_radius", "s2_time", "s1_radius", "s1_time", "printed_time", "settle_time")
+    out = {k: np.empty(shape) for k in keys}
+    for idx in np.ndindex(shape):
+        b = _core.mss_bounds(*[float(a[idx]) for a in args], float(theta1), float(theta2))
+        for k in keys:
+            out[k][idx] = b[k]
+    return MSSBounds(**out, ap_max=args[-1], theta1=float(theta1), theta2=float(theta2))
+
+
+def disturbance_bound(disturbance: DisturbanceLike, axes: int = 3) -> np.ndarray:
+    """Per-axis bound on |d_i(t)|: |constant| + sum of |amplitudes| + noise bound."""
+    table = as_table(disturbance)
+    if table is None:
+        return np.zeros(axes)
+    return np.asarray(_core.disturbance_bound(table, axes))
+
+
+def min_final_time(r0, v0, a_max, g=0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Seed 001 Remark 1, sign-consistent, per axis: ``(tf1, tf2)`` with tf1 the first time the
+    position can reach 0 at full thrust towards the target (with gravity g on that axis,
+    negative for z up) and tf2 the time to null the velocity at full thrust. A soft landing
+    needs ``t_f >= max(tf1, tf2)`` over the axes. Arrays broadcast."""
+    f = np.vectorize(lambda *a: _core.min_final_time(*a), otypes=[float, float])
+    tf1, tf2 = f(*[np.asarray(a, dtype=float) for a in (r0, v0, a_max, g)])
+    return tf1, tf2
+
+
+def min_time_to_rest(r0, v0, a_max, g=0.0):
+    """The shortest time to bring one axis from (r0, v0) to rest at 0 with thrust up to
+    ``a_max`` either way plus gravity ``g`` (time-optimal bang-bang, one switch): a lower bound
+    on any landing time on that axis. Infinite when the thrust cannot overcome gravity. Arrays
+    broadcast."""
+    return _vectorized(_core.min_time_to_rest, r0, v0, a_max, g)
+
+
+def entry_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
+    """First recorded time at which ``|signal| <= tol``; ``signal`` has time on axis -2
+    (``(..., T, D)``), the result drops it. NaN where never."""
+    inside = np.abs(signal) <= np.asarray(tol)[..., None, :] if np.ndim(tol) else np.abs(signal) <= tol
+    first = np.argmax(inside, axis=-2)
+    out = np.asarray(t)[first].astype(float)
+    out[~inside.any(axis=-2)] = np.nan
+    return out
+
+
+def settle_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
+    """First recorded time from which ``|signal| <= tol`` holds to the end (NaN if it does not
+    hold at the end); layout as :func:`entry_time`."""
+    inside = np.abs(signal) <= np.asarray(tol)[..., None, :] if np.ndim(tol) else np.abs(signal) <= tol
+    tail = np.flip(np.logical_and.accumulate(np.flip(inside, axis=-2), axis=-2), axis=-2)
+    first = np.argmax(tail, axis=-2)
+    out = np.asarray(t)[first].astype(float)
+    out[~tail.any(axis=-2)] = np.nan
+    return out
+
+
+@dataclass
+class BoundCheck:
+    """A bound against simulation: ``measured <= bound`` for every case and axis.
+
+    ``measured`` is NaN where the event never happened within the horizon (a violation).
+    ``extra`` holds what else the check measured (e.g. the largest excursion afterwards).
+    """
+
+    name: str
+    bound: np.ndarray
+    measured: np.ndarray
+    extra: dict[str, np.ndarray] = field(default_factory=dict)
+
+    @property
+    def violations(self) -> np.ndarray:
+        """Indices of the cases (first axis) with a violation on any axis."""
+        bad = ~(self.measured <= self.bound)
+        if bad.ndim > 1:
+            bad = bad.reshape(bad.shape[0], -1).any(axis=1)
+        return np.flatnonzero(bad)
+
+    @property
+    def ok(self) -> bool:
+        return self.violations.size == 0
+
+    @property
+    def worst_ratio(self) -> float:
+        """Largest measured / bound (below 1 when the bound holds)."""
+        return float(np.nanmax(self.measured / self.bound))
+
+    def __repr__(self) -> str:
+        n = self.measured.shape[0] if self.measured.ndim else 1
+        status = "holds" if self.ok else f"VIOLATED in {self.violations.size} of {n} cases: {self.violations[:10].tolist()}"
+        return f"BoundCheck({self.name}: {status}; worst measured/bound = {self.worst_ratio:.3f})"
+
+
+# With these the first surface adds less than 1e-12 to s2 = v + beta1 sig^q1(r) + ... for
+# |r| < 1e8, and the exact law's cancellation terms are as small: s2 is the velocity.
+_NEGLIGIBLE_S1_GAINS = dict(beta1=1e-20, q1=0.999, beta2=1e-20, q2=1.001)
+
+
+def _reaching_run(c1, e1, c2, e2, s0, *, disturbance, dt, t_final, seed=0) -> SimulationResult:
+    """The velocity of a double integrator under the exact FixedTimeMSS with negligible
+    first-surface gains obeys the scalar reaching law with gains (c1, e1, c2, e2). s0 (the
+    initial velocities) has shape (N, 3)."""
+    law = FixedTimeMSS(**_NEGLIGIBLE_S1_GAINS, alpha1=c1, gamma1=e1, alpha2=c2, gamma2=e2, variant="exact")
+    x0 = np.concatenate([np.zeros_like(s0), s0], axis=1)
+    return simulate_batch(DoubleIntegrator(), law, x0, t_final=t_final, dt=dt,
+                          disturbance=disturbance, seed=seed)
+
+
+def _as_cases(s0: Any) -> np.ndarray:
+    s = np.asarray(s0, dtype=float)
+    if s.ndim == 0:
+        s = s.reshape(1, 1)
+    if s.ndim == 1:
+        s = s[:, None]
+    return np.broadcast_to(s, (s.shape[0], 3)) if s.shape[1] == 1 else s
+
+
+def _sampling_step(c2: float, e2: float, s_max: float, dt: Optional[float]) -> float:
+    """A control period at which the sampled law is stable up to |s| = s_max: the held
+    command acts like an explicit step, stable while dt times the local rate
+    c2 e2 |s|^(e2-1) stays well below 2."""
+    if dt is not None:
+        return float(dt)
+    rate = c2 * e2 * max(s_max, 1.0) ** (e2 - 1.0)
+    return float(min(1e-3, 0.1 / rate))
+
+
+def _horizon(dt: float, seconds: float) -> float:
+    steps = np.ceil(seconds / dt)
+    if steps > 5e7:
+        raise ParameterError(
+            f"checking this bound needs {steps:.3g} control periods of {dt:.3g} s; "
+            "lower the initial values or give a larger dt"
+        )
+    return float(dt * steps)
+
+
+def chattering_band(c1: float, e1: float, dt: float) -> float:
+    """Half-width of the band a sampled ``s' = -c1 sig^e1(s)`` (e1 < 1) chatters in: where
+    one held step ``c1 |s|^e1 dt`` equals ``|s|``, ``(c1 dt)^(1/(1-e1))``. Continuous time
+    reaches 0; the sampled law cannot get further."""
+    return float((c1 * dt) ** (1.0 / (1.0 - e1)))
+
+
+def check_fixed_time_bound(
+    c1, e1, c2, e2, s0, *, dt: Optional[float] = None, tol: float = 1e-6
+) -> BoundCheck:
+    """Simulate ``s' = -c1 sig^e1(s) - c2 sig^e2(s)`` from each initial value ``s0`` ((N,),
+    or (N, 3) for three axes at once) and compare the time at which |s| first reaches ``tol``
+    with :func:`fixed_time_bound`. ``dt`` defaults to a control period at which the sampled law
+    is stable from the largest ``|s0|``; ``tol`` is raised to ten times the
+    :func:`chattering_band` of the sampled law if that is larger."""
+    bound = fixed_time_bound(c1, e1, c2, e2)
+    s = _as_cases(s0)
+    dt = _sampling_step(c2, e2, float(np.abs(s).max()), dt)
+    tol = max(tol, 10.0 * chattering_band(c1, e1, dt))
+    horizon = _horizon(dt, 1.2 * bound)
+    res = _reaching_run(c1, e1, c2, e2, s, disturbance=None, dt=dt, t_final=horizon)
+    s2 = res.diagnostics["s2"]
+    measured = entry_time(res.t, s2, tol)
+    return BoundCheck(
+        name=f"fixed-time bound {bound:.4f} s for c1={c1}, e1={e1}, c2={c2}, e2={e2}",
+        bound=np.full(measured.shape, bound),
+        measured=measured,
+        extra={"max_after_entry": _max_after(res.t, s2, measured), "tolerance": np.asarray(tol)},
+    )
+
+
+def _max_after(t: np.ndarray, signal: np.ndarray, start: np.ndarray) -> np.ndarray:
+    """Largest |signal| at or after ``start`` (per case and axis)."""
+    after = np.asarray(t)[None, :, None] >= np.where(np.isnan(start), np.inf, start)[:, None, :]
+    return np.where(after, np.abs(signal), 0.0).max(axis=1)
+
+
+def check_practical_bound(
+    c1, e1, c2, e2, s0, *, d_max: float, theta: float, omega: float = 1.0,
+    dt: Optional[float] = None, settle_for: Optional[float] = None,
+) -> BoundCheck:
+    """Simulate ``s' = -c1 sig^e1(s) - c2 sig^e2(s) + d(t)`` with ``d = d_max sin(omega t)`` from
+    each ``s0`` and compare with Theorem 1: |s| enters :func:`practical_radius` within
+    :func:`practical_time_bound` and stays in it (``extra["max_after_entry"]``, checked over
+    ``settle_for`` seconds after the bound, by default the bound itself)."""
+    radius = practical_radius(c1, e1, c2, e2, d_max, theta)
+    bound = practical_time_bound(c1, e1, c2, e2, theta)
+    s = _as_cases(s0)
+    dt = _sampling_step(c2, e2, max(float(np.abs(s).max()), radius), dt)
+    horizon = _horizon(dt, bound + (bound if settle_for is None else settle_for))
+    res = _reaching_run(c1, e1, c2, e2, s, disturbance=Sinusoid(amplitude=d_max, omega=omega),
+                        dt=dt, t_final=horizon)
+    s2 = res.diagnostics["s2"]
+    measured = entry_time(res.t, s2, radius)
+    after = _max_after(res.t, s2, measured)
+    # staying in the neighbourhood is part of the claim: a later excursion is a violation
+    measured = np.where(after <= radius * (1 + 1e-9), measured, np.nan)
+    return BoundCheck(
+        name=f"practical bound: |s| <= {radius:.4g} within {bound:.4f} s (theta={theta}, d_max={d_max})",
+        bound=np.full(measured.shape, bound),
+        measured=measured,
+        extra={"max_after_entry": after, "radius": np.asarray(radius)},
+    )
+
+
+def check_mss(result: SimulationResult, bounds: MSSBounds) -> dict[str, BoundCheck]:
+    """Check a recorded FixedTimeMSS run against Theorem 4: after ``s2_time`` every |s2_i|
+    stays within ``s2_radius``; after ``settle_time`` every |s1_i| within ``s1_radius``.
+
+    Returns checks "s2" and "s1" whose ``measured`` is the time from which the variable stays
+    in its neighbourhood (NaN if it is outside at the end of the run). Where the bound time
+    exceeds the horizon, ``extra["checkable"]`` is False and only the end of the run is seen.
+    """
+    if "s1" not in result.diagnostics or "s2" not in result.diagnostics:
+        raise ParameterError("check_mss needs a FixedTimeMSS result with recorded s1 and s2")
+    t = result.t
+    out = {}
+    for name, radius, time in (("s2", bounds.s2_radius, bounds.s2_time), ("s1", bounds.s1_radius, bounds.settle_time)):
+        sig = result.diagnostics[name]
+        if sig.ndim == 2:
+            sig = sig[None]
+        measured = settle_time(t, sig, radius)
+        bound = np.broadcast_to(time, measured.shape)
+        out[name] = BoundCheck(
+            name=f"{name} stays within {np.array2string(np.asarray(radius), precision=4)} after "
+                 f"{np.array2string(np.asarray(time), precision=4)} s",
+            bound=bound,
+            measured=measured,
+            extra={"checkable": np.asarray(bound <= t[-1]), "final": np.abs(sig[:, -1, :])},
+        )
+    return out

@@ -1,0 +1,133 @@
+"""Dispersions, Monte Carlo campaigns and scenarios."""
+
+import matplotlib
+import numpy as np
+import pytest
+
+import landing
+from landing import dispersions, scenarios
+from test_rng import numpy_block
+
+matplotlib.use("Agg")
+
+
+def test_uniform_dispersion_is_the_philox_draw():
+    """Case i, component j: low + (high - low) u with u from word j of the dispersion stream
+    (stream 0) of (seed, i), computed here with numpy's Philox."""
+    low = np.array([-1000.0, 0.0, 1000.0, -15.0, -100.0])
+    high = np.array([200.0, 2000.0, 1500.0, 45.0, 0.0])
+    d = dispersions.Uniform(low=low, high=high)
+    x = d.sample(6, seed=99, first_case=10)
+    for i in range(6):
+        raw = numpy_block([0, 10 + i, 0, 0], [99, 0]) + numpy_block([1, 10 + i, 0, 0], [99, 0])
+        u = np.array([(r >> 11) * 2.0**-53 for r in raw[:5]])
+        np.testing.assert_allclose(x[i], low + (high - low) * u, rtol=0, atol=1e-9)
+
+
+def test_dispersion_statistics_match_the_request():
+    sd = np.array([100, 100, 100, 10, 10, 10, 20.0])
+    d = dispersions.Normal(mean=scenarios.MARS_NOMINAL_STATE, std=sd)
+    x = d.sample(20000, seed=2)
+    assert np.all(np.abs(x.mean(axis=0) - scenarios.MARS_NOMINAL_STATE) <= 4 * sd / np.sqrt(20000))
+    np.testing.assert_allclose(x.std(axis=0), sd, rtol=0.03)
+    assert abs(np.corrcoef(x[:, 0], x[:, 1])[0, 1]) < 0.03  # independent components
+    u = dispersions.Uniform(low=[0.0, -1.0], high=[2.0, -1.0]).sample(20000, seed=2)
+    assert u[:, 0].min() >= 0 and u[:, 0].max() <= 2 and np.all(u[:, 1] == -1.0)
+    assert u[:, 0].std() == pytest.approx(2 / np.sqrt(12), rel=0.03)
+
+
+def test_dispersions_are_validated():
+    with pytest.raises(ValueError, match=r"std\[2\] = -1 violates std >= 0"):
+        dispersions.Normal(mean=[0, 0, 0], std=[1, 1, -1])
+    with pytest.raises(ValueError, match="high"):
+        dispersions.Uniform(low=[0, 1], high=[1, 0])
+
+
+def small_campaign(**kw):
+    return scenarios.mars_monte_carlo(t_final=5.0, dt=2e-3, record_every=25, **kw)
+
+
+def test_the_sampled_states_are_the_simulated_ones():
+    s = small_campaign()
+    mc = landing.monte_carlo(s, 16, seed=5)
+    np.testing.assert_array_equal(mc.x0, s.initial_states(16, seed=5))
+    np.testing.assert_array_equal(mc.states[:, 0], mc.x0)
+    assert mc.x0.shape == (16, 7) and len(set(mc.x0[:, 0])) == 16
+
+
+def test_same_seed_same_bits_across_threads_and_chunks():
+    s = small_campaign()
+    runs = [
+        landing.monte_carlo(s, 20, seed=8, threads=1),
+        landing.monte_carlo(s, 20, seed=8, threads=2, chunk_size=3),
+        landing.monte_carlo(s, 20, seed=8, threads=2, chunk_size=7),
+    ]
+    for other in runs[1:]:
+        assert other.states.tobytes() == runs[0].states.tobytes()
+        for k in runs[0].metrics:
+            np.testing.assert_array_equal(other.metrics[k], runs[0].metrics[k])
+    # the first cases of a larger campaign are these cases
+    bigger = landing.monte_carlo(s, 30, seed=8, chunk_size=11)
+    assert bigger.states[:20].tobytes() == runs[0].states.tobytes()
+    assert landing.monte_carlo(s, 20, seed=9).states.tobytes() != runs[0].states.tobytes()
+
+
+def test_summary_agrees_with_the_table():
+    mc = landing.monte_carlo(small_campaign(), 25, seed=1)
+    summary = mc.summary()
+    for k, stats in summary.items():
+        v = mc.metrics[k]
+        v = v[np.isfinite(v)]
+        assert stats["n"] == v.size
+        if v.size:
+            assert stats["mean"] == pytest.approx(v.mean())
+            assert stats["max"] == v.max() and stats["min"] == v.min()
+            assert stats["std"] == pytest.approx(v.std(ddof=1))
+            assert stats["p95"] == pytest.approx(np.percentile(v, 95))
+    text = mc.report()
+    assert "25 cases" in text and "final_position_error" in text
+
+
+def test_campaign_bounds_and_checks():
+    mc = landing.monte_carlo(small_campaign(), 10, seed=1)
+    assert mc.bounds is not None and set(mc.checks) == {"s1", "s2"}
+    np.testing.assert_allclose(mc.bounds.ap_max, 20.0)
+    assert mc.within_radius_at_end().all()
+
+
+def test_scenarios_print_and_override():
+    s = scenarios.mars_monte_carlo()
+    text = str(s)
+    for field in ("plant", "controller", "dispersion", "disturbance", "t_final", "theta"):
+        assert field in text
+    t = s.replace(dt=0.01, controller=landing.controllers.SuperTwisting())
+    assert t.dt == 0.01 and isinstance(t.controller, landing.controllers.SuperTwisting)
+    assert s.dt == 1e-3 and isinstance(s.controller, landing.controllers.FixedTimeMSS)
+    assert t.bounds() is None  # no fixed-time bounds for super-twisting
+    assert scenarios.mars_thrust_limited().initial_states(3, seed=0)[:, 6].tolist() == [1905.0] * 3
+
+
+def test_monte_carlo_refuses_bad_input():
+    with pytest.raises(ValueError, match="n = 0 violates"):
+        landing.monte_carlo(small_campaign(), 0)
+    with pytest.raises(ValueError, match="scenario must be"):
+        landing.monte_carlo("mars", 10)
+    with pytest.raises(ValueError, match="chunk_size"):
+        landing.monte_carlo(small_campaign(), 10, chunk_size=0)
+
+
+def test_figures(tmp_path):
+    mc = landing.monte_carlo(small_campaign(), 8, seed=1)
+    fig = landing.plots.landing_sites(mc)
+    assert len(fig.axes) == 2
+    assert fig.axes[0].collections[0].get_offsets().shape == (8, 2)
+    fig = landing.plots.sliding_variables(mc)
+    assert len(fig.axes) == 6 and len(fig.axes[0].lines) >= 8
+    written = landing.plots.save_all(mc, tmp_path / "figs")
+    assert {p.name for p in written} >= {"trajectories_3d.png", "landing_sites.png", "thrust.png", "mass.png",
+                                         "sliding_variables.png", "final_velocities.png"}
+    assert all(p.stat().st_size > 1000 for p in written)
+    one = scenarios.mars_nominal(t_final=2.0).simulate()
+    assert len(landing.plots.thrust(one).axes) == 3
+    with pytest.raises(ValueError, match="record_every"):
+        landing.plots.thrust(scenarios.mars_nominal(t_final=2.0, record_every=0).simulate())
