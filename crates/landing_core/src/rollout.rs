@@ -300,6 +300,8 @@ where
         Tolerance::Absolute(v) => v,
         Tolerance::Relative(f) => f * input.e.norm(),
     };
+    // compared squared: no square root per step
+    let tolerance_sq = tolerance * tolerance;
     // the last control instant at which |e| was outside the tolerance, and the mass at the
     // instant after it (the settle instant, should the error stay inside from there on)
     let mut last_outside: Option<u64> = None;
@@ -319,7 +321,7 @@ where
             next_record += cfg.record_every;
         }
         metrics.add_command(&u, cfg.dt);
-        if input.e.norm() > tolerance {
+        if input.e.norm_squared() > tolerance_sq {
             last_outside = Some(k);
             was_outside = true;
         } else if was_outside {
@@ -378,7 +380,7 @@ where
                 slot += 1;
             }
             out.final_state.copy_from_slice(x.as_slice());
-            if input.e.norm() <= tolerance {
+            if input.e.norm_squared() <= tolerance_sq {
                 if was_outside {
                     settle_mass = plant.mass(&x);
                 }
