@@ -28,6 +28,7 @@ def simulate_batch(
     first_case: int,
     settle_tolerance: float,
     settle_relative: bool,
+    chatter_cutoff: Optional[float],
     threads: Optional[int],
 ) -> dict[str, Any]:
     """Run a batch. Returns t, states, controls, diagnostics, final_state, metrics (a dict of

@@ -56,6 +56,7 @@ class Scenario:
     substeps: int = 1
     record_every: int = 1
     settle_tolerance: Optional[float] = None
+    chatter_cutoff: Optional[float] = None
     theta: Optional[tuple[float, float]] = None
     description: str = ""
 
@@ -68,7 +69,7 @@ class Scenario:
         opts = dict(
             t_final=self.t_final, dt=self.dt, integrator=self.integrator, substeps=self.substeps,
             reference=self.reference, disturbance=self.disturbance, record_every=self.record_every,
-            settle_tolerance=self.settle_tolerance,
+            settle_tolerance=self.settle_tolerance, chatter_cutoff=self.chatter_cutoff,
         )
         opts.update(overrides)
         return opts

@@ -33,7 +33,14 @@ class Metrics(Mapping[str, np.ndarray]):
       ``peak_command_axis`` (N, D): largest |u_i|.
     - ``control_effort`` (N,): integral of |u| dt.
     - ``settle_time`` (N,): first control instant from which |q - q_ref| stays within the
-      settle tolerance until t_final (NaN if it is outside at t_final).
+      settle tolerance until t_final (NaN if it is outside at t_final); seed 000's "time to
+      track".
+    - ``iae`` (N,), ``iae_axis`` (N, D): integral of |e_i| dt over the run (rectangle rule at
+      the control instants), summed over the axes or per axis.
+    - ``chattering_variation`` (N,), ``chattering_variation_axis`` (N, D): total variation of
+      the applied command per unit time, sum_k |u(k+1) - u(k)| / T.
+    - ``chattering_hf_share`` (N,), ``chattering_hf_share_axis`` (N, D): share of the applied
+      command's energy above the chattering cut-off (2nd-order Butterworth high-pass).
     - ``touchdown_time``, ``touchdown_speed`` (N,), ``touchdown_position``,
       ``touchdown_velocity`` (N, D): first crossing of the surface, interpolated within the
       step; NaN if none (or the plant has no surface).
@@ -183,6 +190,7 @@ def simulate_batch(
     seed: int = 0,
     first_case: int = 0,
     settle_tolerance: Optional[float] = None,
+    chatter_cutoff: Optional[float] = None,
     threads: Optional[int] = None,
 ) -> SimulationResult:
     """Simulate N cases of ``plant`` under ``controller`` in parallel (SPEC section 2 semantics).
@@ -208,6 +216,9 @@ def simulate_batch(
     settle_tolerance : the tolerance on the tracking-error norm |q - q_ref| behind
         ``metrics["settle_time"]`` (the first control instant from which the error stays
         within it), in units of q; None for 2 % of the initial error norm.
+    chatter_cutoff : cut-off frequency (Hz) of the high-pass filter behind
+        ``metrics["chattering_hf_share"]``; None for a tenth of the Nyquist frequency,
+        1 / (20 dt).
     threads : worker threads (default: all cores).
 
     Returns
@@ -224,7 +235,7 @@ def simulate_batch(
     return _run(plant, controller, x, t_final=t_final, dt=dt, integrator=integrator,
                 substeps=substeps, reference=reference, disturbance=disturbance,
                 record_every=record_every, seed=seed, first_case=first_case,
-                settle_tolerance=settle_tolerance, threads=threads)
+                settle_tolerance=settle_tolerance, chatter_cutoff=chatter_cutoff, threads=threads)
 
 
 def _as_states(x0: Any) -> np.ndarray:
@@ -249,6 +260,7 @@ def _run(
     seed: int = 0,
     first_case: int = 0,
     settle_tolerance: Optional[float] = None,
+    chatter_cutoff: Optional[float] = None,
     threads: Optional[int] = None,
 ) -> SimulationResult:
     """The shared body of simulate and simulate_batch (warnings point at their caller)."""
@@ -285,6 +297,7 @@ def _run(
         first_case=first,
         settle_tolerance=0.02 if settle_tolerance is None else _real("settle_tolerance", settle_tolerance),
         settle_relative=settle_tolerance is None,
+        chatter_cutoff=None if chatter_cutoff is None else _real("chatter_cutoff", chatter_cutoff),
         threads=_int("threads", threads, optional=True),
     )
     axes = out["axes"]

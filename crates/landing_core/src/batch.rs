@@ -11,7 +11,8 @@ use crate::disturbance::Disturbance;
 use crate::integrator::Integrator;
 use crate::plant::Plant;
 use crate::reference::Reference;
-use crate::rollout::{CaseBuffers, CaseMetrics, SimConfig, rollout};
+use crate::metrics::CaseMetrics;
+use crate::rollout::{CaseBuffers, SimConfig, rollout};
 use crate::state::State;
 
 /// A value shared by every case, or one per case.

@@ -14,6 +14,7 @@ pub mod error;
 pub mod gravity;
 pub mod integrator;
 pub mod math;
+pub mod metrics;
 pub mod plant;
 pub mod reference;
 pub mod rng;
@@ -24,4 +25,5 @@ pub mod workloads;
 
 pub use batch::{Batch, BatchError, BatchOutput, PerCase};
 pub use error::ParamError;
-pub use rollout::{CaseMetrics, SimConfig, Tolerance, Touchdown};
+pub use metrics::{CaseMetrics, Touchdown};
+pub use rollout::{SimConfig, Tolerance};

@@ -14,6 +14,7 @@ use crate::control::{ControlLaw, LawInput};
 use crate::disturbance::{Disturbance, disturbance_stream};
 use crate::error::ParamError;
 use crate::integrator::Integrator;
+use crate::metrics::{CaseMetrics, CommandStats, HighPass, Touchdown};
 use crate::plant::Plant;
 use crate::reference::Reference;
 use crate::state::State;
@@ -55,6 +56,9 @@ pub struct SimConfig {
     pub first_case: u64,
     /// What "settled" means for the settle-time metric.
     pub settle: Tolerance,
+    /// Cut-off frequency (Hz) of the high-pass filter behind the chattering metric; NaN for
+    /// a tenth of the Nyquist frequency, 1 / (20 dt).
+    pub chatter_cutoff: f64,
 }
 
 /// Largest number of control periods a batch may ask for (keeps k dt exact in f64 terms of
@@ -107,6 +111,7 @@ impl SimConfig {
             seed,
             first_case: 0,
             settle: Tolerance::Relative(0.02),
+            chatter_cutoff: f64::NAN,
         })
     }
 
@@ -115,6 +120,22 @@ impl SimConfig {
         settle.validate()?;
         self.settle = settle;
         Ok(self)
+    }
+
+    /// The same configuration with another chattering cut-off frequency (Hz, below Nyquist).
+    pub fn with_chatter_cutoff(mut self, hz: f64) -> Result<Self, ParamError> {
+        let nyquist = 0.5 / self.dt;
+        if !(hz > 0.0 && hz < nyquist) {
+            return Err(ParamError::new("chatter_cutoff", hz, "0 < chatter_cutoff < 1 / (2 dt)"));
+        }
+        self.chatter_cutoff = hz;
+        Ok(self)
+    }
+
+    /// The high-pass filter of the chattering metric at this step.
+    pub fn chatter_filter(&self) -> HighPass {
+        let hz = if self.chatter_cutoff.is_nan() { 0.05 / self.dt } else { self.chatter_cutoff };
+        HighPass::butterworth2(hz, self.dt)
     }
 
     /// The same configuration with the batch's cases numbered from `first_case`.
@@ -147,66 +168,6 @@ impl SimConfig {
             t.push(self.t_final());
         }
         t
-    }
-}
-
-/// First crossing of the landing surface (altitude from positive to non-positive),
-/// interpolated linearly within the integrator step.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Touchdown<const D: usize> {
-    pub time: f64,
-    pub position: SVector<f64, D>,
-    pub velocity: SVector<f64, D>,
-}
-
-/// Per-case figures of merit, accumulated during the rollout.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CaseMetrics<const D: usize> {
-    /// e(t_final) = q - q_ref; NaN if the case diverged.
-    pub final_error: SVector<f64, D>,
-    /// e'(t_final); NaN if the case diverged.
-    pub final_rate_error: SVector<f64, D>,
-    /// m(0) - m(t_final) for plants with mass, else NaN.
-    pub fuel_used: f64,
-    /// m(0) - m(settle_time): the propellant spent until the error settles (landing), for
-    /// plants with mass; NaN if it does not settle.
-    pub fuel_to_settle: f64,
-    /// max over applied commands of |u| (Euclidean).
-    pub peak_command: f64,
-    /// max over applied commands of |u_i|, per axis.
-    pub peak_command_axis: SVector<f64, D>,
-    /// integral of |u| dt over the applied commands.
-    pub control_effort: f64,
-    /// First control instant from which |e| stays within the settle tolerance until t_final
-    /// (0 if it always was; NaN if it is outside at t_final or the case diverged).
-    pub settle_time: f64,
-    pub touchdown: Option<Touchdown<D>>,
-    /// Time at which the state (or the command) stopped being admissible.
-    pub diverged_at: Option<f64>,
-}
-
-impl<const D: usize> CaseMetrics<D> {
-    fn new() -> Self {
-        Self {
-            final_error: SVector::repeat(f64::NAN),
-            final_rate_error: SVector::repeat(f64::NAN),
-            fuel_used: f64::NAN,
-            fuel_to_settle: f64::NAN,
-            peak_command: 0.0,
-            peak_command_axis: SVector::zeros(),
-            control_effort: 0.0,
-            settle_time: f64::NAN,
-            touchdown: None,
-            diverged_at: None,
-        }
-    }
-
-    #[inline(always)]
-    fn add_command(&mut self, u: &SVector<f64, D>, dt: f64) {
-        let norm = u.norm();
-        self.peak_command = self.peak_command.max(norm);
-        self.peak_command_axis = self.peak_command_axis.sup(&u.abs());
-        self.control_effort += norm * dt;
     }
 }
 
@@ -289,6 +250,7 @@ where
     let rng = disturbance_stream(cfg.seed, case);
     let h = cfg.dt / f64::from(cfg.substeps);
     let mut metrics = CaseMetrics::new();
+    let mut stats = CommandStats::new(cfg.chatter_filter());
 
     let mut x = *x0;
     let m0 = plant.mass(&x);
@@ -320,7 +282,7 @@ where
             slot += 1;
             next_record += cfg.record_every;
         }
-        metrics.add_command(&u, cfg.dt);
+        stats.add(&u, &input.e, cfg.dt);
         if input.e.norm_squared() > tolerance_sq {
             last_outside = Some(k);
             was_outside = true;
@@ -398,6 +360,7 @@ where
             metrics.diverged_at = Some(cfg.t_final());
         }
     }
+    stats.finish_into(&mut metrics);
     if metrics.diverged_at.is_some() {
         // A diverged case reads NaN from its divergence on, and is flagged in its metrics.
         let nx = P::State::DIM;

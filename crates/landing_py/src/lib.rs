@@ -194,7 +194,7 @@ fn execute<'py, const D: usize, P: Plant<D>>(
 
 /// See `landing.simulate_batch` for the documentation.
 #[pyfunction]
-#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, threads))]
+#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads))]
 #[allow(clippy::too_many_arguments)]
 fn simulate_batch<'py>(
     py: Python<'py>,
@@ -212,6 +212,7 @@ fn simulate_batch<'py>(
     first_case: u64,
     settle_tolerance: f64,
     settle_relative: bool,
+    chatter_cutoff: Option<f64>,
     threads: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let prepared = (|| -> Result<_, InputError> {
@@ -249,6 +250,10 @@ fn simulate_batch<'py>(
                 Tolerance::Absolute(settle_tolerance)
             })
             .map_err(|e| param_error(&e, None))?;
+        let cfg = match chatter_cutoff {
+            None => cfg,
+            Some(hz) => cfg.with_chatter_cutoff(hz).map_err(|e| param_error(&e, None))?,
+        };
         let plant = table(plant, "plant")?;
         let controller = table(controller, "controller")?;
         let reference = reference

@@ -70,6 +70,18 @@ pub fn to_dict<'py, const D: usize>(
     )?;
     metrics.set_item("control_effort", array1(py, col(&|i| m[i].control_effort)))?;
     metrics.set_item("settle_time", array1(py, col(&|i| m[i].settle_time)))?;
+    metrics.set_item("iae", array1(py, col(&|i| m[i].iae.sum())))?;
+    metrics.set_item("iae_axis", array2(py, cols(&|i| m[i].iae.into()), n, D)?)?;
+    metrics.set_item("chattering_variation", array1(py, col(&|i| m[i].command_variation.sum())))?;
+    metrics.set_item(
+        "chattering_variation_axis",
+        array2(py, cols(&|i| m[i].command_variation.into()), n, D)?,
+    )?;
+    metrics.set_item("chattering_hf_share", array1(py, col(&|i| m[i].high_frequency_share_total)))?;
+    metrics.set_item(
+        "chattering_hf_share_axis",
+        array2(py, cols(&|i| m[i].high_frequency_share.into()), n, D)?,
+    )?;
     metrics.set_item(
         "touchdown_time",
         array1(py, col(&|i| td(i).map_or(nan, |t| t.time))),

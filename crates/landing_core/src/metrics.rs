@@ -1,0 +1,249 @@
+//! Per-case figures of merit, accumulated during a rollout without storing its history.
+
+use nalgebra::SVector;
+
+/// First crossing of the landing surface (altitude from positive to non-positive),
+/// interpolated linearly within the integrator step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Touchdown<const D: usize> {
+    pub time: f64,
+    pub position: SVector<f64, D>,
+    pub velocity: SVector<f64, D>,
+}
+
+/// Per-case figures of merit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CaseMetrics<const D: usize> {
+    /// e(t_final) = q - q_ref; NaN if the case diverged.
+    pub final_error: SVector<f64, D>,
+    /// e'(t_final); NaN if the case diverged.
+    pub final_rate_error: SVector<f64, D>,
+    /// m(0) - m(t_final) for plants with mass, else NaN.
+    pub fuel_used: f64,
+    /// m(0) - m(settle_time): the propellant spent until the error settles (landing), for
+    /// plants with mass; NaN if it does not settle.
+    pub fuel_to_settle: f64,
+    /// max over applied commands of |u| (Euclidean).
+    pub peak_command: f64,
+    /// max over applied commands of |u_i|, per axis.
+    pub peak_command_axis: SVector<f64, D>,
+    /// integral of |u| dt over the applied commands.
+    pub control_effort: f64,
+    /// First control instant from which |e| stays within the settle tolerance until t_final
+    /// (0 if it always was; NaN if it is outside at t_final or the case diverged). The "time
+    /// to track" of seed 000.
+    pub settle_time: f64,
+    /// Integral of |e_i| dt over the control periods (rectangle rule at the control instants),
+    /// per axis: the integrated absolute tracking error.
+    pub iae: SVector<f64, D>,
+    /// Total variation of the applied command per unit time, sum_k |u_i(k+1) - u_i(k)| / T,
+    /// per axis: how much the command moves (chattering moves it a lot).
+    pub command_variation: SVector<f64, D>,
+    /// Energy of the applied command above the chattering cut-off (a 2nd-order Butterworth
+    /// high-pass, sum_k hp_i(k)^2) over its total energy (sum_k u_i(k)^2), per axis.
+    pub high_frequency_share: SVector<f64, D>,
+    /// The same share over all axes together.
+    pub high_frequency_share_total: f64,
+    pub touchdown: Option<Touchdown<D>>,
+    /// Time at which the state (or the command) stopped being admissible.
+    pub diverged_at: Option<f64>,
+}
+
+impl<const D: usize> CaseMetrics<D> {
+    pub(crate) fn new() -> Self {
+        Self {
+            final_error: SVector::repeat(f64::NAN),
+            final_rate_error: SVector::repeat(f64::NAN),
+            fuel_used: f64::NAN,
+            fuel_to_settle: f64::NAN,
+            peak_command: 0.0,
+            peak_command_axis: SVector::zeros(),
+            control_effort: 0.0,
+            settle_time: f64::NAN,
+            iae: SVector::zeros(),
+            command_variation: SVector::zeros(),
+            high_frequency_share: SVector::repeat(f64::NAN),
+            high_frequency_share_total: f64::NAN,
+            touchdown: None,
+            diverged_at: None,
+        }
+    }
+}
+
+/// A second-order Butterworth high-pass filter, discretised by the bilinear transform with
+/// frequency prewarping (so the -3 dB point is exactly at the cut-off), in transposed direct
+/// form II.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HighPass {
+    b: [f64; 3],
+    a: [f64; 2],
+}
+
+impl HighPass {
+    /// Cut-off `hz` for samples every `dt` seconds (needs `hz < 1 / (2 dt)`).
+    pub fn butterworth2(hz: f64, dt: f64) -> Self {
+        let k = (std::f64::consts::PI * hz * dt).tan();
+        let root2 = std::f64::consts::SQRT_2;
+        let norm = 1.0 / (1.0 + root2 * k + k * k);
+        Self {
+            b: [norm, -2.0 * norm, norm],
+            a: [2.0 * (k * k - 1.0) * norm, (1.0 - root2 * k + k * k) * norm],
+        }
+    }
+
+    /// Filter state for an input that has been `x` forever (zero output).
+    #[inline]
+    fn steady<const D: usize>(&self, x: &SVector<f64, D>) -> [SVector<f64, D>; 2] {
+        let z2 = x * self.b[2];
+        [x * self.b[1] + z2, z2]
+    }
+
+    #[inline(always)]
+    fn step<const D: usize>(&self, z: &mut [SVector<f64, D>; 2], x: &SVector<f64, D>) -> SVector<f64, D> {
+        let y = x * self.b[0] + z[0];
+        z[0] = x * self.b[1] - y * self.a[0] + z[1];
+        z[1] = x * self.b[2] - y * self.a[1];
+        y
+    }
+
+    /// Magnitude response at `hz` (for tests and documentation).
+    pub fn gain(&self, hz: f64, dt: f64) -> f64 {
+        use std::f64::consts::TAU;
+        let w = TAU * hz * dt;
+        let (c1, s1, c2, s2) = (w.cos(), -w.sin(), (2.0 * w).cos(), -(2.0 * w).sin());
+        let num = (self.b[0] + self.b[1] * c1 + self.b[2] * c2, self.b[1] * s1 + self.b[2] * s2);
+        let den = (1.0 + self.a[0] * c1 + self.a[1] * c2, self.a[0] * s1 + self.a[1] * s2);
+        ((num.0 * num.0 + num.1 * num.1) / (den.0 * den.0 + den.1 * den.1)).sqrt()
+    }
+}
+
+/// Accumulates the command and tracking-error statistics over the applied commands.
+pub(crate) struct CommandStats<const D: usize> {
+    filter: HighPass,
+    state: Option<[SVector<f64, D>; 2]>,
+    last: SVector<f64, D>,
+    peak: f64,
+    peak_axis: SVector<f64, D>,
+    effort: f64,
+    iae: SVector<f64, D>,
+    variation: SVector<f64, D>,
+    high: SVector<f64, D>,
+    energy: SVector<f64, D>,
+    time: f64,
+}
+
+impl<const D: usize> CommandStats<D> {
+    pub(crate) fn new(filter: HighPass) -> Self {
+        let z = SVector::zeros();
+        Self {
+            filter,
+            state: None,
+            last: z,
+            peak: 0.0,
+            peak_axis: z,
+            effort: 0.0,
+            iae: z,
+            variation: z,
+            high: z,
+            energy: z,
+            time: 0.0,
+        }
+    }
+
+    /// The command `u` applied over a period `dt` with the tracking error `e` at its start.
+    #[inline(always)]
+    pub(crate) fn add(&mut self, u: &SVector<f64, D>, e: &SVector<f64, D>, dt: f64) {
+        let norm = u.norm();
+        self.peak = self.peak.max(norm);
+        self.peak_axis = self.peak_axis.sup(&u.abs());
+        self.effort += norm * dt;
+        self.iae += e.abs() * dt;
+        self.time += dt;
+        let z = match &mut self.state {
+            Some(z) => {
+                self.variation += (u - self.last).abs();
+                z
+            }
+            None => self.state.insert(self.filter.steady(u)),
+        };
+        let y = self.filter.step(z, u);
+        self.high += y.component_mul(&y);
+        self.energy += u.component_mul(u);
+        self.last = *u;
+    }
+
+    pub(crate) fn finish_into(&self, m: &mut CaseMetrics<D>) {
+        m.peak_command = self.peak;
+        m.peak_command_axis = self.peak_axis;
+        m.control_effort = self.effort;
+        m.iae = self.iae;
+        if self.time > 0.0 {
+            m.command_variation = self.variation / self.time;
+        }
+        let share = |h: f64, e: f64| if e > 0.0 { h / e } else { 0.0 };
+        m.high_frequency_share = SVector::from_fn(|i, _| share(self.high[i], self.energy[i]));
+        m.high_frequency_share_total = share(self.high.sum(), self.energy.sum());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector1;
+
+    #[test]
+    fn butterworth_response() {
+        let dt = 0.01;
+        let f = HighPass::butterworth2(5.0, dt);
+        // -3 dB at the cut-off, unity near Nyquist, 12 dB per octave below
+        assert!((f.gain(5.0, dt) - 0.5f64.sqrt()).abs() < 1e-12);
+        assert!((f.gain(49.999, dt) - 1.0).abs() < 1e-6);
+        assert!(f.gain(0.0, dt) < 1e-12);
+        let r = f.gain(0.5, dt) / f.gain(1.0, dt);
+        assert!((r - 0.25).abs() < 0.01, "{r}");
+    }
+
+    fn share_of(signal: impl Fn(f64) -> f64, hz: f64, dt: f64, n: usize) -> f64 {
+        let mut s = CommandStats::<1>::new(HighPass::butterworth2(hz, dt));
+        for k in 0..n {
+            s.add(&Vector1::new(signal(k as f64 * dt)), &Vector1::zeros(), dt);
+        }
+        let mut m = CaseMetrics::<1>::new();
+        s.finish_into(&mut m);
+        m.high_frequency_share[0]
+    }
+
+    #[test]
+    fn high_frequency_share_separates_slow_from_chattering() {
+        let dt = 0.01;
+        // a constant: no high-frequency energy, not even from the start-up transient
+        assert!(share_of(|_| 3.0, 5.0, dt, 2000) < 1e-20);
+        // a slow sine: |H(0.1 Hz)|^2 ~ (0.1/5)^4
+        let slow = share_of(|t| (std::f64::consts::TAU * 0.1 * t).sin(), 5.0, dt, 20_000);
+        assert!(slow < 1e-6, "{slow}");
+        // sign chattering at Nyquist: all of it passes
+        let fast = share_of(|t| if ((t / dt).round() as i64) % 2 == 0 { 1.0 } else { -1.0 }, 5.0, dt, 2000);
+        assert!((fast - 1.0).abs() < 1e-3, "{fast}");
+        // half and half
+        let mix = share_of(
+            |t| (std::f64::consts::TAU * 0.1 * t).sin() + if ((t / dt).round() as i64) % 2 == 0 { 1.0 } else { -1.0 },
+            5.0,
+            dt,
+            20_000,
+        );
+        assert!((mix - 2.0 / 3.0).abs() < 0.01, "{mix}");
+    }
+
+    #[test]
+    fn variation_and_iae() {
+        let mut s = CommandStats::<1>::new(HighPass::butterworth2(5.0, 0.01));
+        for (u, e) in [(0.0, 1.0), (2.0, -1.0), (1.0, 0.5), (1.0, 0.0)] {
+            s.add(&Vector1::new(u), &Vector1::new(e), 0.5);
+        }
+        let mut m = CaseMetrics::<1>::new();
+        s.finish_into(&mut m);
+        assert_eq!(m.command_variation[0], 3.0 / 2.0);
+        assert_eq!(m.iae[0], 2.5 * 0.5);
+        assert_eq!(m.peak_command, 2.0);
+    }
+}
