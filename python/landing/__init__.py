@@ -11,7 +11,7 @@ laws, references and disturbances, runs batches and reads the results.
 """
 
 from landing._core import __version__
-from landing import controllers, dispersions, disturbances, errors, plants, reference
+from landing import controllers, dispersions, disturbances, errors, fuzzy, gravity, plants, reference
 from landing.errors import (
     DivergenceWarning,
     LandingError,
@@ -29,6 +29,8 @@ __all__ = [
     "dispersions",
     "disturbances",
     "errors",
+    "fuzzy",
+    "gravity",
     "plants",
     "plots",
     "reference",

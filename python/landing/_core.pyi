@@ -88,3 +88,21 @@ def check_dispersion(table: Table) -> int:
 
 def disturbance_bound(table: Table, axes: int) -> list[float]:
     """Per-axis bound on |d_i(t)| of a disturbance table."""
+
+GRAVITATIONAL_CONSTANT: float
+GRAVITY_KINDS: list[str]
+
+def evaluate_gravity(table: Table, positions: npt.NDArray[np.float64], potential: bool) -> npt.NDArray[np.float64]:
+    """Acceleration (N, 3) or potential (N,) of a gravity table at positions (N, 3)."""
+
+def check_gravity(owner: str, table: Table) -> None:
+    """Validate a gravity table."""
+
+def evaluate_fuzzy(table: Table, inputs: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """Crisp outputs (N,) of a Mamdani table for inputs (N, number of inputs)."""
+
+def check_fuzzy(table: Table) -> None:
+    """Validate a Mamdani table."""
+
+def variable_rate_system_table(resolution: int) -> Table:
+    """The seed-002 variable-rate system as a Mamdani table."""

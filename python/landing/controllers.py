@@ -9,12 +9,22 @@ thrust or torque and saturates it.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 from landing import _core
 from landing._table import ArrayLike, Table
 
-__all__ = ["Controller", "FixedTimeMSS", "SuperTwisting", "OpenLoop"]
+__all__ = [
+    "Controller",
+    "FixedTimeMSS",
+    "SuperTwisting",
+    "OpenLoop",
+    "PDSlidingMode",
+    "FastTerminalSMC",
+    "FuzzyFastTerminalSMC",
+    "IntegralExponentialReaching",
+    "FuzzyVariableRate",
+]
 
 
 class Controller(Table):
@@ -94,3 +104,131 @@ class OpenLoop(Controller):
     acceleration: ArrayLike = 0.0
 
     kind = "open_loop"
+
+
+@dataclass(eq=False)
+class PDSlidingMode(Controller):
+    """PD sliding mode, the seed-000 baseline (SPEC 5 law 1): ``s = e' + lambda e``,
+    ``u = u_eq - k switch(s)``, the equivalent control from s' = 0 with the plant's model.
+
+    Parameters (per axis, or per case)
+    ----------
+    lambda_ : slope of the surface, 1/s (``lambda`` is a Python keyword).
+    k : switching gain, in command units (m/s^2 on a small body).
+    switch, boundary_layer : "sign", "sat" or "tanh", and the layer width phi.
+    """
+
+    lambda_: ArrayLike
+    k: ArrayLike
+    switch: Literal["sign", "sat", "tanh"] = "sign"
+    boundary_layer: float = 1.0
+
+    kind = "pd_sliding_mode"
+
+    def _table(self):
+        table = super()._table()
+        table["lambda"] = table.pop("lambda_")
+        return table
+
+
+@dataclass(eq=False)
+class FastTerminalSMC(Controller):
+    """Fast terminal sliding mode (seed 000 eq. 6, 14, 19; SPEC 5 law 2):
+    ``s = e' + alpha e + beta sig^(p/q)(e)``, ``u = u_eq - k switch(s)``.
+
+    Parameters
+    ----------
+    alpha, beta : surface gains (> 0). p, q : the exponent p/q, 0 < p < q (the seed takes odd
+        integers; with sig any ratio keeps the sign of e). k : switching gain.
+    switch, boundary_layer : as for :class:`PDSlidingMode`.
+    e_floor : singularity guard, in units of q: |e| is floored there in |e|^(p/q - 1) of the
+        equivalent control.
+    """
+
+    alpha: ArrayLike
+    beta: ArrayLike
+    p: ArrayLike
+    q: ArrayLike
+    k: ArrayLike
+    switch: Literal["sign", "sat", "tanh"] = "sign"
+    boundary_layer: float = 1.0
+    e_floor: ArrayLike = 1e-3
+
+    kind = "fast_terminal_smc"
+
+
+@dataclass(eq=False)
+class FuzzyFastTerminalSMC(Controller):
+    """Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22; SPEC 5 law 3):
+    ``u = a(D) u_eq + b(D) u_s`` with ``a = exp(-n D)``, ``b = 1 - exp(-m D)`` and D the
+    distance of the state to the surface, ``D_i = s_i / sqrt(1 + alpha_i^2)``.
+    Records the blend (a, b, D) as scalar diagnostics.
+
+    Parameters: those of :class:`FastTerminalSMC`, and n, m (the seed's N, M).
+    """
+
+    alpha: ArrayLike
+    beta: ArrayLike
+    p: ArrayLike
+    q: ArrayLike
+    k: ArrayLike
+    n: ArrayLike
+    m: ArrayLike
+    switch: Literal["sign", "sat", "tanh"] = "sign"
+    boundary_layer: float = 1.0
+    e_floor: ArrayLike = 1e-3
+
+    kind = "fuzzy_fast_terminal_smc"
+
+
+@dataclass(eq=False)
+class IntegralExponentialReaching(Controller):
+    """Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12; SPEC 5
+    law 4) in the stable form ``s = -sigma' - int(c1 sigma + c2 sigma')``:
+    ``u = q_ref'' - drift - c1 sigma - c2 sigma' + k s + epsilon switch(s)``, so that
+    ``s' = -k s - epsilon sgn(s)`` and, on s = 0, ``sigma'' + c2 sigma' + c1 sigma = 0``.
+    (The seed's printed surface gives unstable sliding dynamics.)
+    """
+
+    c1: ArrayLike
+    c2: ArrayLike
+    k: ArrayLike
+    epsilon: ArrayLike
+    switch: Literal["sign", "sat", "tanh"] = "sign"
+    boundary_layer: float = 1.0
+
+    kind = "integral_exponential_reaching"
+
+
+@dataclass(eq=False)
+class FuzzyVariableRate(Controller):
+    """Fuzzy variable-rate reaching law (seed 002 sec. 2.3; SPEC 5 law 5): the surface of
+    :class:`IntegralExponentialReaching`, with ``epsilon sgn(s)`` replaced by
+    ``ku F(ke s, kec s')``, F the Mamdani system (by default the seed's 5x5 rules,
+    :func:`landing.fuzzy.variable_rate_system`) and s' the backward difference of s over the
+    control period. Records s, s' and the fuzzy term.
+
+    Parameters
+    ----------
+    c1, c2, k : surface and exponential-rate gains.
+    ke, kec : input scaling factors of s and s' onto the universe [-5, 5].
+    ku : output scaling factor (command units per unit of the output universe).
+    system : a :class:`landing.fuzzy.Mamdani` with two inputs.
+    """
+
+    c1: ArrayLike
+    c2: ArrayLike
+    k: ArrayLike
+    ke: ArrayLike
+    kec: ArrayLike
+    ku: ArrayLike
+    system: Any = None
+
+    kind = "fuzzy_variable_rate"
+
+    def __post_init__(self) -> None:
+        if self.system is None:
+            from landing.fuzzy import variable_rate_system
+
+            self.system = variable_rate_system()
+        super().__post_init__()

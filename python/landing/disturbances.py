@@ -14,7 +14,7 @@ from typing import Any, ClassVar, Iterable, Sequence, Union
 from landing import _core
 from landing._table import ArrayLike, Table
 
-__all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "Sum", "as_table"]
+__all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "CommandNoise", "Sum", "as_table"]
 
 
 class Disturbance(Table):
@@ -57,6 +57,18 @@ class UniformNoise(Disturbance):
     bound: ArrayLike
 
     kind: ClassVar[str] = "uniform_noise"
+
+
+@dataclass(eq=False)
+class CommandNoise(Disturbance):
+    """Uniform on ``[-fraction, fraction]`` times the commanded acceleration, per axis, drawn
+    once per control period (seed 002: a model uncertainty of up to 1 % of the command,
+    ``CommandNoise(0.01)``). The commanded acceleration is the applied command over the
+    plant's inertia."""
+
+    fraction: ArrayLike
+
+    kind: ClassVar[str] = "command_noise"
 
 
 class Sum(Disturbance):

@@ -6,15 +6,16 @@ with one entry per case of the batch, or ``(N, 3)`` for per-axis ones).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import ClassVar, Optional
 
 import numpy as np
 
 from landing import _core
 from landing._table import ArrayLike, Table
+from landing.gravity import Gravity, TwoPointMass
 
-__all__ = ["Plant", "MarsLander", "DoubleIntegrator"]
+__all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody"]
 
 
 class Plant(Table):
@@ -100,3 +101,21 @@ class DoubleIntegrator(Plant):
     acceleration_limit: Optional[ArrayLike] = None
 
     kind: ClassVar[str] = "double_integrator"
+
+
+@dataclass(eq=False)
+class SmallBody(Plant):
+    """A probe near a small body, in the body's frame rotating at ``omega`` about z (seeds 000
+    and 002, SPEC 3.2). State ``[x, y, z, vx, vy, vz]``; the command is a control acceleration
+    (m/s^2), clipped per axis to ``acceleration_limit`` (None: none).
+
+    ``x'' - 2 omega y' - omega^2 x = g_x + u_x + d_x``, ``y'' + 2 omega x' - omega^2 y = g_y + u_y + d_y``,
+    ``z'' = g_z + u_z + d_z``, with g from a :mod:`landing.gravity` field. Defaults: seed 000
+    (433 Eros as two mass points, omega = 3.3118e-4 rad/s).
+    """
+
+    gravity: Gravity = field(default_factory=TwoPointMass)
+    omega: ArrayLike = 3.3118e-4
+    acceleration_limit: Optional[ArrayLike] = None
+
+    kind: ClassVar[str] = "small_body"

@@ -115,7 +115,8 @@ class SimulationResult:
         saturation (thrust in N for the Mars lander). The last entry is the command computed
         at t_final, which would be held next.
     final_state : (N, n_state) state at t_final.
-    diagnostics : name -> (N, T, D) internal signals of the law (sliding variables, ...).
+    diagnostics : name -> (N, T, D) internal signals of the law (sliding variables, ...), or
+        (N, T) for scalar ones (blending coefficients).
     metrics : per-case table, see :class:`Metrics`.
 
     ``result[i]`` is case i alone, with the case axis dropped.
@@ -300,11 +301,13 @@ def _run(
         chatter_cutoff=None if chatter_cutoff is None else _real("chatter_cutoff", chatter_cutoff),
         threads=_int("threads", threads, optional=True),
     )
-    axes = out["axes"]
     diag = out["diagnostics"]
-    diagnostics = {
-        name: diag[:, :, j * axes:(j + 1) * axes] for j, name in enumerate(out["diagnostic_names"])
-    }
+    diagnostics = {}
+    offset = 0
+    for name, width in out["diagnostic_layout"]:
+        # per-axis signals keep their axis, scalar ones (blending coefficients...) drop it
+        diagnostics[name] = diag[:, :, offset:offset + width] if width == out["axes"] else diag[:, :, offset]
+        offset += width
     metrics = Metrics(out["metrics"])
     diverged = np.flatnonzero(metrics["diverged"])
     if diverged.size:

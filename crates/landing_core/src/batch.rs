@@ -9,9 +9,9 @@ use rayon::prelude::*;
 use crate::control::ControlLaw;
 use crate::disturbance::Disturbance;
 use crate::integrator::Integrator;
+use crate::metrics::CaseMetrics;
 use crate::plant::Plant;
 use crate::reference::Reference;
-use crate::metrics::CaseMetrics;
 use crate::rollout::{CaseBuffers, SimConfig, rollout};
 use crate::state::State;
 
@@ -162,7 +162,7 @@ where
         }
     }
     let nx = P::State::DIM;
-    let nd = L::DIAGNOSTICS.len() * D;
+    let nd = crate::control::diagnostic_width::<D, L>();
     let nr = cfg.n_records();
     let total = (n as u128) * (nr as u128) * ((nx + D + nd) as u128) * 8;
     if total > isize::MAX as u128 {

@@ -93,9 +93,18 @@ mod tests {
     fn samples_match_requested_moments_and_do_not_depend_on_chunking() {
         let d = Dispersion {
             components: vec![
-                Component::Normal { mean: -2000.0, std: 100.0 },
-                Component::Uniform { low: -15.0, high: 45.0 },
-                Component::Normal { mean: 1905.0, std: 0.0 },
+                Component::Normal {
+                    mean: -2000.0,
+                    std: 100.0,
+                },
+                Component::Uniform {
+                    low: -15.0,
+                    high: 45.0,
+                },
+                Component::Normal {
+                    mean: 1905.0,
+                    std: 0.0,
+                },
             ],
         };
         let n = 20_000;
@@ -108,7 +117,10 @@ mod tests {
             let mean = col.iter().sum::<f64>() / n as f64;
             let sd = (col.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
             let (m, s) = c.moments();
-            assert!((mean - m).abs() <= 4.0 * s / (n as f64).sqrt() + 1e-12, "{j}: {mean} vs {m}");
+            assert!(
+                (mean - m).abs() <= 4.0 * s / (n as f64).sqrt() + 1e-12,
+                "{j}: {mean} vs {m}"
+            );
             assert!((sd - s).abs() <= 0.03 * s + 1e-12, "{j}: {sd} vs {s}");
         }
         let u: Vec<f64> = all.iter().skip(1).step_by(3).copied().collect();

@@ -27,8 +27,10 @@ impl<const D: usize> Sinusoid<D> {
     }
 }
 
-/// `d(t) = constant + sum_j A_j sin(omega_j t + phase_j) + n_k`, with `n_k` uniform on
-/// `[-bound, bound]` per axis, drawn for control period k.
+/// `d(t) = constant + sum_j A_j sin(omega_j t + phase_j) + n_k + r_k * a_k`, with `n_k` uniform
+/// on `[-bound, bound]` and `r_k` uniform on `[-relative, relative]` per axis, both drawn for
+/// control period k, and `a_k` the commanded acceleration applied over that period (the applied
+/// command over the inertia): seed 002's model uncertainty of up to 1 % of the command.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Disturbance<const D: usize> {
     pub constant: SVector<f64, D>,
@@ -36,6 +38,7 @@ pub struct Disturbance<const D: usize> {
     in_phase: [bool; MAX_SINUSOIDS],
     n_sinusoids: usize,
     pub noise_bound: SVector<f64, D>,
+    pub relative_bound: SVector<f64, D>,
 }
 
 impl<const D: usize> Default for Disturbance<D> {
@@ -51,6 +54,7 @@ impl<const D: usize> Default for Disturbance<D> {
             in_phase: [false; MAX_SINUSOIDS],
             n_sinusoids: 0,
             noise_bound: zero,
+            relative_bound: zero,
         }
     }
 }
@@ -71,6 +75,12 @@ impl<const D: usize> Disturbance<D> {
 
     pub fn with_noise(mut self, bound: SVector<f64, D>) -> Self {
         self.noise_bound += bound;
+        self
+    }
+
+    /// Adds a random disturbance of up to `fraction` of the commanded acceleration per axis.
+    pub fn with_command_noise(mut self, fraction: SVector<f64, D>) -> Self {
+        self.relative_bound += fraction;
         self
     }
 
@@ -97,7 +107,12 @@ impl<const D: usize> Disturbance<D> {
         self.noise_bound.iter().any(|&b| b > 0.0)
     }
 
-    /// Bound on |d_i(t)| per axis (used by the theory's practical fixed-time neighbourhoods).
+    pub fn has_command_noise(&self) -> bool {
+        self.relative_bound.iter().any(|&b| b > 0.0)
+    }
+
+    /// Bound on |d_i(t)| per axis (used by the theory's practical fixed-time neighbourhoods),
+    /// leaving out the part proportional to the command, whose bound depends on the law.
     pub fn bound(&self) -> SVector<f64, D> {
         let mut b = self.constant.abs() + self.noise_bound;
         for s in self.sinusoids() {
@@ -106,20 +121,23 @@ impl<const D: usize> Disturbance<D> {
         b
     }
 
-    /// The random draw for control period `period` of the case whose stream is given.
+    /// The random draws for control period `period` of a case (its streams are given), with
+    /// `command` the commanded acceleration applied over the period.
     #[inline]
-    pub fn draw(&self, rng: &CaseStream, period: u64) -> HeldNoise<D> {
-        if !self.has_noise() {
-            return HeldNoise(SVector::zeros());
+    pub fn draw(&self, rng: &NoiseStreams, period: u64, command: &SVector<f64, D>) -> HeldNoise<D> {
+        let mut held = SVector::zeros();
+        if self.has_noise() {
+            held += self
+                .noise_bound
+                .component_mul(&symmetric_uniforms(&rng.additive, period));
         }
-        // ceil(D / 4) Philox blocks per period, so axes never share a word
-        let blocks = D.div_ceil(4) as u64;
-        let mut u = SVector::<f64, D>::zeros();
-        rng.fill_uniforms(period * blocks, u.as_mut_slice());
-        HeldNoise(
-            self.noise_bound
-                .component_mul(&(u * 2.0 - SVector::repeat(1.0))),
-        )
+        if self.has_command_noise() {
+            let r = self
+                .relative_bound
+                .component_mul(&symmetric_uniforms(&rng.relative, period));
+            held += r.component_mul(command);
+        }
+        HeldNoise(held)
     }
 
     /// The deterministic part at time `t`.
@@ -152,6 +170,8 @@ impl<const D: usize> Disturbance<D> {
                 .map_err(|e| e.on_axis(i))?;
             let b = self.noise_bound[i];
             require(b >= 0.0, "bound", b, "bound >= 0").map_err(|e| e.on_axis(i))?;
+            let f = self.relative_bound[i];
+            require(f >= 0.0, "fraction", f, "fraction >= 0").map_err(|e| e.on_axis(i))?;
             for s in self.sinusoids() {
                 require(true, "amplitude", s.amplitude[i], "finite values")
                     .map_err(|e| e.on_axis(i))?;
@@ -163,9 +183,29 @@ impl<const D: usize> Disturbance<D> {
     }
 }
 
-/// The stream a case's disturbance draws from.
-pub fn disturbance_stream(seed: u64, case: u64) -> CaseStream {
-    CaseStream::new(seed, streams::DISTURBANCE, case)
+/// Uniforms on [-1, 1) per axis for a control period: ceil(D / 4) Philox blocks per period, so
+/// axes never share a word.
+#[inline]
+fn symmetric_uniforms<const D: usize>(rng: &CaseStream, period: u64) -> SVector<f64, D> {
+    let blocks = D.div_ceil(4) as u64;
+    let mut u = SVector::<f64, D>::zeros();
+    rng.fill_uniforms(period * blocks, u.as_mut_slice());
+    u * 2.0 - SVector::repeat(1.0)
+}
+
+/// The random streams a case's disturbance draws from.
+#[derive(Clone, Copy, Debug)]
+pub struct NoiseStreams {
+    additive: CaseStream,
+    relative: CaseStream,
+}
+
+/// The streams of case `case` under `seed`.
+pub fn disturbance_stream(seed: u64, case: u64) -> NoiseStreams {
+    NoiseStreams {
+        additive: CaseStream::new(seed, streams::DISTURBANCE, case),
+        relative: CaseStream::new(seed, streams::COMMAND_NOISE, case),
+    }
 }
 
 #[cfg(test)]
@@ -195,12 +235,28 @@ mod tests {
         let s = disturbance_stream(11, 4);
         let mut max = Vector3::<f64>::zeros();
         for k in 0..5000 {
-            let n = d.draw(&s, k);
+            let n = d.draw(&s, k, &Vector3::zeros());
             max = max.sup(&n.0.abs());
-            assert_eq!(n.0, d.draw(&s, k).0);
+            assert_eq!(n.0, d.draw(&s, k, &Vector3::zeros()).0);
         }
         assert!(max[0] <= 0.5 && max[0] > 0.49);
         assert!(max[1] <= 1.0 && max[1] > 0.98);
         assert_eq!(max[2], 0.0);
+    }
+
+    #[test]
+    fn command_noise_scales_with_the_command() {
+        let d = Disturbance::<3>::none().with_command_noise(Vector3::repeat(0.01));
+        let s = disturbance_stream(3, 1);
+        let a = Vector3::new(2.0, -0.5, 0.0);
+        let mut seen: f64 = 0.0;
+        for k in 0..2000 {
+            let n = d.draw(&s, k, &a).0;
+            assert!(n[0].abs() <= 0.02 && n[1].abs() <= 0.005 && n[2] == 0.0);
+            // the same draw scales linearly with the command
+            assert!((d.draw(&s, k, &(a * 3.0)).0 - n * 3.0).norm() < 1e-15);
+            seen = seen.max(n[0].abs());
+        }
+        assert!(seen > 0.0195);
     }
 }

@@ -11,6 +11,7 @@ pub mod control;
 pub mod dispersion;
 pub mod disturbance;
 pub mod error;
+pub mod fuzzy;
 pub mod gravity;
 pub mod integrator;
 pub mod math;

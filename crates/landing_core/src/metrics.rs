@@ -99,7 +99,11 @@ impl HighPass {
     }
 
     #[inline(always)]
-    fn step<const D: usize>(&self, z: &mut [SVector<f64, D>; 2], x: &SVector<f64, D>) -> SVector<f64, D> {
+    fn step<const D: usize>(
+        &self,
+        z: &mut [SVector<f64, D>; 2],
+        x: &SVector<f64, D>,
+    ) -> SVector<f64, D> {
         let y = x * self.b[0] + z[0];
         z[0] = x * self.b[1] - y * self.a[0] + z[1];
         z[1] = x * self.b[2] - y * self.a[1];
@@ -111,8 +115,14 @@ impl HighPass {
         use std::f64::consts::TAU;
         let w = TAU * hz * dt;
         let (c1, s1, c2, s2) = (w.cos(), -w.sin(), (2.0 * w).cos(), -(2.0 * w).sin());
-        let num = (self.b[0] + self.b[1] * c1 + self.b[2] * c2, self.b[1] * s1 + self.b[2] * s2);
-        let den = (1.0 + self.a[0] * c1 + self.a[1] * c2, self.a[0] * s1 + self.a[1] * s2);
+        let num = (
+            self.b[0] + self.b[1] * c1 + self.b[2] * c2,
+            self.b[1] * s1 + self.b[2] * s2,
+        );
+        let den = (
+            1.0 + self.a[0] * c1 + self.a[1] * c2,
+            self.a[0] * s1 + self.a[1] * s2,
+        );
         ((num.0 * num.0 + num.1 * num.1) / (den.0 * den.0 + den.1 * den.1)).sqrt()
     }
 }
@@ -222,11 +232,29 @@ mod tests {
         let slow = share_of(|t| (std::f64::consts::TAU * 0.1 * t).sin(), 5.0, dt, 20_000);
         assert!(slow < 1e-6, "{slow}");
         // sign chattering at Nyquist: all of it passes
-        let fast = share_of(|t| if ((t / dt).round() as i64) % 2 == 0 { 1.0 } else { -1.0 }, 5.0, dt, 2000);
+        let fast = share_of(
+            |t| {
+                if ((t / dt).round() as i64) % 2 == 0 {
+                    1.0
+                } else {
+                    -1.0
+                }
+            },
+            5.0,
+            dt,
+            2000,
+        );
         assert!((fast - 1.0).abs() < 1e-3, "{fast}");
         // half and half
         let mix = share_of(
-            |t| (std::f64::consts::TAU * 0.1 * t).sin() + if ((t / dt).round() as i64) % 2 == 0 { 1.0 } else { -1.0 },
+            |t| {
+                (std::f64::consts::TAU * 0.1 * t).sin()
+                    + if ((t / dt).round() as i64) % 2 == 0 {
+                        1.0
+                    } else {
+                        -1.0
+                    }
+            },
             5.0,
             dt,
             20_000,

@@ -42,6 +42,8 @@ pub mod streams {
     pub const DISPERSION: u64 = 0;
     /// Random disturbance components (drawn once per control period).
     pub const DISTURBANCE: u64 = 1;
+    /// Random disturbances proportional to the command (seed 002: up to 1 % of it).
+    pub const COMMAND_NOISE: u64 = 2;
 }
 
 /// The random numbers of one case in one stream.

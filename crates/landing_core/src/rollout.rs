@@ -126,7 +126,11 @@ impl SimConfig {
     pub fn with_chatter_cutoff(mut self, hz: f64) -> Result<Self, ParamError> {
         let nyquist = 0.5 / self.dt;
         if !(hz > 0.0 && hz < nyquist) {
-            return Err(ParamError::new("chatter_cutoff", hz, "0 < chatter_cutoff < 1 / (2 dt)"));
+            return Err(ParamError::new(
+                "chatter_cutoff",
+                hz,
+                "0 < chatter_cutoff < 1 / (2 dt)",
+            ));
         }
         self.chatter_cutoff = hz;
         Ok(self)
@@ -134,7 +138,11 @@ impl SimConfig {
 
     /// The high-pass filter of the chattering metric at this step.
     pub fn chatter_filter(&self) -> HighPass {
-        let hz = if self.chatter_cutoff.is_nan() { 0.05 / self.dt } else { self.chatter_cutoff };
+        let hz = if self.chatter_cutoff.is_nan() {
+            0.05 / self.dt
+        } else {
+            self.chatter_cutoff
+        };
         HighPass::butterworth2(hz, self.dt)
     }
 
@@ -217,7 +225,7 @@ fn record<const D: usize, S: State, L: ControlLaw<D>>(
     input: &LawInput<D>,
 ) {
     let nx = S::DIM;
-    let nd = L::DIAGNOSTICS.len() * D;
+    let nd = crate::control::diagnostic_width::<D, L>();
     out.states[slot * nx..(slot + 1) * nx].copy_from_slice(x.as_slice());
     out.controls[slot * D..(slot + 1) * D].copy_from_slice(u.as_slice());
     law.diagnostics(
@@ -291,7 +299,7 @@ where
             was_outside = false;
         }
 
-        let held = disturbance.draw(&rng, k);
+        let held = disturbance.draw(&rng, k, &u.component_div(&input.inertia));
         law.advance(&mut memory, &input);
         // RK4's two middle stages share a time: remember the last disturbance evaluated
         // (a pure function of time, so this changes no result).
@@ -364,7 +372,7 @@ where
     if metrics.diverged_at.is_some() {
         // A diverged case reads NaN from its divergence on, and is flagged in its metrics.
         let nx = P::State::DIM;
-        let nd = L::DIAGNOSTICS.len() * D;
+        let nd = crate::control::diagnostic_width::<D, L>();
         out.states[slot * nx..].fill(f64::NAN);
         out.controls[slot * D..].fill(f64::NAN);
         out.diagnostics[slot * nd..].fill(f64::NAN);

@@ -30,7 +30,13 @@ fn check_theta(theta: f64) -> Result<(), ParamError> {
 
 /// Theorem 1 (k = 1) for `s' = -c1 sig^e1(s) - c2 sig^e2(s) + d`, |d| <= d_max: the time to
 /// reach the neighbourhood of [`practical_radius`], `fixed_time_bound / theta` (seed eq. 6, 40).
-pub fn practical_time_bound(c1: f64, e1: f64, c2: f64, e2: f64, theta: f64) -> Result<f64, ParamError> {
+pub fn practical_time_bound(
+    c1: f64,
+    e1: f64,
+    c2: f64,
+    e2: f64,
+    theta: f64,
+) -> Result<f64, ParamError> {
     check_theta(theta)?;
     Ok(fixed_time_bound(c1, e1, c2, e2)? / theta)
 }
@@ -39,7 +45,14 @@ pub fn practical_time_bound(c1: f64, e1: f64, c2: f64, e2: f64, theta: f64) -> R
 /// keeps (seed eq. 38, 39): outside it `(1 - theta)(c1 |s|^e1 + c2 |s|^e2) >= d_max`, so V
 /// decreases at least at the rate of the law with gains theta c1, theta c2. Hence
 /// `|s| <= min{(d_max / ((1 - theta) c1))^(1/e1), (d_max / ((1 - theta) c2))^(1/e2)}`.
-pub fn practical_radius(c1: f64, e1: f64, c2: f64, e2: f64, d_max: f64, theta: f64) -> Result<f64, ParamError> {
+pub fn practical_radius(
+    c1: f64,
+    e1: f64,
+    c2: f64,
+    e2: f64,
+    d_max: f64,
+    theta: f64,
+) -> Result<f64, ParamError> {
     check_reaching(c1, e1, c2, e2)?;
     check_theta(theta)?;
     require(d_max >= 0.0, "d_max", d_max, "d_max >= 0")?;
@@ -107,8 +120,14 @@ pub fn mss_bounds(
     let s2_names = ["alpha1", "gamma1", "alpha2", "gamma2"];
     let t1 = fixed_time_bound(beta1, q1, beta2, q2).map_err(|e| rename(e, s1_names))?;
     let t2 = fixed_time_bound(alpha1, gamma1, alpha2, gamma2).map_err(|e| rename(e, s2_names))?;
-    check_theta(theta1).map_err(|e| ParamError { param: "theta1", ..e })?;
-    check_theta(theta2).map_err(|e| ParamError { param: "theta2", ..e })?;
+    check_theta(theta1).map_err(|e| ParamError {
+        param: "theta1",
+        ..e
+    })?;
+    check_theta(theta2).map_err(|e| ParamError {
+        param: "theta2",
+        ..e
+    })?;
     require(ap_max >= 0.0, "ap_max", ap_max, "ap_max >= 0")?;
     let s2_radius = practical_radius(alpha1, gamma1, alpha2, gamma2, ap_max, theta1)?;
     let s2_time = t2 / theta1;
@@ -153,7 +172,11 @@ pub fn min_final_time(r0: f64, v0: f64, a_max: f64, g: f64) -> Result<(f64, f64)
         0.0
     } else {
         let decel = a_max - v0.signum() * g;
-        if decel > 0.0 { v0.abs() / decel } else { f64::INFINITY }
+        if decel > 0.0 {
+            v0.abs() / decel
+        } else {
+            f64::INFINITY
+        }
     };
     Ok((tf1, tf2))
 }
@@ -281,7 +304,10 @@ mod tests {
         let (_, tf2) = min_final_time(1500.0, -75.0, a, -3.7114).unwrap();
         assert!((tf2 - 75.0 / (a - 3.7114)).abs() < 1e-12);
         // an engine weaker than gravity cannot stop a fall
-        assert_eq!(min_final_time(1500.0, -75.0, 2.0, -3.7114).unwrap().1, f64::INFINITY);
+        assert_eq!(
+            min_final_time(1500.0, -75.0, 2.0, -3.7114).unwrap().1,
+            f64::INFINITY
+        );
     }
 
     #[test]
@@ -301,7 +327,10 @@ mod tests {
         let falling = min_time_to_rest(1500.0, -75.0, 26.0, -3.7114).unwrap();
         let no_g = min_time_to_rest(1500.0, -75.0, 26.0, 0.0).unwrap();
         assert!(falling > 0.0 && no_g > 0.0 && falling.is_finite());
-        assert_eq!(min_time_to_rest(10.0, 0.0, 3.0, -3.7114).unwrap(), f64::INFINITY);
+        assert_eq!(
+            min_time_to_rest(10.0, 0.0, 3.0, -3.7114).unwrap(),
+            f64::INFINITY
+        );
     }
 
     #[test]

@@ -24,7 +24,14 @@ pub fn fixed_time_bound(py: Python<'_>, c1: f64, e1: f64, c2: f64, e2: f64) -> P
 
 /// Seed 001 Theorem 1 (k = 1): time to reach the practical neighbourhood.
 #[pyfunction]
-pub fn practical_time_bound(py: Python<'_>, c1: f64, e1: f64, c2: f64, e2: f64, theta: f64) -> PyResult<f64> {
+pub fn practical_time_bound(
+    py: Python<'_>,
+    c1: f64,
+    e1: f64,
+    c2: f64,
+    e2: f64,
+    theta: f64,
+) -> PyResult<f64> {
     check(py, theory::practical_time_bound(c1, e1, c2, e2, theta))
 }
 
@@ -61,7 +68,9 @@ pub fn mss_bounds<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let b = check(
         py,
-        theory::mss_bounds(beta1, q1, beta2, q2, alpha1, gamma1, alpha2, gamma2, ap_max, theta1, theta2),
+        theory::mss_bounds(
+            beta1, q1, beta2, q2, alpha1, gamma1, alpha2, gamma2, ap_max, theta1, theta2,
+        ),
     )?;
     let d = PyDict::new(py);
     d.set_item("t1", b.t1)?;
@@ -77,7 +86,13 @@ pub fn mss_bounds<'py>(
 
 /// Seed 001 Remark 1 (sign-consistent): (tf1, tf2) lower bounds on one axis.
 #[pyfunction]
-pub fn min_final_time(py: Python<'_>, r0: f64, v0: f64, a_max: f64, g: f64) -> PyResult<(f64, f64)> {
+pub fn min_final_time(
+    py: Python<'_>,
+    r0: f64,
+    v0: f64,
+    a_max: f64,
+    g: f64,
+) -> PyResult<(f64, f64)> {
     check(py, theory::min_final_time(r0, v0, a_max, g))
 }
 
@@ -112,14 +127,23 @@ fn parse_dispersion(table: &Bound<'_, PyDict>) -> Result<Dispersion, InputError>
     let pick = |v: &[f64], j: usize| v[if v.len() == 1 { 0 } else { j }];
     let components = (0..n)
         .map(|j| match kind.as_str() {
-            "normal" => Component::Normal { mean: pick(&first, j), std: pick(&second, j) },
-            _ => Component::Uniform { low: pick(&first, j), high: pick(&second, j) },
+            "normal" => Component::Normal {
+                mean: pick(&first, j),
+                std: pick(&second, j),
+            },
+            _ => Component::Uniform {
+                low: pick(&first, j),
+                high: pick(&second, j),
+            },
         })
         .collect();
     let d = Dispersion { components };
     d.validate().map_err(|e| {
         let j = e.axis.unwrap_or(0);
-        InputError::Value(format!("{}[{j}] = {} violates {}", e.param, e.value, e.rule))
+        InputError::Value(format!(
+            "{}[{j}] = {} violates {}",
+            e.param, e.value, e.rule
+        ))
     })?;
     Ok(d)
 }
@@ -142,25 +166,36 @@ pub fn sample_dispersion<'py>(
 /// Validates a dispersion table; returns its number of components.
 #[pyfunction]
 pub fn check_dispersion(py: Python<'_>, table: Bound<'_, PyDict>) -> PyResult<usize> {
-    parse_dispersion(&table).map(|d| d.dim()).map_err(|e| to_pyerr(py, e.context("dispersion")))
+    parse_dispersion(&table)
+        .map(|d| d.dim())
+        .map_err(|e| to_pyerr(py, e.context("dispersion")))
 }
 
 /// Per-axis bound on |d_i(t)| of a disturbance table shared by all cases: what the theory
 /// calls the disturbance's upper bound (|constant| + sum of |amplitudes| + noise bound).
 #[pyfunction]
-pub fn disturbance_bound(py: Python<'_>, table: Bound<'_, PyDict>, axes: usize) -> PyResult<Vec<f64>> {
+pub fn disturbance_bound(
+    py: Python<'_>,
+    table: Bound<'_, PyDict>,
+    axes: usize,
+) -> PyResult<Vec<f64>> {
     fn bound<const D: usize>(table: &Bound<'_, PyDict>) -> Result<Vec<f64>, InputError> {
         let mut p = Params::new("disturbance", table.clone(), None);
-        let d = crate::specs::parse_disturbance::<D>(&mut p).map_err(|e| e.context("disturbance"))?;
+        let d =
+            crate::specs::parse_disturbance::<D>(&mut p).map_err(|e| e.context("disturbance"))?;
         if d.len() != 1 {
-            return Err(InputError::Shape("the bound needs a disturbance shared by all cases".into()));
+            return Err(InputError::Shape(
+                "the bound needs a disturbance shared by all cases".into(),
+            ));
         }
         Ok(d.get(0).bound().as_slice().to_vec())
     }
     let r = match axes {
         3 => bound::<3>(&table),
         2 => bound::<2>(&table),
-        _ => Err(InputError::Value(format!("axes = {axes} violates axes in (2, 3)"))),
+        _ => Err(InputError::Value(format!(
+            "axes = {axes} violates axes in (2, 3)"
+        ))),
     };
     r.map_err(|e| to_pyerr(py, e))
 }

@@ -6,6 +6,8 @@
 
 mod analysis;
 mod errors;
+mod fuzzy_spec;
+mod gravity_spec;
 mod output;
 mod params;
 mod specs;
@@ -19,8 +21,9 @@ use pyo3::types::PyDict;
 use landing_core::batch::{Batch, BatchOutput, PerCase, run_with_threads};
 use landing_core::control::ControlLaw;
 use landing_core::disturbance::Disturbance;
+use landing_core::gravity::{Harmonic2, PointMass, TwoPointMass};
 use landing_core::integrator::{Euler, IntegratorKind, Rk4};
-use landing_core::plant::{DoubleIntegrator, MarsLander, Plant};
+use landing_core::plant::{DoubleIntegrator, MarsLander, Plant, SmallBody};
 use landing_core::reference::Reference;
 use landing_core::rng::philox4x64_10;
 use landing_core::state::State;
@@ -81,6 +84,11 @@ impl<const D: usize, P: Plant<D>> Job<D, P> {
             LawSpec::FixedTimeMss(l) => self.setting.run(l),
             LawSpec::SuperTwisting(l) => self.setting.run(l),
             LawSpec::OpenLoop(l) => self.setting.run(l),
+            LawSpec::PdSlidingMode(l) => self.setting.run(l),
+            LawSpec::FastTerminalSmc(l) => self.setting.run(l),
+            LawSpec::FuzzyFastTerminalSmc(l) => self.setting.run(l),
+            LawSpec::IntegralExponentialReaching(l) => self.setting.run(l),
+            LawSpec::FuzzyVariableRate(l) => self.setting.run(l),
         }
     }
 }
@@ -169,6 +177,9 @@ fn prepare<'py, const D: usize, P: Plant<D>>(
 enum Prepared {
     Mars(Job<3, MarsLander>),
     DoubleIntegrator(Job<3, DoubleIntegrator>),
+    SmallBodyPointMass(Job<3, SmallBody<PointMass>>),
+    SmallBodyTwoPointMass(Job<3, SmallBody<TwoPointMass>>),
+    SmallBodyHarmonic2(Job<3, SmallBody<Harmonic2>>),
 }
 
 /// Runs a prepared job without the GIL, turning a panic into an exception.
@@ -176,10 +187,10 @@ fn execute<'py, const D: usize, P: Plant<D>>(
     py: Python<'py>,
     job: Job<D, P>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let diag_names = job.law.diagnostic_names();
+    let diag_layout = job.law.diagnostic_layout();
     let result = py.detach(move || catch_unwind(AssertUnwindSafe(move || job.run())));
     match result {
-        Ok(Ok(out)) => output::to_dict(py, out, P::STATE_NAMES, P::CONTROL_NAMES, diag_names),
+        Ok(Ok(out)) => output::to_dict(py, out, P::STATE_NAMES, P::CONTROL_NAMES, &diag_layout),
         Ok(Err(e)) => Err(batch_error(py, e)),
         Err(panic) => {
             let what = panic
@@ -252,7 +263,9 @@ fn simulate_batch<'py>(
             .map_err(|e| param_error(&e, None))?;
         let cfg = match chatter_cutoff {
             None => cfg,
-            Some(hz) => cfg.with_chatter_cutoff(hz).map_err(|e| param_error(&e, None))?,
+            Some(hz) => cfg
+                .with_chatter_cutoff(hz)
+                .map_err(|e| param_error(&e, None))?,
         };
         let plant = table(plant, "plant")?;
         let controller = table(controller, "controller")?;
@@ -268,33 +281,36 @@ fn simulate_batch<'py>(
         let kind = kind_of(&plant, "plant")?;
         let mut p = Params::new(format!("plant ({kind})"), plant.clone(), n);
         let spec = parse_plant(&kind, &mut p).map_err(|e| e.context(&p.owner))?;
+        let (reference, disturbance) = (reference.as_ref(), disturbance.as_ref());
+        macro_rules! job {
+            ($plants:expr) => {
+                prepare::<3, _>(
+                    $plants,
+                    &controller,
+                    &x0,
+                    reference,
+                    disturbance,
+                    integ,
+                    cfg,
+                    threads,
+                )?
+            };
+        }
         let prepared = match spec {
-            PlantSpec::Mars(plants) => Prepared::Mars(prepare::<3, _>(
-                plants,
-                &controller,
-                &x0,
-                reference.as_ref(),
-                disturbance.as_ref(),
-                integ,
-                cfg,
-                threads,
-            )?),
-            PlantSpec::DoubleIntegrator(plants) => Prepared::DoubleIntegrator(prepare::<3, _>(
-                plants,
-                &controller,
-                &x0,
-                reference.as_ref(),
-                disturbance.as_ref(),
-                integ,
-                cfg,
-                threads,
-            )?),
+            PlantSpec::Mars(p) => Prepared::Mars(job!(p)),
+            PlantSpec::DoubleIntegrator(p) => Prepared::DoubleIntegrator(job!(p)),
+            PlantSpec::SmallBodyPointMass(p) => Prepared::SmallBodyPointMass(job!(p)),
+            PlantSpec::SmallBodyTwoPointMass(p) => Prepared::SmallBodyTwoPointMass(job!(p)),
+            PlantSpec::SmallBodyHarmonic2(p) => Prepared::SmallBodyHarmonic2(job!(p)),
         };
         Ok(prepared)
     })();
     match prepared.map_err(|e| to_pyerr(py, e))? {
         Prepared::Mars(job) => execute(py, job),
         Prepared::DoubleIntegrator(job) => execute(py, job),
+        Prepared::SmallBodyPointMass(job) => execute(py, job),
+        Prepared::SmallBodyTwoPointMass(job) => execute(py, job),
+        Prepared::SmallBodyHarmonic2(job) => execute(py, job),
     }
 }
 
@@ -458,6 +474,7 @@ fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> 
     match kind {
         "mars_lander" => info::<3, MarsLander>(py),
         "double_integrator" => info::<3, DoubleIntegrator>(py),
+        "small_body" => info::<3, SmallBody<PointMass>>(py),
         other => Err(to_pyerr(
             py,
             InputError::Value(format!(
@@ -486,6 +503,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(philox4x64, m)?)?;
     m.add_function(wrap_pyfunction!(plant_info, m)?)?;
     analysis::register(m)?;
+    fuzzy_spec::register(m)?;
+    gravity_spec::register(m)?;
     m.add("INTEGRATORS", IntegratorKind::NAMES.to_vec())?;
     m.add("PLANT_KINDS", PlantSpec::KINDS.to_vec())?;
     m.add("CONTROLLER_KINDS", specs::LAW_KINDS.to_vec())?;

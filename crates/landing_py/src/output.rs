@@ -34,7 +34,7 @@ pub fn to_dict<'py, const D: usize>(
     out: BatchOutput<D>,
     state_names: &[&str],
     control_names: &[&str],
-    diagnostic_names: &[&str],
+    diagnostic_layout: &[(&str, usize)],
 ) -> PyResult<Bound<'py, PyDict>> {
     let n = out.n_cases;
     let nr = out.n_records();
@@ -72,12 +72,18 @@ pub fn to_dict<'py, const D: usize>(
     metrics.set_item("settle_time", array1(py, col(&|i| m[i].settle_time)))?;
     metrics.set_item("iae", array1(py, col(&|i| m[i].iae.sum())))?;
     metrics.set_item("iae_axis", array2(py, cols(&|i| m[i].iae.into()), n, D)?)?;
-    metrics.set_item("chattering_variation", array1(py, col(&|i| m[i].command_variation.sum())))?;
+    metrics.set_item(
+        "chattering_variation",
+        array1(py, col(&|i| m[i].command_variation.sum())),
+    )?;
     metrics.set_item(
         "chattering_variation_axis",
         array2(py, cols(&|i| m[i].command_variation.into()), n, D)?,
     )?;
-    metrics.set_item("chattering_hf_share", array1(py, col(&|i| m[i].high_frequency_share_total)))?;
+    metrics.set_item(
+        "chattering_hf_share",
+        array1(py, col(&|i| m[i].high_frequency_share_total)),
+    )?;
     metrics.set_item(
         "chattering_hf_share_axis",
         array2(py, cols(&|i| m[i].high_frequency_share.into()), n, D)?,
@@ -129,7 +135,7 @@ pub fn to_dict<'py, const D: usize>(
     d.set_item("metrics", metrics)?;
     d.set_item("state_names", state_names.to_vec())?;
     d.set_item("control_names", control_names.to_vec())?;
-    d.set_item("diagnostic_names", diagnostic_names.to_vec())?;
+    d.set_item("diagnostic_layout", diagnostic_layout.to_vec())?;
     d.set_item("axes", D)?;
     Ok(d)
 }

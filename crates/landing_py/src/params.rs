@@ -176,7 +176,15 @@ impl<'py> Params<'py> {
         Ok(Some(out))
     }
 
-    /// A nested table (e.g. one sinusoid of a disturbance), sharing this table's case count.
+    /// A nested table (a plant's gravity field, a law's fuzzy system).
+    pub fn table(&self, key: &str, what: &str) -> Result<Bound<'py, PyDict>, InputError> {
+        self.raw(key)?
+            .ok_or_else(|| self.required(key))?
+            .cast_into::<PyDict>()
+            .map_err(|_| InputError::Type(format!("{key} must be {what}")))
+    }
+
+    /// A list of nested tables (e.g. the components of a disturbance).
     pub fn list_of_dicts(&self, key: &str) -> Result<Vec<Bound<'py, PyDict>>, InputError> {
         let Some(obj) = self.raw(key)? else {
             return Ok(Vec::new());

@@ -8,15 +8,22 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use landing_core::PerCase;
+use std::sync::Arc;
+
 use landing_core::control::{
-    ControlLaw, FixedTimeMss, MssVariant, OpenLoop, SuperTwisting, SuperTwistingVariant,
+    ControlLaw, FastTerminalSmc, FixedTimeMss, FuzzyFastTerminalSmc, FuzzyVariableRate,
+    IntegralExponentialReaching, IntegralSurface, MssVariant, OpenLoop, PdSlidingMode,
+    SuperTwisting, SuperTwistingVariant, TerminalSurface,
 };
 use landing_core::disturbance::{Disturbance, MAX_SINUSOIDS, Sinusoid};
-use landing_core::gravity::Uniform;
-use landing_core::plant::{DoubleIntegrator, MarsLander};
+use landing_core::gravity::{Harmonic2, PointMass, TwoPointMass, Uniform};
+use landing_core::math::Switch;
+use landing_core::plant::{DoubleIntegrator, MarsLander, SmallBody};
 use landing_core::reference::Reference;
 
 use crate::errors::InputError;
+use crate::fuzzy_spec::parse_mamdani;
+use crate::gravity_spec::{GravitySpec, parse_gravity_into};
 use crate::params::{Params, pick};
 
 pub fn kind_of(dict: &Bound<'_, PyDict>, what: &str) -> Result<String, InputError> {
@@ -28,16 +35,42 @@ pub fn kind_of(dict: &Bound<'_, PyDict>, what: &str) -> Result<String, InputErro
 pub enum PlantSpec {
     Mars(PerCase<MarsLander>),
     DoubleIntegrator(PerCase<DoubleIntegrator>),
+    SmallBodyPointMass(PerCase<SmallBody<PointMass>>),
+    SmallBodyTwoPointMass(PerCase<SmallBody<TwoPointMass>>),
+    SmallBodyHarmonic2(PerCase<SmallBody<Harmonic2>>),
 }
 
 impl PlantSpec {
-    pub const KINDS: [&'static str; 2] = ["mars_lander", "double_integrator"];
+    pub const KINDS: [&'static str; 3] = ["mars_lander", "double_integrator", "small_body"];
 
     pub fn axes(&self) -> usize {
         match self {
-            Self::Mars(_) | Self::DoubleIntegrator(_) => 3,
+            Self::Mars(_)
+            | Self::DoubleIntegrator(_)
+            | Self::SmallBodyPointMass(_)
+            | Self::SmallBodyTwoPointMass(_)
+            | Self::SmallBodyHarmonic2(_) => 3,
         }
     }
+}
+
+/// One small-body plant per case from the plant's own parameters and the gravity fields.
+fn small_bodies<G: landing_core::gravity::GravityField>(
+    p: &Params<'_>,
+    fields: Vec<G>,
+    omega: &[f64],
+    limit: &Option<Vec<Vector3<f64>>>,
+) -> Result<PerCase<SmallBody<G>>, InputError> {
+    p.build(
+        |i| SmallBody {
+            gravity: fields[if fields.len() == 1 { 0 } else { i }],
+            omega: pick(omega, i),
+            acceleration_limit: limit
+                .as_ref()
+                .map_or(Vector3::repeat(f64::INFINITY), |l| pick(l, i)),
+        },
+        |b| landing_core::plant::Plant::validate(b),
+    )
 }
 
 pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputError> {
@@ -82,6 +115,22 @@ pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputErr
             )?;
             Ok(PlantSpec::DoubleIntegrator(plants))
         }
+        "small_body" => {
+            let omega = p.scalar("omega")?;
+            let limit = p.opt_axes::<3>("acceleration_limit")?;
+            let gravity = p.table("gravity", "a landing.gravity field")?;
+            Ok(match parse_gravity_into(gravity, p)? {
+                GravitySpec::PointMass(f) => {
+                    PlantSpec::SmallBodyPointMass(small_bodies(p, f, &omega, &limit)?)
+                }
+                GravitySpec::TwoPointMass(f) => {
+                    PlantSpec::SmallBodyTwoPointMass(small_bodies(p, f, &omega, &limit)?)
+                }
+                GravitySpec::Harmonic2(f) => {
+                    PlantSpec::SmallBodyHarmonic2(small_bodies(p, f, &omega, &limit)?)
+                }
+            })
+        }
         other => Err(InputError::Value(format!(
             "unknown plant kind {other:?}; known: {:?}",
             PlantSpec::KINDS
@@ -93,18 +142,96 @@ pub enum LawSpec<const D: usize> {
     FixedTimeMss(PerCase<FixedTimeMss<D>>),
     SuperTwisting(PerCase<SuperTwisting<D>>),
     OpenLoop(PerCase<OpenLoop<D>>),
+    PdSlidingMode(PerCase<PdSlidingMode<D>>),
+    FastTerminalSmc(PerCase<FastTerminalSmc<D>>),
+    FuzzyFastTerminalSmc(PerCase<FuzzyFastTerminalSmc<D>>),
+    IntegralExponentialReaching(PerCase<IntegralExponentialReaching<D>>),
+    FuzzyVariableRate(PerCase<FuzzyVariableRate<D>>),
 }
 
-pub const LAW_KINDS: [&str; 3] = ["fixed_time_mss", "super_twisting", "open_loop"];
+pub const LAW_KINDS: [&str; 8] = [
+    "fixed_time_mss",
+    "super_twisting",
+    "open_loop",
+    "pd_sliding_mode",
+    "fast_terminal_smc",
+    "fuzzy_fast_terminal_smc",
+    "integral_exponential_reaching",
+    "fuzzy_variable_rate",
+];
+
+/// Names and widths of a law's diagnostic signals, in recording order.
+fn layout<const D: usize, L: ControlLaw<D>>() -> Vec<(&'static str, usize)> {
+    L::DIAGNOSTICS
+        .iter()
+        .map(|n| (*n, D))
+        .chain(L::SCALAR_DIAGNOSTICS.iter().map(|n| (*n, 1)))
+        .collect()
+}
 
 impl<const D: usize> LawSpec<D> {
-    pub fn diagnostic_names(&self) -> &'static [&'static str] {
+    pub fn diagnostic_layout(&self) -> Vec<(&'static str, usize)> {
         match self {
-            Self::FixedTimeMss(_) => <FixedTimeMss<D> as ControlLaw<D>>::DIAGNOSTICS,
-            Self::SuperTwisting(_) => <SuperTwisting<D> as ControlLaw<D>>::DIAGNOSTICS,
-            Self::OpenLoop(_) => <OpenLoop<D> as ControlLaw<D>>::DIAGNOSTICS,
+            Self::FixedTimeMss(_) => layout::<D, FixedTimeMss<D>>(),
+            Self::SuperTwisting(_) => layout::<D, SuperTwisting<D>>(),
+            Self::OpenLoop(_) => layout::<D, OpenLoop<D>>(),
+            Self::PdSlidingMode(_) => layout::<D, PdSlidingMode<D>>(),
+            Self::FastTerminalSmc(_) => layout::<D, FastTerminalSmc<D>>(),
+            Self::FuzzyFastTerminalSmc(_) => layout::<D, FuzzyFastTerminalSmc<D>>(),
+            Self::IntegralExponentialReaching(_) => layout::<D, IntegralExponentialReaching<D>>(),
+            Self::FuzzyVariableRate(_) => layout::<D, FuzzyVariableRate<D>>(),
         }
     }
+}
+
+const SWITCHES: [&str; 3] = ["sign", "sat", "tanh"];
+
+/// The switching function of a sliding-mode law: `switch` and its `boundary_layer`.
+fn switch(p: &mut Params<'_>) -> Result<Switch, InputError> {
+    let kind = p.choice("switch", &SWITCHES)?;
+    let phi = p.scalar("boundary_layer")?;
+    if phi.len() != 1 {
+        return Err(InputError::Shape(
+            "boundary_layer is shared by all cases".into(),
+        ));
+    }
+    Ok(match kind.as_str() {
+        "sign" => Switch::Sign,
+        "sat" => Switch::Sat(phi[0]),
+        _ => Switch::Tanh(phi[0]),
+    })
+}
+
+/// The fast terminal surface parameters (alpha, beta, p, q, e_floor), per case.
+fn terminal_surfaces<const D: usize>(
+    p: &mut Params<'_>,
+) -> Result<impl Fn(usize) -> TerminalSurface<D> + use<D>, InputError> {
+    let alpha = p.axes::<D>("alpha")?;
+    let beta = p.axes::<D>("beta")?;
+    let pp = p.axes::<D>("p")?;
+    let q = p.axes::<D>("q")?;
+    let floor = p.scalar("e_floor")?;
+    Ok(move |i| TerminalSurface {
+        alpha: pick(&alpha, i),
+        beta: pick(&beta, i),
+        p: pick(&pp, i),
+        q: pick(&q, i),
+        e_floor: pick(&floor, i),
+    })
+}
+
+/// The integral surface parameters (c1, c2, k), per case.
+fn integral_surfaces<const D: usize>(
+    p: &mut Params<'_>,
+) -> Result<impl Fn(usize) -> IntegralSurface<D> + use<D>, InputError> {
+    let c1 = p.axes::<D>("c1")?;
+    let c2 = p.axes::<D>("c2")?;
+    let k = p.axes::<D>("k")?;
+    Ok(move |i| IntegralSurface {
+        c1: pick(&c1, i),
+        c2: pick(&c2, i),
+        k: pick(&k, i),
+    })
 }
 
 pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSpec<D>, InputError> {
@@ -168,6 +295,85 @@ pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSp
             )?;
             Ok(LawSpec::OpenLoop(laws))
         }
+        "pd_sliding_mode" => {
+            let lambda = p.axes::<D>("lambda")?;
+            let k = p.axes::<D>("k")?;
+            let sw = switch(p)?;
+            let laws = p.build(
+                |i| PdSlidingMode {
+                    lambda: pick(&lambda, i),
+                    k: pick(&k, i),
+                    switch: sw,
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::PdSlidingMode(laws))
+        }
+        "fast_terminal_smc" => {
+            let surface = terminal_surfaces::<D>(p)?;
+            let k = p.axes::<D>("k")?;
+            let sw = switch(p)?;
+            let laws = p.build(
+                |i| FastTerminalSmc {
+                    surface: surface(i),
+                    k: pick(&k, i),
+                    switch: sw,
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::FastTerminalSmc(laws))
+        }
+        "fuzzy_fast_terminal_smc" => {
+            let surface = terminal_surfaces::<D>(p)?;
+            let k = p.axes::<D>("k")?;
+            let sw = switch(p)?;
+            let n = p.scalar("n")?;
+            let m = p.scalar("m")?;
+            let laws = p.build(
+                |i| FuzzyFastTerminalSmc {
+                    surface: surface(i),
+                    k: pick(&k, i),
+                    switch: sw,
+                    n: pick(&n, i),
+                    m: pick(&m, i),
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::FuzzyFastTerminalSmc(laws))
+        }
+        "integral_exponential_reaching" => {
+            let surface = integral_surfaces::<D>(p)?;
+            let eps = p.axes::<D>("epsilon")?;
+            let sw = switch(p)?;
+            let laws = p.build(
+                |i| IntegralExponentialReaching {
+                    surface: surface(i),
+                    epsilon: pick(&eps, i),
+                    switch: sw,
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::IntegralExponentialReaching(laws))
+        }
+        "fuzzy_variable_rate" => {
+            let surface = integral_surfaces::<D>(p)?;
+            let ke = p.axes::<D>("ke")?;
+            let kec = p.axes::<D>("kec")?;
+            let ku = p.axes::<D>("ku")?;
+            let system = p.table("system", "a landing.fuzzy.Mamdani system")?;
+            let system = Arc::new(parse_mamdani(&system).map_err(|e| e.context("system"))?);
+            let laws = p.build(
+                |i| FuzzyVariableRate {
+                    surface: surface(i),
+                    ke: pick(&ke, i),
+                    kec: pick(&kec, i),
+                    ku: pick(&ku, i),
+                    system: Arc::clone(&system),
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::FuzzyVariableRate(laws))
+        }
         other => Err(InputError::Value(format!(
             "unknown controller kind {other:?}; known: {LAW_KINDS:?}"
         ))),
@@ -230,6 +436,7 @@ pub fn parse_disturbance<const D: usize>(
             Vec<SVector<f64, D>>,
         ),
         Noise(Vec<SVector<f64, D>>),
+        CommandNoise(Vec<SVector<f64, D>>),
     }
     let mut parts = Vec::new();
     let mut n_sinusoids = 0;
@@ -247,9 +454,10 @@ pub fn parse_disturbance<const D: usize>(
                 )
             }
             "uniform_noise" => Part::Noise(c.axes::<D>("bound")?),
+            "command_noise" => Part::CommandNoise(c.axes::<D>("fraction")?),
             other => {
                 return Err(InputError::Value(format!(
-                    "unknown disturbance kind {other:?}; known: [\"constant\", \"sinusoid\", \"uniform_noise\"]"
+                    "unknown disturbance kind {other:?}; known: [\"constant\", \"sinusoid\", \"uniform_noise\", \"command_noise\"]"
                 )));
             }
         };
@@ -268,6 +476,7 @@ pub fn parse_disturbance<const D: usize>(
                 d = match part {
                     Part::Constant(v) => d.with_constant(pick(v, i)),
                     Part::Noise(b) => d.with_noise(pick(b, i)),
+                    Part::CommandNoise(f) => d.with_command_noise(pick(f, i)),
                     Part::Sinusoid(a, w, ph) => d
                         .with_sinusoid(Sinusoid {
                             amplitude: pick(a, i),

@@ -7,17 +7,28 @@
 //! adaptive weights) keep them in their `Memory`, advanced once per control period by forward
 //! Euler after the command is computed (SPEC 2).
 
+mod fast_terminal;
 mod fixed_time_mss;
+mod fuzzy_fast_terminal;
+mod fuzzy_variable_rate;
+mod integral_reaching;
 mod open_loop;
+mod pd_sliding;
 mod super_twisting;
 
+pub use fast_terminal::{FastTerminalSmc, TerminalSurface};
 pub use fixed_time_mss::{FixedTimeMss, MssVariant};
+pub use fuzzy_fast_terminal::FuzzyFastTerminalSmc;
+pub use fuzzy_variable_rate::{FuzzyVariableRate, VariableRateMemory};
+pub use integral_reaching::{IntegralExponentialReaching, IntegralSurface};
 pub use open_loop::OpenLoop;
+pub use pd_sliding::PdSlidingMode;
 pub use super_twisting::{SuperTwisting, SuperTwistingVariant};
 
 use nalgebra::SVector;
 
-use crate::error::ParamError;
+use crate::error::{ParamError, require};
+use crate::math::Switch;
 use crate::reference::RefPoint;
 
 /// What a law sees at a control instant.
@@ -45,6 +56,10 @@ pub trait ControlLaw<const D: usize>: Send + Sync {
     /// D-vector, recorded alongside the states.
     const DIAGNOSTICS: &'static [&'static str];
 
+    /// Names of scalar diagnostic signals (blending coefficients, distances), recorded after
+    /// the D-vector ones.
+    const SCALAR_DIAGNOSTICS: &'static [&'static str] = &[];
+
     fn start(&self, input: &LawInput<D>) -> Self::Memory;
 
     /// Commanded generalized acceleration at this instant.
@@ -54,8 +69,22 @@ pub trait ControlLaw<const D: usize>: Send + Sync {
     #[inline(always)]
     fn advance(&self, _memory: &mut Self::Memory, _input: &LawInput<D>) {}
 
-    /// Write `DIAGNOSTICS.len() * D` values into `out`, signal by signal.
+    /// Write `DIAGNOSTICS.len() * D + SCALAR_DIAGNOSTICS.len()` values into `out`, signal by
+    /// signal (see [`diagnostic_width`]).
     fn diagnostics(&self, _memory: &Self::Memory, _input: &LawInput<D>, _out: &mut [f64]) {}
 
     fn validate(&self) -> Result<(), ParamError>;
+}
+
+/// Number of values a law's diagnostics take per recorded instant.
+pub fn diagnostic_width<const D: usize, L: ControlLaw<D>>() -> usize {
+    L::DIAGNOSTICS.len() * D + L::SCALAR_DIAGNOSTICS.len()
+}
+
+/// A switching function's boundary layer must be positive.
+pub(crate) fn validate_switch(switch: &Switch) -> Result<(), ParamError> {
+    match switch.width() {
+        Some(phi) => require(phi > 0.0, "boundary_layer", phi, "boundary_layer > 0"),
+        None => Ok(()),
+    }
 }

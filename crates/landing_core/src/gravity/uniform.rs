@@ -14,6 +14,10 @@ impl GravityField for Uniform {
         Vector3::new(0.0, 0.0, -self.g0)
     }
 
+    fn validate(&self) -> Result<(), crate::error::ParamError> {
+        crate::error::require(self.g0 >= 0.0, "gravity", self.g0, "gravity >= 0")
+    }
+
     #[inline(always)]
     fn potential(&self, r: &Vector3<f64>) -> f64 {
         -self.g0 * r[2]

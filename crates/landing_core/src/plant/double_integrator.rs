@@ -17,7 +17,9 @@ pub struct DoubleIntegrator {
 
 impl Default for DoubleIntegrator {
     fn default() -> Self {
-        Self { acceleration_limit: SVector::repeat(f64::INFINITY) }
+        Self {
+            acceleration_limit: SVector::repeat(f64::INFINITY),
+        }
     }
 }
 
@@ -48,7 +50,13 @@ impl Plant<3> for DoubleIntegrator {
     }
 
     #[inline(always)]
-    fn derivative(&self, _t: f64, x: &Self::State, u: &SVector<f64, 3>, d: &SVector<f64, 3>) -> Self::State {
+    fn derivative(
+        &self,
+        _t: f64,
+        x: &Self::State,
+        u: &SVector<f64, 3>,
+        d: &SVector<f64, 3>,
+    ) -> Self::State {
         let a = u + d;
         DoubleIntegratorState::from([x[3], x[4], x[5], a[0], a[1], a[2]])
     }
@@ -56,7 +64,9 @@ impl Plant<3> for DoubleIntegrator {
     fn validate(&self) -> Result<(), ParamError> {
         for (i, &l) in self.acceleration_limit.iter().enumerate() {
             if l.is_nan() || l <= 0.0 {
-                return Err(ParamError::new("acceleration_limit", l, "acceleration_limit > 0").on_axis(i));
+                return Err(
+                    ParamError::new("acceleration_limit", l, "acceleration_limit > 0").on_axis(i),
+                );
             }
         }
         Ok(())

@@ -7,9 +7,11 @@
 
 mod double_integrator;
 mod mars;
+mod small_body;
 
 pub use double_integrator::DoubleIntegrator;
 pub use mars::MarsLander;
+pub use small_body::SmallBody;
 
 use nalgebra::SVector;
 

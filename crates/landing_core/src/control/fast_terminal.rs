@@ -1,0 +1,92 @@
+//! Fast terminal sliding mode (seed 000 eq. 6, 14, 19; SPEC 5 law 2).
+//!
+//! ```text
+//! s = e' + alpha e + beta sig^(p/q)(e)                                   (eq. 6)
+//! u_eq = q_ref'' - drift - (alpha + beta (p/q) |e|^(p/q - 1)) e'       (eq. 14, s' = 0)
+//! u = u_eq - k switch(s)                                                (eq. 18, 19)
+//! ```
+//!
+//! The seed takes p < q odd integers so that e^(p/q) keeps the sign of e; `sig` does that for
+//! any 0 < p < q, which is what is required. `|e|^(p/q - 1)` is singular at e = 0: there |e| is
+//! floored at the named guard `e_floor`.
+
+use nalgebra::SVector;
+
+use super::{ControlLaw, LawInput};
+use crate::error::{ParamError, require, require_axes};
+use crate::math::{Switch, sgn};
+
+/// The fast terminal surface and its equivalent control, shared with the fuzzy-blended law.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TerminalSurface<const D: usize> {
+    pub alpha: SVector<f64, D>,
+    pub beta: SVector<f64, D>,
+    pub p: SVector<f64, D>,
+    pub q: SVector<f64, D>,
+    /// Floor on |e| in |e|^(p/q - 1), in units of q.
+    pub e_floor: f64,
+}
+
+impl<const D: usize> TerminalSurface<D> {
+    /// (s, u_eq) at this instant.
+    #[inline(always)]
+    pub fn evaluate(&self, input: &LawInput<D>) -> (SVector<f64, D>, SVector<f64, D>) {
+        let mut s = SVector::zeros();
+        let mut eq = input.reference.acceleration - input.drift;
+        for i in 0..D {
+            let e = input.e[i];
+            let r = self.p[i] / self.q[i];
+            let abs = e.abs();
+            // |e|^r once; |e|^(r-1) = |e|^r / |e| away from the floor
+            let pow = if abs > 0.0 { abs.powf(r) } else { 0.0 };
+            s[i] = input.de[i] + self.alpha[i] * e + self.beta[i] * sgn(e) * pow;
+            let slope = if abs >= self.e_floor {
+                pow / abs
+            } else {
+                self.e_floor.powf(r - 1.0)
+            };
+            eq[i] -= (self.alpha[i] + self.beta[i] * r * slope) * input.de[i];
+        }
+        (s, eq)
+    }
+
+    pub fn validate(&self) -> Result<(), ParamError> {
+        require_axes(self.alpha.as_slice(), "alpha", "alpha > 0", |v| v > 0.0)?;
+        require_axes(self.beta.as_slice(), "beta", "beta > 0", |v| v > 0.0)?;
+        require_axes(self.p.as_slice(), "p", "p > 0", |v| v > 0.0)?;
+        for i in 0..D {
+            require(self.q[i] > self.p[i], "q", self.q[i], "q > p").map_err(|e| e.on_axis(i))?;
+        }
+        require(self.e_floor > 0.0, "e_floor", self.e_floor, "e_floor > 0")
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FastTerminalSmc<const D: usize> {
+    pub surface: TerminalSurface<D>,
+    pub k: SVector<f64, D>,
+    pub switch: Switch,
+}
+
+impl<const D: usize> ControlLaw<D> for FastTerminalSmc<D> {
+    type Memory = ();
+    const DIAGNOSTICS: &'static [&'static str] = &["s"];
+
+    fn start(&self, _input: &LawInput<D>) {}
+
+    #[inline(always)]
+    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
+        let (s, eq) = self.surface.evaluate(input);
+        SVector::from_fn(|i, _| eq[i] - self.k[i] * self.switch.apply(s[i]))
+    }
+
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+        out[..D].copy_from_slice(self.surface.evaluate(input).0.as_slice());
+    }
+
+    fn validate(&self) -> Result<(), ParamError> {
+        self.surface.validate()?;
+        require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
+        super::validate_switch(&self.switch)
+    }
+}

@@ -1,0 +1,70 @@
+//! Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22; SPEC 5 law 3).
+//!
+//! ```text
+//! u = a(D) u_eq + b(D) u_s,   a = exp(-N D),   b = 1 - exp(-M D)          (eq. 20, 22)
+//! D_i = s_i / sqrt(1 + alpha_i^2),   D = |(D_1, ..., D_n)|                 (eq. 21, 22)
+//! ```
+//!
+//! with s, u_eq of the fast terminal law (eq. 6, 14) and u_s = -k switch(s) (eq. 18). Far from
+//! the surface the switching part dominates, near it the equivalent control; as printed, u_eq
+//! (which holds the gravity and frame cancellation) is scaled by a(D) too.
+
+use nalgebra::SVector;
+
+use super::fast_terminal::TerminalSurface;
+use super::{ControlLaw, LawInput};
+use crate::error::{ParamError, require, require_axes};
+use crate::math::Switch;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FuzzyFastTerminalSmc<const D: usize> {
+    pub surface: TerminalSurface<D>,
+    pub k: SVector<f64, D>,
+    pub switch: Switch,
+    /// N of eq. 22: how fast a(D) falls with the distance to the surface.
+    pub n: f64,
+    /// M of eq. 22: how fast b(D) rises.
+    pub m: f64,
+}
+
+impl<const D: usize> FuzzyFastTerminalSmc<D> {
+    /// (a, b, D) at this distance vector.
+    #[inline(always)]
+    pub fn blend(&self, s: &SVector<f64, D>) -> (f64, f64, f64) {
+        let dist = SVector::<f64, D>::from_fn(|i, _| {
+            s[i] / (1.0 + self.surface.alpha[i] * self.surface.alpha[i]).sqrt()
+        })
+        .norm();
+        ((-self.n * dist).exp(), 1.0 - (-self.m * dist).exp(), dist)
+    }
+}
+
+impl<const D: usize> ControlLaw<D> for FuzzyFastTerminalSmc<D> {
+    type Memory = ();
+    const DIAGNOSTICS: &'static [&'static str] = &["s"];
+    const SCALAR_DIAGNOSTICS: &'static [&'static str] = &["a", "b", "distance"];
+
+    fn start(&self, _input: &LawInput<D>) {}
+
+    #[inline(always)]
+    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
+        let (s, eq) = self.surface.evaluate(input);
+        let (a, b, _) = self.blend(&s);
+        SVector::from_fn(|i, _| a * eq[i] - b * self.k[i] * self.switch.apply(s[i]))
+    }
+
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+        let (s, _) = self.surface.evaluate(input);
+        let (a, b, dist) = self.blend(&s);
+        out[..D].copy_from_slice(s.as_slice());
+        out[D..D + 3].copy_from_slice(&[a, b, dist]);
+    }
+
+    fn validate(&self) -> Result<(), ParamError> {
+        self.surface.validate()?;
+        require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
+        require(self.n > 0.0, "n", self.n, "n > 0")?;
+        require(self.m > 0.0, "m", self.m, "m > 0")?;
+        super::validate_switch(&self.switch)
+    }
+}

@@ -1,0 +1,116 @@
+//! Fuzzy variable-rate reaching law (seed 002 sec. 2.3; SPEC 5 law 5).
+//!
+//! The integral surface of law 4, with the switching term eps sgn(s) replaced by the output of
+//! a Mamdani system whose inputs are s and s' (5 sets each on [-5, 5]) and whose output lies on
+//! [-4, 4] (7 sets), the seed's Table 1 rules:
+//!
+//! ```text
+//! u = q_ref'' - drift - c1 sigma - c2 sigma' + k s + ku * F(ke s, kec s')
+//! ```
+//!
+//! The rule table is signed (s NB and s' NB give NB, s PB and s' PB give PB), so its output
+//! plays eps sgn(s) itself: it pushes harder the faster s moves away from the surface. ke, kec
+//! and ku are the input and output scaling factors. s' is not measured: the law takes the
+//! backward difference of s over the control period (0 at the first instant), as a sampled
+//! implementation would.
+
+use std::sync::Arc;
+
+use nalgebra::SVector;
+
+use super::integral_reaching::IntegralSurface;
+use super::{ControlLaw, LawInput};
+use crate::error::{ParamError, require_axes};
+use crate::fuzzy::Mamdani;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct FuzzyVariableRate<const D: usize> {
+    pub surface: IntegralSurface<D>,
+    /// Input scaling of s onto the universe.
+    pub ke: SVector<f64, D>,
+    /// Input scaling of s'.
+    pub kec: SVector<f64, D>,
+    /// Output scaling of the fuzzy output, m/s^2 per unit.
+    pub ku: SVector<f64, D>,
+    pub system: Arc<Mamdani>,
+}
+
+/// Integral of the surface, the previous s and whether there is one.
+#[derive(Clone, Copy, Debug)]
+pub struct VariableRateMemory<const D: usize> {
+    integral: SVector<f64, D>,
+    previous_s: SVector<f64, D>,
+    started: bool,
+}
+
+impl<const D: usize> FuzzyVariableRate<D> {
+    /// (s, s', fuzzy output scaled by ku) at this instant.
+    #[inline(always)]
+    fn terms(
+        &self,
+        m: &VariableRateMemory<D>,
+        input: &LawInput<D>,
+    ) -> (SVector<f64, D>, SVector<f64, D>, SVector<f64, D>) {
+        let s = self.surface.s(&m.integral, input);
+        let ds = if m.started {
+            (s - m.previous_s) / input.dt
+        } else {
+            SVector::zeros()
+        };
+        let out = SVector::from_fn(|i, _| {
+            self.ku[i]
+                * self
+                    .system
+                    .evaluate(&[self.ke[i] * s[i], self.kec[i] * ds[i]])
+        });
+        (s, ds, out)
+    }
+}
+
+impl<const D: usize> ControlLaw<D> for FuzzyVariableRate<D> {
+    type Memory = VariableRateMemory<D>;
+    const DIAGNOSTICS: &'static [&'static str] = &["s", "s_dot", "epsilon"];
+
+    fn start(&self, _input: &LawInput<D>) -> VariableRateMemory<D> {
+        VariableRateMemory {
+            integral: SVector::zeros(),
+            previous_s: SVector::zeros(),
+            started: false,
+        }
+    }
+
+    #[inline(always)]
+    fn command(&self, m: &VariableRateMemory<D>, input: &LawInput<D>) -> SVector<f64, D> {
+        let (s, _, fuzzy) = self.terms(m, input);
+        self.surface.smooth_part(&s, input) + fuzzy
+    }
+
+    #[inline(always)]
+    fn advance(&self, m: &mut VariableRateMemory<D>, input: &LawInput<D>) {
+        m.previous_s = self.surface.s(&m.integral, input);
+        m.started = true;
+        self.surface.advance(&mut m.integral, input);
+    }
+
+    fn diagnostics(&self, m: &VariableRateMemory<D>, input: &LawInput<D>, out: &mut [f64]) {
+        let (s, ds, fuzzy) = self.terms(m, input);
+        out[..D].copy_from_slice(s.as_slice());
+        out[D..2 * D].copy_from_slice(ds.as_slice());
+        out[2 * D..3 * D].copy_from_slice(fuzzy.as_slice());
+    }
+
+    fn validate(&self) -> Result<(), ParamError> {
+        self.surface.validate()?;
+        require_axes(self.ke.as_slice(), "ke", "ke > 0", |v| v > 0.0)?;
+        require_axes(self.kec.as_slice(), "kec", "kec > 0", |v| v > 0.0)?;
+        require_axes(self.ku.as_slice(), "ku", "ku > 0", |v| v > 0.0)?;
+        if self.system.n_inputs() != 2 {
+            return Err(ParamError::new(
+                "system",
+                self.system.n_inputs() as f64,
+                "two inputs (s and s')",
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,84 @@
+//! Membership functions, with scikit-fuzzy's conventions at the corners (a shoulder, a = b or
+//! b = c, is 1 on its flat side up to the corner and 0 outside [a, c]).
+
+use crate::error::{ParamError, require};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Membership {
+    /// Triangle with feet a, c and peak b (a <= b <= c).
+    Triangle(f64, f64, f64),
+    /// Trapezoid with feet a, d and shoulders b, c (a <= b <= c <= d).
+    Trapezoid(f64, f64, f64, f64),
+}
+
+impl Membership {
+    #[inline]
+    pub fn eval(&self, x: f64) -> f64 {
+        match *self {
+            Membership::Triangle(a, b, c) => ramp_up(x, a, b).min(ramp_down(x, b, c)),
+            Membership::Trapezoid(a, b, c, d) => ramp_up(x, a, b).min(ramp_down(x, c, d)),
+        }
+    }
+
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let (name, pts): (&'static str, &[f64]) = match self {
+            Membership::Triangle(a, b, c) => ("triangle", &[*a, *b, *c]),
+            Membership::Trapezoid(a, b, c, d) => ("trapezoid", &[*a, *b, *c, *d]),
+        };
+        for w in pts.windows(2) {
+            require(w[1] >= w[0], name, w[1], "corners in non-decreasing order")?;
+        }
+        require(
+            pts[pts.len() - 1] > pts[0],
+            name,
+            pts[0],
+            "a non-empty support",
+        )
+    }
+}
+
+/// 0 left of a, 1 from b on, linear between (a step at a = b).
+#[inline(always)]
+fn ramp_up(x: f64, a: f64, b: f64) -> f64 {
+    if x < a {
+        0.0
+    } else if x >= b {
+        1.0
+    } else {
+        (x - a) / (b - a)
+    }
+}
+
+/// 1 up to b, 0 right of c, linear between (a step at b = c).
+#[inline(always)]
+fn ramp_down(x: f64, b: f64, c: f64) -> f64 {
+    if x > c {
+        0.0
+    } else if x <= b {
+        1.0
+    } else {
+        (c - x) / (c - b)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn triangles_and_shoulders() {
+        let t = Membership::Triangle(-5.0, -2.5, 0.0);
+        assert_eq!(t.eval(-2.5), 1.0);
+        assert_eq!(t.eval(-3.75), 0.5);
+        assert_eq!(t.eval(0.0), 0.0);
+        assert_eq!(t.eval(1.0), 0.0);
+        let left = Membership::Triangle(-5.0, -5.0, -2.5);
+        assert_eq!(left.eval(-5.0), 1.0);
+        assert_eq!(left.eval(-6.0), 0.0);
+        assert_eq!(left.eval(-3.75), 0.5);
+        let trap = Membership::Trapezoid(0.0, 1.0, 2.0, 4.0);
+        assert_eq!(trap.eval(1.5), 1.0);
+        assert_eq!(trap.eval(3.0), 0.5);
+        assert!(Membership::Triangle(1.0, 0.0, 2.0).validate().is_err());
+    }
+}

@@ -1,0 +1,76 @@
+//! Second-degree spherical harmonics (seed 002 eq. 2-4; SPEC 3.2).
+
+use nalgebra::Vector3;
+
+use super::GravityField;
+use crate::error::{ParamError, require};
+
+/// `U = (mu/r) [1 + (R0/r)^2 (C20 (3 z^2/r^2 - 1)/2 + 3 C22 (x^2 - y^2)/r^2)]`.
+///
+/// Written as `U = mu/r + mu R0^2 P(r) / r^5` with the quadratic form
+/// `P = C20 (2 z^2 - x^2 - y^2)/2 + 3 C22 (x^2 - y^2)`, so that
+/// `g = grad U = -mu r / r^3 + mu R0^2 (grad P / r^5 - 5 P r / r^7)`. (The seed's eq. 4 writes
+/// the field through attitude angles and is garbled in print; this is the gradient of its eq. 2
+/// truncated at degree two, checked against finite differences of U in the tests.)
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Harmonic2 {
+    /// Gravitational parameter, m^3/s^2.
+    pub mu: f64,
+    /// Reference radius, m.
+    pub r0: f64,
+    pub c20: f64,
+    pub c22: f64,
+}
+
+impl Harmonic2 {
+    /// Seed 002 Table 2 (433 Eros): mu = 4.842e5 m^3/s^2, R0 = 1138.5 m, C20 = -0.043,
+    /// C22 = 0.058.
+    pub fn seed002() -> Self {
+        Self {
+            mu: 4.842e5,
+            r0: 1138.5,
+            c20: -0.043,
+            c22: 0.058,
+        }
+    }
+
+    fn validate_fields(&self) -> Result<(), ParamError> {
+        require(self.mu > 0.0, "mu", self.mu, "mu > 0")?;
+        require(self.r0 > 0.0, "r0", self.r0, "r0 > 0")?;
+        require(true, "c20", self.c20, "finite values")?;
+        require(true, "c22", self.c22, "finite values")
+    }
+
+    #[inline(always)]
+    fn form(&self, r: &Vector3<f64>) -> f64 {
+        let (x2, y2, z2) = (r[0] * r[0], r[1] * r[1], r[2] * r[2]);
+        0.5 * self.c20 * (2.0 * z2 - x2 - y2) + 3.0 * self.c22 * (x2 - y2)
+    }
+}
+
+impl GravityField for Harmonic2 {
+    #[inline(always)]
+    fn acceleration(&self, r: &Vector3<f64>) -> Vector3<f64> {
+        let r2 = r.norm_squared();
+        let inv = 1.0 / r2.sqrt();
+        let inv2 = inv * inv;
+        let inv5 = inv2 * inv2 * inv;
+        let grad_p = Vector3::new(
+            (6.0 * self.c22 - self.c20) * r[0],
+            -(self.c20 + 6.0 * self.c22) * r[1],
+            2.0 * self.c20 * r[2],
+        );
+        let k = self.mu * self.r0 * self.r0;
+        r * (-self.mu * inv2 * inv) + (grad_p * inv5 - r * (5.0 * self.form(r) * inv5 * inv2)) * k
+    }
+
+    fn validate(&self) -> Result<(), ParamError> {
+        self.validate_fields()
+    }
+
+    #[inline(always)]
+    fn potential(&self, r: &Vector3<f64>) -> f64 {
+        let rn = r.norm();
+        self.mu / rn + self.mu * self.r0 * self.r0 * self.form(r) / rn.powi(5)
+    }
+}

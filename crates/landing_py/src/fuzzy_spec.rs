@@ -1,0 +1,164 @@
+//! Fuzzy systems from Python tables: `{"inputs": [var, ...], "output": var, "rules":
+//! [[set indices..., output set], ...], "resolution": n}`, each variable
+//! `{"lo": .., "hi": .., "sets": [["triangle", a, b, c] | ["trapezoid", a, b, c, d], ...]}`.
+
+use numpy::{PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use landing_core::fuzzy::{Mamdani, Membership, Rule, Variable};
+
+use crate::errors::{InputError, param_error, to_pyerr};
+
+fn item<'py, T: for<'a> FromPyObject<'a, 'py>>(
+    d: &Bound<'py, PyDict>,
+    key: &str,
+    what: &str,
+) -> Result<T, InputError> {
+    d.get_item(key)?
+        .ok_or_else(|| InputError::Type(format!("{what} has no '{key}'")))?
+        .extract::<T>()
+        .map_err(|_| InputError::Type(format!("{what}: '{key}' has the wrong type")))
+}
+
+fn variable(d: &Bound<'_, PyDict>, what: &str) -> Result<Variable, InputError> {
+    let lo: f64 = item(d, "lo", what)?;
+    let hi: f64 = item(d, "hi", what)?;
+    let raw: Vec<(String, Vec<f64>)> = item(d, "sets", what)?;
+    let mut sets = Vec::with_capacity(raw.len());
+    for (kind, p) in raw {
+        sets.push(match (kind.as_str(), p.as_slice()) {
+            ("triangle", [a, b, c]) => Membership::Triangle(*a, *b, *c),
+            ("trapezoid", [a, b, c, d]) => Membership::Trapezoid(*a, *b, *c, *d),
+            _ => {
+                return Err(InputError::Value(format!(
+                    "{what}: a set is ('triangle', a, b, c) or ('trapezoid', a, b, c, d), got ({kind:?}, {p:?})"
+                )));
+            }
+        });
+    }
+    Ok(Variable { lo, hi, sets })
+}
+
+/// Builds and validates a Mamdani system.
+pub fn parse_mamdani(table: &Bound<'_, PyDict>) -> Result<Mamdani, InputError> {
+    let inputs: Vec<Bound<'_, PyDict>> = item(table, "inputs", "fuzzy system")?;
+    let inputs = inputs
+        .iter()
+        .enumerate()
+        .map(|(i, d)| variable(d, &format!("input {i}")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let output: Bound<'_, PyDict> = item(table, "output", "fuzzy system")?;
+    let output = variable(&output, "output")?;
+    let raw: Vec<Vec<usize>> = item(table, "rules", "fuzzy system")?;
+    let rules = raw
+        .into_iter()
+        .map(|mut r| {
+            let consequent = r.pop().unwrap_or(usize::MAX);
+            Rule {
+                antecedent: r,
+                consequent,
+            }
+        })
+        .collect();
+    let resolution: usize = item(table, "resolution", "fuzzy system")?;
+    Mamdani::new(inputs, output, rules, resolution).map_err(|e| param_error(&e, None))
+}
+
+/// Crisp outputs of a fuzzy system for inputs of shape (N, number of inputs).
+#[pyfunction]
+pub fn evaluate_fuzzy<'py>(
+    py: Python<'py>,
+    table: Bound<'py, PyDict>,
+    inputs: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let system = parse_mamdani(&table).map_err(|e| to_pyerr(py, e.context("fuzzy system")))?;
+    let shape = inputs.shape();
+    if shape[1] != system.n_inputs() {
+        return Err(to_pyerr(
+            py,
+            InputError::Shape(format!(
+                "inputs has {} columns; the system takes {}",
+                shape[1],
+                system.n_inputs()
+            )),
+        ));
+    }
+    let x = inputs.as_array();
+    let rows: Vec<Vec<f64>> = x
+        .outer_iter()
+        .map(|r| r.iter().copied().collect())
+        .collect();
+    let out: Vec<f64> = py.detach(|| rows.iter().map(|r| system.evaluate(r)).collect());
+    Ok(PyArray1::from_vec(py, out))
+}
+
+/// Validates a fuzzy-system table.
+#[pyfunction]
+pub fn check_fuzzy(py: Python<'_>, table: Bound<'_, PyDict>) -> PyResult<()> {
+    parse_mamdani(&table)
+        .map(|_| ())
+        .map_err(|e| to_pyerr(py, e.context("fuzzy system")))
+}
+
+fn variable_table<'py>(py: Python<'py>, v: &Variable) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("lo", v.lo)?;
+    d.set_item("hi", v.hi)?;
+    let sets: Vec<(String, Vec<f64>)> = v
+        .sets
+        .iter()
+        .map(|s| match *s {
+            Membership::Triangle(a, b, c) => ("triangle".to_string(), vec![a, b, c]),
+            Membership::Trapezoid(a, b, c, d) => ("trapezoid".to_string(), vec![a, b, c, d]),
+        })
+        .collect();
+    d.set_item("sets", sets)?;
+    Ok(d)
+}
+
+/// The table of the seed-002 variable-rate system, as the core defines it.
+#[pyfunction]
+pub fn variable_rate_system_table(
+    py: Python<'_>,
+    resolution: usize,
+) -> PyResult<Bound<'_, PyDict>> {
+    if resolution < 2 {
+        return Err(to_pyerr(
+            py,
+            InputError::Value(format!(
+                "resolution = {resolution} violates resolution >= 2"
+            )),
+        ));
+    }
+    let m = landing_core::fuzzy::variable_rate_system(resolution);
+    let d = PyDict::new(py);
+    let inputs = m
+        .inputs()
+        .iter()
+        .map(|v| variable_table(py, v))
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("inputs", inputs)?;
+    d.set_item("output", variable_table(py, m.output())?)?;
+    let rules: Vec<Vec<usize>> = m
+        .rules()
+        .iter()
+        .map(|r| {
+            r.antecedent
+                .iter()
+                .copied()
+                .chain(std::iter::once(r.consequent))
+                .collect()
+        })
+        .collect();
+    d.set_item("rules", rules)?;
+    d.set_item("resolution", m.resolution())?;
+    Ok(d)
+}
+
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(variable_rate_system_table, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate_fuzzy, m)?)?;
+    m.add_function(wrap_pyfunction!(check_fuzzy, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,115 @@
+"""Fuzzy inference (SPEC 5 law 5): a general Mamdani engine evaluated by the Rust core.
+
+Min for AND and implication, max for aggregation, centroid defuzzification on a sampled output
+universe: scikit-fuzzy's conventions (the tests compare with it). Inputs outside a universe are
+clipped to it.
+
+>>> from landing.fuzzy import Mamdani, Variable
+>>> s = Variable((-5, 5), {"N": ("triangle", -5, -5, 0), "Z": ("triangle", -5, 0, 5), "P": ("triangle", 0, 5, 5)})
+>>> out = Variable((-1, 1), {"N": ("triangle", -1, -1, 0), "Z": ("triangle", -1, 0, 1), "P": ("triangle", 0, 1, 1)})
+>>> m = Mamdani([s], out, [(("N",), "P"), (("Z",), "Z"), (("P",), "N")])
+>>> float(m.evaluate([[0.0]])[0])
+0.0
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from landing import _core
+from landing._table import ArrayLike, Table, as_float_array
+from landing.errors import ParameterError
+
+__all__ = ["Variable", "Mamdani", "variable_rate_system", "SET_NAMES_5", "SET_NAMES_7"]
+
+SET_NAMES_5 = ("NB", "NS", "ZR", "PS", "PB")
+SET_NAMES_7 = ("NB", "NM", "NS", "ZR", "PS", "PM", "PB")
+
+
+@dataclass(frozen=True)
+class Variable:
+    """A linguistic variable: its universe (lo, hi) and named fuzzy sets, each
+    ``("triangle", a, b, c)`` or ``("trapezoid", a, b, c, d)``."""
+
+    universe: tuple[float, float]
+    sets: Mapping[str, tuple]
+
+    def _table(self) -> dict[str, Any]:
+        return {
+            "lo": float(self.universe[0]),
+            "hi": float(self.universe[1]),
+            "sets": [(str(s[0]), [float(v) for v in s[1:]]) for s in self.sets.values()],
+        }
+
+    def index(self, name: str) -> int:
+        try:
+            return list(self.sets).index(name)
+        except ValueError:
+            raise ParameterError(f"no fuzzy set {name!r}; the sets are {list(self.sets)}") from None
+
+
+class Mamdani(Table):
+    """A Mamdani system: input variables, an output variable and rules
+    ``((input set names...), output set name)``; ``resolution`` points sample the output
+    universe for the centroid."""
+
+    kind = "mamdani"
+
+    def __init__(self, inputs: Sequence[Variable], output: Variable,
+                 rules: Sequence[tuple[Sequence[str], str]], resolution: int = 401):
+        self.inputs = list(inputs)
+        self.output = output
+        self.rules = [(tuple(a), c) for a, c in rules]
+        self.resolution = int(resolution)
+        for antecedent, _ in self.rules:
+            if len(antecedent) != len(self.inputs):
+                raise ParameterError(
+                    f"Mamdani: a rule names {len(antecedent)} input sets for {len(self.inputs)} inputs"
+                )
+        _core.check_fuzzy(self._table())
+
+    def _table(self) -> dict[str, Any]:
+        rules = [[v.index(a) for v, a in zip(self.inputs, antecedent)] + [self.output.index(c)]
+                 for antecedent, c in self.rules]
+        return {
+            "inputs": [v._table() for v in self.inputs],
+            "output": self.output._table(),
+            "rules": rules,
+            "resolution": self.resolution,
+        }
+
+    def evaluate(self, inputs: ArrayLike) -> np.ndarray:
+        """Crisp outputs for inputs of shape (N, number of inputs); (N,)."""
+        x = as_float_array("Mamdani", "inputs", inputs)
+        if x.ndim == 1 and len(self.inputs) == 1:
+            x = x[:, None]
+        if x.ndim != 2:
+            raise ParameterError(f"Mamdani: inputs has shape {x.shape}; it takes (N, {len(self.inputs)})")
+        return _core.evaluate_fuzzy(self._table(), np.ascontiguousarray(x))
+
+    def __repr__(self) -> str:
+        return (f"Mamdani({len(self.inputs)} inputs, {len(self.output.sets)} output sets, "
+                f"{len(self.rules)} rules, resolution {self.resolution})")
+
+    @classmethod
+    def _from_table(cls, table: dict[str, Any], input_names: Sequence[Sequence[str]],
+                    output_names: Sequence[str]) -> "Mamdani":
+        def variable(t: dict[str, Any], names: Sequence[str]) -> Variable:
+            return Variable((t["lo"], t["hi"]), {n: (k, *p) for n, (k, p) in zip(names, t["sets"])})
+
+        inputs = [variable(t, n) for t, n in zip(table["inputs"], input_names)]
+        output = variable(table["output"], output_names)
+        rules = [(tuple(input_names[i][a] for i, a in enumerate(r[:-1])), output_names[r[-1]])
+                 for r in table["rules"]]
+        return cls(inputs, output, rules, table["resolution"])
+
+
+def variable_rate_system(resolution: int = 401) -> Mamdani:
+    """The seed-002 variable-rate system (sec. 2.3, Table 1), as the core defines it: inputs s
+    and s' with NB NS ZR PS PB on [-5, 5], output with NB NM NS ZR PS PM PB on [-4, 4], evenly
+    spaced triangles (shoulders at the ends), the 5x5 rule table."""
+    return Mamdani._from_table(_core.variable_rate_system_table(int(resolution)),
+                               [SET_NAMES_5, SET_NAMES_5], SET_NAMES_7)
