@@ -69,7 +69,7 @@ fn small_bodies<G: landing_core::gravity::GravityField>(
                 .as_ref()
                 .map_or(Vector3::repeat(f64::INFINITY), |l| pick(l, i)),
         },
-        |b| landing_core::plant::Plant::validate(b),
+        landing_core::plant::Plant::validate,
     )
 }
 
