@@ -31,6 +31,18 @@ __all__ = [
     "mars_super_twisting",
     "mars_monte_carlo",
     "mars_thrust_limited",
+    "SEED000_OFFSET",
+    "seed000_reference",
+    "seed000_initial_state",
+    "SEED002_OFFSET",
+    "seed002_reference",
+    "seed002_initial_state",
+    "seed002_plant",
+    "SEED000_GAINS",
+    "SEED002_GAINS",
+    "seed000_tracking",
+    "seed000_landing",
+    "seed002_landing",
 ]
 
 
@@ -199,6 +211,136 @@ def mars_thrust_limited(**overrides: Any) -> Scenario:
         t_final=60.0,
         dt=1e-3,
         record_every=50,
+        settle_tolerance=1.0,
+    )
+    return s.replace(**overrides)
+
+
+# --- Asteroid landing, seed 000 (433 Eros, two mass points) ------------------------------------
+
+#: Where the probe starts relative to the Table 1 reference, m: the seed tracks from an offset
+#: it does not print (docs/parameters.md).
+SEED000_OFFSET = np.array([10.0, 10.0, 10.0])
+
+
+def seed000_reference(t_end: float = 8000.0):
+    """The cubic of seed 000 eq. 8-10 through the Table 1 boundary states."""
+    from landing.reference import Cubic
+
+    return Cubic.from_boundary([3200.0, 1300.0, 9000.0], [-1.2, 0.2, -1.0], [2837.0, 928.1, 5708.0], [0.0, 0.0, 0.0],
+                               t_end)
+
+
+def seed000_initial_state() -> np.ndarray:
+    """Table 1's initial state plus the documented position offset."""
+    return np.r_[np.array([3200.0, 1300.0, 9000.0]) + SEED000_OFFSET, -1.2, 0.2, -1.0]
+
+
+# --- Asteroid landing, seed 002 (433 Eros, second-degree harmonics) ----------------------------
+
+#: Where the probe starts relative to the seed-002 reference, m (the seed does not say).
+SEED002_OFFSET = np.array([50.0, 50.0, 50.0])
+
+
+def seed002_reference(t_end: float = 4000.0):
+    """The cubic of seed 002 eq. 5-8 from (550, 500, 8200) m, (-1.7, 0.7, -1.5) m/s to rest at
+    (20, 80, 2000) m."""
+    from landing.reference import Cubic
+
+    return Cubic.from_boundary([550.0, 500.0, 8200.0], [-1.7, 0.7, -1.5], [20.0, 80.0, 2000.0], [0.0, 0.0, 0.0], t_end)
+
+
+def seed002_initial_state() -> np.ndarray:
+    """Seed 002 Table 2's initial state plus the documented position offset."""
+    return np.r_[np.array([550.0, 500.0, 8200.0]) + SEED002_OFFSET, -1.7, 0.7, -1.5]
+
+
+def seed002_plant():
+    """433 Eros with second-degree harmonics (seed 002 Table 2), omega = 1.65e-4 rad/s."""
+    from landing.gravity import Harmonic2
+
+    return plants.SmallBody(gravity=Harmonic2(), omega=1.65e-4)
+
+
+#: Seed-000 gains, from examples/studies/asteroid_gains_seed000.py: PD-SMC calibrated to the
+#: seed's 8 s, the terminal and fuzzy terms tuned for the least integrated error.
+SEED000_GAINS: dict[str, Any] = dict(
+    lam=1.0, k=2.5, beta=0.4, p=1.0, q=5.0, n=10.0, m=10.0, boundary_layer=0.3,
+)
+
+#: Seed-002 gains, from examples/studies/asteroid_gains_seed002.py (w = 0.017 rad/s, critically
+#: damped sliding dynamics).
+SEED002_GAINS: dict[str, Any] = dict(
+    c1=0.017**2, c2=2 * 0.017, k=0.1, epsilon=1e-3, ke=3.162e4, kec=10.0, ku=2.813e-4,
+)
+
+SEED000_LAWS = ("pd", "ftsmc", "fuzzy_ftsmc")
+
+
+def _seed000_law(law: str, switch: str) -> Controller:
+    g = SEED000_GAINS
+    common = dict(k=g["k"], switch=switch, boundary_layer=g["boundary_layer"])
+    terminal = dict(alpha=g["lam"], beta=g["beta"], p=g["p"], q=g["q"])
+    if law == "pd":
+        return controllers.PDSlidingMode(lambda_=g["lam"], **common)
+    if law == "ftsmc":
+        return controllers.FastTerminalSMC(**terminal, **common)
+    if law == "fuzzy_ftsmc":
+        return controllers.FuzzyFastTerminalSMC(**terminal, n=g["n"], m=g["m"], **common)
+    raise ParameterError(f"law = {law!r} is not one of {SEED000_LAWS}")
+
+
+def seed000_tracking(law: str = "fuzzy_ftsmc", switch: str = "sign", **overrides: Any) -> Scenario:
+    """Seed 000: tracking the Table 1 cubic on 433 Eros (two mass points) for 15 s at
+    dt = 0.01 s, from the documented 10 m offset; ``law`` is "pd", "ftsmc" or "fuzzy_ftsmc",
+    ``switch`` "sign" or "tanh" (the seed's two variants)."""
+    s = Scenario(
+        name=f"seed000_{law}_{switch}",
+        description=f"seed 000 trajectory tracking, {law} with {switch} switching",
+        plant=plants.SmallBody(),
+        controller=_seed000_law(law, switch),
+        x0=seed000_initial_state(),
+        reference=seed000_reference(),
+        t_final=15.0,
+        dt=0.01,
+        settle_tolerance=0.1,
+    )
+    return s.replace(**overrides)
+
+
+def seed000_landing(law: str = "fuzzy_ftsmc", switch: str = "tanh", **overrides: Any) -> Scenario:
+    """Seed 000's full landing: the same tracking over the whole 8000 s reference."""
+    return seed000_tracking(law, switch, name=f"seed000_landing_{law}_{switch}",
+                            description=f"seed 000 full 8000 s landing, {law} with {switch} switching",
+                            t_final=8000.0, record_every=100).replace(**overrides)
+
+
+SEED002_LAWS = ("exponential", "fuzzy_variable_rate")
+
+
+def seed002_landing(law: str = "fuzzy_variable_rate", **overrides: Any) -> Scenario:
+    """Seed 002: landing on 433 Eros (C20/C22 gravity) along its cubic over 4000 s at dt = 0.1 s,
+    from the documented 50 m offset, under a model uncertainty of up to 1 % of the command;
+    ``law`` is "exponential" (law 4) or "fuzzy_variable_rate" (law 5)."""
+    g = SEED002_GAINS
+    surface = dict(c1=g["c1"], c2=g["c2"], k=g["k"])
+    if law == "exponential":
+        controller: Controller = controllers.IntegralExponentialReaching(**surface, epsilon=g["epsilon"])
+    elif law == "fuzzy_variable_rate":
+        controller = controllers.FuzzyVariableRate(**surface, ke=g["ke"], kec=g["kec"], ku=g["ku"])
+    else:
+        raise ParameterError(f"law = {law!r} is not one of {SEED002_LAWS}")
+    s = Scenario(
+        name=f"seed002_{law}",
+        description=f"seed 002 landing with the {law} reaching law",
+        plant=seed002_plant(),
+        controller=controller,
+        x0=seed002_initial_state(),
+        reference=seed002_reference(),
+        disturbance=disturbances.CommandNoise(0.01),
+        t_final=4000.0,
+        dt=0.1,
+        record_every=10,
         settle_tolerance=1.0,
     )
     return s.replace(**overrides)
