@@ -10,7 +10,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use landing_core::SimConfig;
 use landing_core::batch::run_with_threads;
 use landing_core::integrator::Rk4;
-use landing_core::workloads::mars_w1;
+use landing_core::workloads::{eros_w3, mars_w1};
 
 const CASES: usize = 300;
 const T_FINAL: f64 = 10.0;
@@ -33,6 +33,20 @@ fn bench(c: &mut Criterion) {
     });
     g.bench_function("W2_record_10ms_all_threads", |b| {
         b.iter(|| run_with_threads(black_box(&batch), Rk4, &every_10ms, None).unwrap())
+    });
+    g.finish();
+
+    let eros = eros_w3(CASES, 2024);
+    let cfg = SimConfig::new(15.0, 0.01, 1, 0, 0).unwrap();
+    let mut g = c.benchmark_group("eros_fuzzy_ftsmc_300x15s");
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(10))
+        .throughput(Throughput::Elements(CASES as u64 * cfg.steps));
+    g.bench_function("W3_final_only_1_thread", |b| {
+        b.iter(|| run_with_threads(black_box(&eros), Rk4, &cfg, Some(1)).unwrap())
+    });
+    g.bench_function("W3_final_only_all_threads", |b| {
+        b.iter(|| run_with_threads(black_box(&eros), Rk4, &cfg, None).unwrap())
     });
     g.finish();
 }

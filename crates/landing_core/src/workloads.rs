@@ -4,9 +4,11 @@
 use nalgebra::{SVector, Vector3};
 
 use crate::batch::{Batch, PerCase};
-use crate::control::{FixedTimeMss, MssVariant};
+use crate::control::{FixedTimeMss, FuzzyFastTerminalSmc, MssVariant, TerminalSurface};
 use crate::disturbance::{Disturbance, Sinusoid};
-use crate::plant::MarsLander;
+use crate::gravity::TwoPointMass;
+use crate::math::Switch;
+use crate::plant::{MarsLander, SmallBody};
 use crate::reference::Reference;
 use crate::rng::{CaseStream, streams};
 
@@ -68,5 +70,58 @@ pub fn mars_w1(cases: usize, seed: u64) -> Batch<3, MarsLander, FixedTimeMss<3>>
         references: PerCase::shared(Reference::default()),
         disturbances: PerCase::shared(mars_storm()),
         x0: mars_dispersed(cases, seed),
+    }
+}
+
+/// W3: seed-000 fuzzy FTSMC (the preset's gains, sign switching) on 433 Eros as two mass
+/// points, tracking the Table 1 cubic from `cases` starts dispersed by 10 m (1 sigma) around
+/// the reference.
+pub fn eros_w3(
+    cases: usize,
+    seed: u64,
+) -> Batch<3, SmallBody<TwoPointMass>, FuzzyFastTerminalSmc<3>> {
+    let p0 = Vector3::new(3200.0, 1300.0, 9000.0);
+    let v0 = Vector3::new(-1.2, 0.2, -1.0);
+    let reference = Reference::cubic_from_boundary(
+        p0,
+        v0,
+        Vector3::new(2837.0, 928.1, 5708.0),
+        Vector3::zeros(),
+        8000.0,
+    )
+    .expect("a valid cubic");
+    let x0 = (0..cases)
+        .map(|i| {
+            let mut z = [0.0; 4];
+            CaseStream::new(seed, streams::DISPERSION, i as u64).fill_normals(0, &mut z);
+            SVector::<f64, 6>::from([
+                p0[0] + 10.0 * z[0],
+                p0[1] + 10.0 * z[1],
+                p0[2] + 10.0 * z[2],
+                v0[0],
+                v0[1],
+                v0[2],
+            ])
+        })
+        .collect();
+    let law = FuzzyFastTerminalSmc {
+        surface: TerminalSurface {
+            alpha: Vector3::repeat(1.0),
+            beta: Vector3::repeat(0.4),
+            p: Vector3::repeat(1.0),
+            q: Vector3::repeat(5.0),
+            e_floor: 1e-3,
+        },
+        k: Vector3::repeat(2.5),
+        switch: Switch::Sign,
+        n: 10.0,
+        m: 10.0,
+    };
+    Batch {
+        plants: PerCase::shared(SmallBody::new(TwoPointMass::eros(), 3.3118e-4)),
+        laws: PerCase::shared(law),
+        references: PerCase::shared(reference),
+        disturbances: PerCase::shared(Disturbance::none()),
+        x0,
     }
 }
