@@ -233,38 +233,6 @@ def simulate_batch(
             f"x0 has shape {x.shape}; simulate_batch takes (N, n_state) "
             f"(use landing.simulate for one case)"
         )
-    return _run(plant, controller, x, t_final=t_final, dt=dt, integrator=integrator,
-                substeps=substeps, reference=reference, disturbance=disturbance,
-                record_every=record_every, seed=seed, first_case=first_case,
-                settle_tolerance=settle_tolerance, chatter_cutoff=chatter_cutoff, threads=threads)
-
-
-def _as_states(x0: Any) -> np.ndarray:
-    try:
-        return np.ascontiguousarray(np.asarray(x0, dtype=np.float64))
-    except (TypeError, ValueError):
-        raise ParameterTypeError("x0 must be an array of real numbers") from None
-
-
-def _run(
-    plant: Plant,
-    controller: Controller,
-    x: np.ndarray,
-    *,
-    t_final: float,
-    dt: float,
-    integrator: str = "rk4",
-    substeps: int = 1,
-    reference: Optional[Reference] = None,
-    disturbance: DisturbanceLike = None,
-    record_every: int = 1,
-    seed: int = 0,
-    first_case: int = 0,
-    settle_tolerance: Optional[float] = None,
-    chatter_cutoff: Optional[float] = None,
-    threads: Optional[int] = None,
-) -> SimulationResult:
-    """The shared body of simulate and simulate_batch (warnings point at their caller)."""
     if not isinstance(plant, Plant):
         raise ParameterTypeError(f"plant must be a landing.plants plant, got {type(plant).__name__}")
     if not isinstance(controller, Controller):
@@ -316,7 +284,7 @@ def _run(
             f"{diverged.size} of {x.shape[0]} cases diverged (cases {shown}); they are stopped, "
             "flagged in metrics['diverged'] and NaN from the divergence on",
             DivergenceWarning,
-            stacklevel=3,
+            stacklevel=2,
         )
     return SimulationResult(
         t=out["t"],
@@ -328,6 +296,13 @@ def _run(
         state_names=tuple(out["state_names"]),
         control_names=tuple(out["control_names"]),
     )
+
+
+def _as_states(x0: Any) -> np.ndarray:
+    try:
+        return np.ascontiguousarray(np.asarray(x0, dtype=np.float64))
+    except (TypeError, ValueError):
+        raise ParameterTypeError("x0 must be an array of real numbers") from None
 
 
 def simulate(
@@ -343,4 +318,10 @@ def simulate(
         raise ParameterError(
             f"x0 has shape {x.shape}; simulate takes one state (n_state,) (use simulate_batch for many)"
         )
-    return _run(plant, controller, x[None, :], **kwargs)[0]
+    # warnings raised for the batch of one are re-raised here, pointing at the caller
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        res = simulate_batch(plant, controller, x[None, :], **kwargs)
+    for w in caught:
+        warnings.warn(w.message, w.category, stacklevel=2)
+    return res[0]
