@@ -1,6 +1,7 @@
 //! W1 on one thread, for profilers:
 //! `cargo build --release -p landing_core --example profile_w1` then
-//! `perf record ./target/release/examples/profile_w1`.
+//! `perf record ./target/release/examples/profile_w1`, or, counting instructions (repeatable
+//! on a loaded machine), `valgrind --tool=callgrind ./target/release/examples/profile_w1 10`.
 
 use std::time::Instant;
 
@@ -10,7 +11,7 @@ use landing_core::integrator::Rk4;
 use landing_core::workloads::mars_w1;
 
 fn main() {
-    let cases = 100;
+    let cases = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(100);
     let batch = mars_w1(cases, 2024);
     let cfg = SimConfig::new(10.0, 1e-3, 1, 0, 0).unwrap();
     let start = Instant::now();
