@@ -7,9 +7,11 @@
 
 mod double_integrator;
 mod mars;
+pub mod tether;
 
 pub use double_integrator::DoubleIntegrator;
 pub use mars::MarsLander;
+pub use tether::{TetheredFlexible, TetheredSimplified};
 
 use nalgebra::SVector;
 
