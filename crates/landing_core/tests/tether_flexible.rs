@@ -72,7 +72,10 @@ fn jacobi_drift(h: f64, damping: f64) -> (f64, f64, f64) {
 fn the_jacobi_integral_is_conserved_to_integrator_accuracy() {
     let (coarse, scale, taut) = jacobi_drift(0.02, 0.0);
     let (fine, _, _) = jacobi_drift(0.01, 0.0);
-    assert!(taut > 0.0, "the premise: the tether stays taut (min tension {taut})");
+    assert!(
+        taut > 0.0,
+        "the premise: the tether stays taut (min tension {taut})"
+    );
     assert!(fine < 1e-8 * scale, "drift {fine} against |C| = {scale}");
     // halving the step divides the drift by about 2^4: it is RK4's error, not the model's
     let order = (coarse / fine).log2();
@@ -115,20 +118,30 @@ fn a_slack_tether_carries_no_compression() {
     let k = 6 + 4 * 3; // the last node
     y[k + 2] = 10.0 * y[k] / y[k].abs().max(1e-12); // rushing outwards, towards the sub-satellite
     let stretch = plant.tension(&plant.state_at(0.0, 0.0, 0.0, 0.0).unwrap(), 4);
-    assert!(stretch > 0.0, "at rest the last segment is taut ({stretch} N)");
+    assert!(
+        stretch > 0.0,
+        "at rest the last segment is taut ({stretch} N)"
+    );
     assert_eq!(plant.tension(&y, 4), 0.0);
     // and a free fall after a push inwards: a tension-only tether never pulls a point outwards
     // of where a rope could (every tension stays >= 0 along the run)
     let mut x0 = plant.state_at(0.0, 0.0, 0.0, 0.0).unwrap();
     x0[3] = 0.02 * x0[0].signum() * -1.0; // sub-satellite thrown towards the main satellite
     let mut slack_seen = false;
-    integrate(&plant, x0, Vector2::zeros(), 20.0, plant.max_step(), |_, x| {
-        for j in 0..=4 {
-            let t = plant.tension(x, j);
-            assert!(t >= 0.0);
-            slack_seen |= t == 0.0;
-        }
-    });
+    integrate(
+        &plant,
+        x0,
+        Vector2::zeros(),
+        20.0,
+        plant.max_step(),
+        |_, x| {
+            for j in 0..=4 {
+                let t = plant.tension(x, j);
+                assert!(t >= 0.0);
+                slack_seen |= t == 0.0;
+            }
+        },
+    );
     assert!(slack_seen, "the run went slack somewhere");
 }
 
@@ -170,7 +183,10 @@ fn small_in_plane_libration_has_the_dumbbell_frequency() {
     let measured = (zc[3] - zc[0]) / 1.5;
     let rel = measured / period - 1.0;
     // the elastic tether shifts it by O(n^2 L m_s / EA) = 4e-5 here
-    assert!(rel.abs() < 2e-4, "period {measured} s against sqrt(3) n: {period} s ({rel:+.2e})");
+    assert!(
+        rel.abs() < 2e-4,
+        "period {measured} s against sqrt(3) n: {period} s ({rel:+.2e})"
+    );
     // not a trivially long window: a wrong frequency (e.g. the 2 n of a free point mass's
     // epicycle) would miss by 13 %
     assert!((std::f64::consts::TAU / (2.0 * FAST_ORBIT) / period - 1.0).abs() > 0.1);
@@ -202,7 +218,10 @@ fn refining_the_tether_converges() {
     // second order in h = L0 / (N + 1) would divide the error by about 4 per doubling (a bit
     // less here, since N = 32 is itself only a reference)
     for w in e.windows(2) {
-        assert!(w[1] < 0.45 * w[0], "errors against N = 32 do not shrink: {e:?}");
+        assert!(
+            w[1] < 0.45 * w[0],
+            "errors against N = 32 do not shrink: {e:?}"
+        );
     }
     // and the differences are not round-off: the coarsest model is visibly off
     assert!(e[0] > 1e-3, "{e:?}");

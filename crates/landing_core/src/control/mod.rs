@@ -8,10 +8,15 @@
 //! Euler after the command is computed (SPEC 2).
 
 mod fixed_time_mss;
+mod fixed_time_ntsmc;
+mod ntsmc;
 mod open_loop;
+pub mod rbf;
 mod super_twisting;
 
 pub use fixed_time_mss::{FixedTimeMss, MssVariant};
+pub use fixed_time_ntsmc::{FixedTimeNtsmc, zeta, zeta_slope};
+pub use ntsmc::Ntsmc;
 pub use open_loop::OpenLoop;
 pub use super_twisting::{SuperTwisting, SuperTwistingVariant};
 

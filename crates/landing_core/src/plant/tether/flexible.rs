@@ -117,7 +117,10 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
             (Vector2::zeros(), Vector2::zeros())
         } else if j <= N {
             let k = 6 + 4 * (j - 1);
-            (Vector2::new(x[k], x[k + 1]), Vector2::new(x[k + 2], x[k + 3]))
+            (
+                Vector2::new(x[k], x[k + 1]),
+                Vector2::new(x[k + 2], x[k + 3]),
+            )
         } else {
             self.attachment(x)
         }
@@ -182,10 +185,21 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
     /// tether straight from the main satellite to the attachment point and stretched by the
     /// rigid dumbbell's tension, its nodes evenly spaced, every point of the line turning at
     /// phi' about the main satellite except the cube, which turns at theta'.
-    pub fn state_at(&self, phi: f64, theta: f64, dphi: f64, dtheta: f64) -> Result<SVector<f64, S>, ParamError> {
+    pub fn state_at(
+        &self,
+        phi: f64,
+        theta: f64,
+        dphi: f64,
+        dtheta: f64,
+    ) -> Result<SVector<f64, S>, ParamError> {
         let () = Self::LAYOUT;
         self.validate()?;
-        for (name, v) in [("phi", phi), ("theta", theta), ("phi_dot", dphi), ("theta_dot", dtheta)] {
+        for (name, v) in [
+            ("phi", phi),
+            ("theta", theta),
+            ("phi_dot", dphi),
+            ("theta_dot", dtheta),
+        ] {
             require(true, name, v, "finite values")?;
         }
         let b = &self.body;
@@ -352,7 +366,12 @@ impl<const N: usize, const S: usize> Plant<2> for TetheredFlexible<N, S> {
     fn validate(&self) -> Result<(), ParamError> {
         let () = Self::LAYOUT;
         self.body.validate()?;
-        require(self.density > 0.0, "tether_density", self.density, "tether_density > 0")?;
+        require(
+            self.density > 0.0,
+            "tether_density",
+            self.density,
+            "tether_density > 0",
+        )?;
         require(
             self.axial_stiffness > 0.0,
             "axial_stiffness",

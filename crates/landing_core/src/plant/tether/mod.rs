@@ -43,7 +43,12 @@ pub const EARTH_RADIUS: f64 = 6_378_137.0;
 
 /// Mean motion of a circular Earth orbit at `altitude` (m): `sqrt(mu / (R + h)^3)`, rad/s.
 pub fn orbital_rate(altitude: f64) -> Result<f64, ParamError> {
-    require(altitude > -EARTH_RADIUS, "orbit_altitude", altitude, "orbit_altitude > -6378137 m")?;
+    require(
+        altitude > -EARTH_RADIUS,
+        "orbit_altitude",
+        altitude,
+        "orbit_altitude > -6378137 m",
+    )?;
     let r = EARTH_RADIUS + altitude;
     Ok((MU_EARTH / (r * r * r)).sqrt())
 }
@@ -108,9 +113,24 @@ impl TetherBody {
     }
 
     pub fn validate(&self) -> Result<(), ParamError> {
-        require(self.main_mass > 0.0, "main_mass", self.main_mass, "main_mass > 0")?;
-        require(self.sub_mass > 0.0, "sub_mass", self.sub_mass, "sub_mass > 0")?;
-        require(self.length > 0.0, "tether_length", self.length, "tether_length > 0")?;
+        require(
+            self.main_mass > 0.0,
+            "main_mass",
+            self.main_mass,
+            "main_mass > 0",
+        )?;
+        require(
+            self.sub_mass > 0.0,
+            "sub_mass",
+            self.sub_mass,
+            "sub_mass > 0",
+        )?;
+        require(
+            self.length > 0.0,
+            "tether_length",
+            self.length,
+            "tether_length > 0",
+        )?;
         require(self.side > 0.0, "side", self.side, "side > 0")?;
         require(
             self.side < self.length,
@@ -171,7 +191,10 @@ mod tests {
         let u = b.actuate(&Vector2::new(5e-5, -0.01));
         assert!((u[0] - 5e-5 * m[0]).abs() < 1e-15 && (u[1] + 0.01 * m[1]).abs() < 1e-15);
         // and is clipped outside them
-        assert_eq!(b.actuate(&Vector2::new(1.0, -1.0)), Vector2::new(0.1, -0.05));
+        assert_eq!(
+            b.actuate(&Vector2::new(1.0, -1.0)),
+            Vector2::new(0.1, -0.05)
+        );
     }
 
     #[test]
@@ -180,7 +203,10 @@ mod tests {
         let t = rigid_tension(10.0, 100.0, n, 0.0, 0.0);
         assert!((t - 3.0 * n * n * 10.0 * 100.0).abs() < 1e-18);
         // spinning backwards at the orbital rate on the horizontal: gravity gradient pushes in
-        assert_eq!(rigid_tension(10.0, 100.0, n, std::f64::consts::FRAC_PI_2, -n), 0.0);
+        assert_eq!(
+            rigid_tension(10.0, 100.0, n, std::f64::consts::FRAC_PI_2, -n),
+            0.0
+        );
     }
 
     #[test]

@@ -40,7 +40,13 @@ impl TetheredSimplified {
 
     /// The tether tension at state `x` (N).
     pub fn tension(&self, x: &SimplifiedState) -> f64 {
-        rigid_tension(self.body.sub_mass, self.arm(), self.body.orbital_rate, x[0], x[2])
+        rigid_tension(
+            self.body.sub_mass,
+            self.arm(),
+            self.body.orbital_rate,
+            x[0],
+            x[2],
+        )
     }
 }
 
