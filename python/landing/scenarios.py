@@ -87,7 +87,7 @@ class Scenario:
         if there is none)."""
         if self.dispersion is None:
             return np.tile(np.asarray(self.x0, dtype=float), (n, 1))
-        x = self.dispersion.sample(n, seed=seed, first_case=first_case)
+        x = self.plant.states_from_draws(self.dispersion.sample(n, seed=seed, first_case=first_case))
         if x.shape[1] != self.plant.state_dim:
             raise ParameterError(
                 f"scenario {self.name!r}: the dispersion has {x.shape[1]} components, the plant's "

@@ -9,6 +9,7 @@ mod errors;
 mod output;
 mod params;
 mod specs;
+mod tether;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -20,6 +21,10 @@ use landing_core::batch::{Batch, BatchOutput, PerCase, run_with_threads};
 use landing_core::control::ControlLaw;
 use landing_core::disturbance::Disturbance;
 use landing_core::integrator::{Euler, IntegratorKind, Rk4};
+use landing_core::plant::tether::{
+    TetheredFlexible2, TetheredFlexible4, TetheredFlexible8, TetheredFlexible16,
+    TetheredSimplified,
+};
 use landing_core::plant::{DoubleIntegrator, MarsLander, Plant};
 use landing_core::reference::Reference;
 use landing_core::rng::philox4x64_10;
@@ -30,6 +35,7 @@ use errors::{InputError, batch_error, internal_error, param_error, to_pyerr};
 use params::Params;
 use specs::{
     LawSpec, PlantSpec, kind_of, parse_disturbance, parse_law, parse_plant, parse_reference,
+    with_plants,
 };
 
 /// What a batch needs besides its law, owned, ready to cross into the GIL-free region.
@@ -81,6 +87,8 @@ impl<const D: usize, P: Plant<D>> Job<D, P> {
             LawSpec::FixedTimeMss(l) => self.setting.run(l),
             LawSpec::SuperTwisting(l) => self.setting.run(l),
             LawSpec::OpenLoop(l) => self.setting.run(l),
+            LawSpec::Ntsmc(l) => self.setting.run(l),
+            LawSpec::FixedTimeNtsmc(l) => self.setting.run(l),
         }
     }
 }
@@ -169,6 +177,11 @@ fn prepare<'py, const D: usize, P: Plant<D>>(
 enum Prepared {
     Mars(Job<3, MarsLander>),
     DoubleIntegrator(Job<3, DoubleIntegrator>),
+    TetherSimplified(Job<2, TetheredSimplified>),
+    TetherFlexible2(Job<2, TetheredFlexible2>),
+    TetherFlexible4(Job<2, TetheredFlexible4>),
+    TetherFlexible8(Job<2, TetheredFlexible8>),
+    TetherFlexible16(Job<2, TetheredFlexible16>),
 }
 
 /// Runs a prepared job without the GIL, turning a panic into an exception.
@@ -268,33 +281,39 @@ fn simulate_batch<'py>(
         let kind = kind_of(&plant, "plant")?;
         let mut p = Params::new(format!("plant ({kind})"), plant.clone(), n);
         let spec = parse_plant(&kind, &mut p).map_err(|e| e.context(&p.owner))?;
+        macro_rules! job {
+            ($variant:ident, $plants:expr, $d:literal) => {
+                Prepared::$variant(prepare::<$d, _>(
+                    $plants,
+                    &controller,
+                    &x0,
+                    reference.as_ref(),
+                    disturbance.as_ref(),
+                    integ,
+                    cfg,
+                    threads,
+                )?)
+            };
+        }
         let prepared = match spec {
-            PlantSpec::Mars(plants) => Prepared::Mars(prepare::<3, _>(
-                plants,
-                &controller,
-                &x0,
-                reference.as_ref(),
-                disturbance.as_ref(),
-                integ,
-                cfg,
-                threads,
-            )?),
-            PlantSpec::DoubleIntegrator(plants) => Prepared::DoubleIntegrator(prepare::<3, _>(
-                plants,
-                &controller,
-                &x0,
-                reference.as_ref(),
-                disturbance.as_ref(),
-                integ,
-                cfg,
-                threads,
-            )?),
+            PlantSpec::Mars(plants) => job!(Mars, plants, 3),
+            PlantSpec::DoubleIntegrator(plants) => job!(DoubleIntegrator, plants, 3),
+            PlantSpec::TetherSimplified(plants) => job!(TetherSimplified, plants, 2),
+            PlantSpec::TetherFlexible2(plants) => job!(TetherFlexible2, plants, 2),
+            PlantSpec::TetherFlexible4(plants) => job!(TetherFlexible4, plants, 2),
+            PlantSpec::TetherFlexible8(plants) => job!(TetherFlexible8, plants, 2),
+            PlantSpec::TetherFlexible16(plants) => job!(TetherFlexible16, plants, 2),
         };
         Ok(prepared)
     })();
     match prepared.map_err(|e| to_pyerr(py, e))? {
         Prepared::Mars(job) => execute(py, job),
         Prepared::DoubleIntegrator(job) => execute(py, job),
+        Prepared::TetherSimplified(job) => execute(py, job),
+        Prepared::TetherFlexible2(job) => execute(py, job),
+        Prepared::TetherFlexible4(job) => execute(py, job),
+        Prepared::TetherFlexible8(job) => execute(py, job),
+        Prepared::TetherFlexible16(job) => execute(py, job),
     }
 }
 
@@ -445,9 +464,16 @@ fn cubic_from_boundary(
     run().map_err(|e| to_pyerr(py, e))
 }
 
-/// State, control and axis names of a plant kind.
+/// State, control and axis names of a plant kind. Plants whose layout depends on their
+/// parameters (the flexible tether's node count) need their table, which also adds the
+/// model's derived figures (see `tether::extras`).
 #[pyfunction]
-fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (kind, table=None))]
+fn plant_info<'py>(
+    py: Python<'py>,
+    kind: &str,
+    table: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
     fn info<'py, const D: usize, P: Plant<D>>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
         d.set_item("state_names", P::STATE_NAMES.to_vec())?;
@@ -455,9 +481,27 @@ fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> 
         d.set_item("axes", D)?;
         Ok(d)
     }
+    if let Some(table) = table {
+        let mut p = Params::new(format!("plant ({kind})"), table.clone(), None);
+        let spec = parse_plant(kind, &mut p)
+            .map_err(|e| to_pyerr(py, e.context(&p.owner)))?;
+        fn of<'py, const D: usize, P: Plant<D>>(
+            py: Python<'py>,
+            _plants: &PerCase<P>,
+        ) -> PyResult<Bound<'py, PyDict>> {
+            info::<D, P>(py)
+        }
+        let d = with_plants!(&spec, plants, D => of::<D, _>(py, plants)?);
+        tether::extras(&spec, &d)?;
+        return Ok(d);
+    }
     match kind {
         "mars_lander" => info::<3, MarsLander>(py),
         "double_integrator" => info::<3, DoubleIntegrator>(py),
+        "tethered_satellite" => Err(to_pyerr(
+            py,
+            InputError::Type("plant_info needs the table of a tethered_satellite (its layout depends on it)".into()),
+        )),
         other => Err(to_pyerr(
             py,
             InputError::Value(format!(
@@ -466,6 +510,47 @@ fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> 
             )),
         )),
     }
+}
+
+/// The generalized coordinates (q, q') the laws read, for states (M, state dim) of a plant.
+#[pyfunction]
+fn plant_coordinates<'py>(
+    py: Python<'py>,
+    table: Bound<'py, PyDict>,
+    states: PyReadonlyArray2<'py, f64>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    fn coords<const D: usize, P: Plant<D>>(
+        plants: &PerCase<P>,
+        states: &PyReadonlyArray2<'_, f64>,
+    ) -> Result<(Vec<f64>, Vec<f64>, usize), InputError> {
+        let nx = P::State::DIM;
+        let shape = states.shape();
+        if shape[1] != nx {
+            return Err(InputError::Shape(format!(
+                "states have {} components; this plant's have {nx} ({:?})",
+                shape[1],
+                P::STATE_NAMES
+            )));
+        }
+        let view = states.as_array();
+        let (mut q, mut qd) = (Vec::with_capacity(shape[0] * D), Vec::with_capacity(shape[0] * D));
+        for row in view.outer_iter() {
+            let values: Vec<f64> = row.iter().copied().collect();
+            let (a, b) = plants.get(0).coordinates(&P::State::from_slice(&values));
+            q.extend_from_slice(a.as_slice());
+            qd.extend_from_slice(b.as_slice());
+        }
+        Ok((q, qd, D))
+    }
+    let run = || -> Result<(Vec<f64>, Vec<f64>, usize), InputError> {
+        let kind = kind_of(&table, "plant")?;
+        let mut p = Params::new(format!("plant ({kind})"), table.clone(), None);
+        let spec = parse_plant(&kind, &mut p).map_err(|e| e.context(&p.owner))?;
+        with_plants!(&spec, plants, D => coords::<D, _>(plants, &states))
+    };
+    let (q, qd, d) = run().map_err(|e| to_pyerr(py, e))?;
+    let m = states.shape()[0];
+    Ok((output::array2(py, q, m, d)?, output::array2(py, qd, m, d)?))
 }
 
 /// One Philox4x64-10 block, exposed so the tests can compare with `numpy.random.Philox`.
@@ -485,6 +570,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cubic_from_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(philox4x64, m)?)?;
     m.add_function(wrap_pyfunction!(plant_info, m)?)?;
+    m.add_function(wrap_pyfunction!(plant_coordinates, m)?)?;
+    m.add_function(wrap_pyfunction!(tether::tether_initial_state, m)?)?;
     analysis::register(m)?;
     m.add("INTEGRATORS", IntegratorKind::NAMES.to_vec())?;
     m.add("PLANT_KINDS", PlantSpec::KINDS.to_vec())?;

@@ -9,14 +9,19 @@ use pyo3::types::PyDict;
 
 use landing_core::PerCase;
 use landing_core::control::{
-    ControlLaw, FixedTimeMss, MssVariant, OpenLoop, SuperTwisting, SuperTwistingVariant,
+    ControlLaw, FixedTimeMss, FixedTimeNtsmc, MssVariant, Ntsmc, OpenLoop, SuperTwisting,
+    SuperTwistingVariant,
 };
 use landing_core::disturbance::{Disturbance, MAX_SINUSOIDS, Sinusoid};
 use landing_core::gravity::Uniform;
+use landing_core::plant::tether::{
+    TetherBody, TetheredFlexible, TetheredFlexible2, TetheredFlexible4, TetheredFlexible8,
+    TetheredFlexible16, TetheredSimplified, orbital_rate,
+};
 use landing_core::plant::{DoubleIntegrator, MarsLander};
 use landing_core::reference::Reference;
 
-use crate::errors::InputError;
+use crate::errors::{InputError, param_error};
 use crate::params::{Params, pick};
 
 pub fn kind_of(dict: &Bound<'_, PyDict>, what: &str) -> Result<String, InputError> {
@@ -28,16 +33,129 @@ pub fn kind_of(dict: &Bound<'_, PyDict>, what: &str) -> Result<String, InputErro
 pub enum PlantSpec {
     Mars(PerCase<MarsLander>),
     DoubleIntegrator(PerCase<DoubleIntegrator>),
+    TetherSimplified(PerCase<TetheredSimplified>),
+    TetherFlexible2(PerCase<TetheredFlexible2>),
+    TetherFlexible4(PerCase<TetheredFlexible4>),
+    TetherFlexible8(PerCase<TetheredFlexible8>),
+    TetherFlexible16(PerCase<TetheredFlexible16>),
 }
 
+/// The node counts of the flexible tether that the bindings dispatch on (each one is its own
+/// fixed-size state type): enough for the refinement study to show convergence, few enough to
+/// keep the number of monomorphised rollouts small.
+pub const TETHER_NODES: [usize; 4] = [2, 4, 8, 16];
+
+/// Runs `$body` with `$plants` bound to the typed plants of a `PlantSpec` and `$d` to their
+/// number of axes (a const usable as a generic argument): the dispatch on the plant.
+macro_rules! with_plants {
+    ($spec:expr, $plants:ident, $d:ident => $body:expr) => {
+        match $spec {
+            PlantSpec::Mars($plants) => {
+                const $d: usize = 3;
+                $body
+            }
+            PlantSpec::DoubleIntegrator($plants) => {
+                const $d: usize = 3;
+                $body
+            }
+            PlantSpec::TetherSimplified($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible2($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible4($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible8($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible16($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_plants;
+
 impl PlantSpec {
-    pub const KINDS: [&'static str; 2] = ["mars_lander", "double_integrator"];
+    pub const KINDS: [&'static str; 3] = ["mars_lander", "double_integrator", "tethered_satellite"];
 
     pub fn axes(&self) -> usize {
         match self {
             Self::Mars(_) | Self::DoubleIntegrator(_) => 3,
+            _ => 2,
         }
     }
+}
+
+/// The tethered satellite's table: `fidelity` ("simplified" or "flexible"), the shared body
+/// (seed Table 1, the orbit, the actuator limits) and, for the flexible model, the tether.
+fn parse_tether(p: &mut Params<'_>) -> Result<PlantSpec, InputError> {
+    let fidelity = p.choice("fidelity", &["simplified", "flexible"])?;
+    let main_mass = p.scalar("main_mass")?;
+    let sub_mass = p.scalar("sub_mass")?;
+    let length = p.scalar("tether_length")?;
+    let side = p.scalar("side")?;
+    let altitude = p.scalar("orbit_altitude")?;
+    let rates = altitude
+        .iter()
+        .map(|&h| orbital_rate(h).map_err(|e| param_error(&e, None)))
+        .collect::<Result<Vec<f64>, _>>()?;
+    let thrust = p.opt_scalar("thrust_limit")?;
+    let torque = p.opt_scalar("torque_limit")?;
+    let body = |i: usize| {
+        let thrust_limit = thrust.as_ref().map_or(f64::INFINITY, |t| pick(t, i));
+        let side = pick(&side, i);
+        TetherBody {
+            main_mass: pick(&main_mass, i),
+            sub_mass: pick(&sub_mass, i),
+            length: pick(&length, i),
+            side,
+            orbital_rate: pick(&rates, i),
+            thrust_limit,
+            // SPEC 3.3: the thrust times the lever arm a/2 unless set
+            torque_limit: torque.as_ref().map_or(0.5 * side * thrust_limit, |t| pick(t, i)),
+        }
+    };
+    if fidelity == "simplified" {
+        let plants = p.build(
+            |i| TetheredSimplified { body: body(i) },
+            |t: &TetheredSimplified| landing_core::plant::Plant::validate(t),
+        )?;
+        return Ok(PlantSpec::TetherSimplified(plants));
+    }
+    let nodes = p.shared_count("nodes", &TETHER_NODES, "nodes in {2, 4, 8, 16}")?;
+    let density = p.scalar("tether_density")?;
+    let stiffness = p.scalar("axial_stiffness")?;
+    let damping = p.scalar("axial_damping")?;
+    fn flexible<const N: usize, const S: usize>(
+        p: &Params<'_>,
+        body: &dyn Fn(usize) -> TetherBody,
+        tether: [&[f64]; 3],
+    ) -> Result<PerCase<TetheredFlexible<N, S>>, InputError> {
+        p.build(
+            |i| TetheredFlexible {
+                body: body(i),
+                density: pick(tether[0], i),
+                axial_stiffness: pick(tether[1], i),
+                axial_damping: pick(tether[2], i),
+            },
+            |t: &TetheredFlexible<N, S>| landing_core::plant::Plant::validate(t),
+        )
+    }
+    let tether = [density.as_slice(), stiffness.as_slice(), damping.as_slice()];
+    Ok(match nodes {
+        2 => PlantSpec::TetherFlexible2(flexible(p, &body, tether)?),
+        4 => PlantSpec::TetherFlexible4(flexible(p, &body, tether)?),
+        8 => PlantSpec::TetherFlexible8(flexible(p, &body, tether)?),
+        _ => PlantSpec::TetherFlexible16(flexible(p, &body, tether)?),
+    })
 }
 
 pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputError> {
@@ -82,6 +200,7 @@ pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputErr
             )?;
             Ok(PlantSpec::DoubleIntegrator(plants))
         }
+        "tethered_satellite" => parse_tether(p),
         other => Err(InputError::Value(format!(
             "unknown plant kind {other:?}; known: {:?}",
             PlantSpec::KINDS
@@ -93,9 +212,17 @@ pub enum LawSpec<const D: usize> {
     FixedTimeMss(PerCase<FixedTimeMss<D>>),
     SuperTwisting(PerCase<SuperTwisting<D>>),
     OpenLoop(PerCase<OpenLoop<D>>),
+    Ntsmc(PerCase<Ntsmc<D>>),
+    FixedTimeNtsmc(PerCase<FixedTimeNtsmc<D>>),
 }
 
-pub const LAW_KINDS: [&str; 3] = ["fixed_time_mss", "super_twisting", "open_loop"];
+pub const LAW_KINDS: [&str; 5] = [
+    "fixed_time_mss",
+    "super_twisting",
+    "open_loop",
+    "ntsmc",
+    "fixed_time_ntsmc",
+];
 
 impl<const D: usize> LawSpec<D> {
     pub fn diagnostic_names(&self) -> &'static [&'static str] {
@@ -103,6 +230,8 @@ impl<const D: usize> LawSpec<D> {
             Self::FixedTimeMss(_) => <FixedTimeMss<D> as ControlLaw<D>>::DIAGNOSTICS,
             Self::SuperTwisting(_) => <SuperTwisting<D> as ControlLaw<D>>::DIAGNOSTICS,
             Self::OpenLoop(_) => <OpenLoop<D> as ControlLaw<D>>::DIAGNOSTICS,
+            Self::Ntsmc(_) => <Ntsmc<D> as ControlLaw<D>>::DIAGNOSTICS,
+            Self::FixedTimeNtsmc(_) => <FixedTimeNtsmc<D> as ControlLaw<D>>::DIAGNOSTICS,
         }
     }
 }
@@ -167,6 +296,68 @@ pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSp
                 ControlLaw::validate,
             )?;
             Ok(LawSpec::OpenLoop(laws))
+        }
+        "ntsmc" => {
+            let alpha = p.axes::<D>("alpha")?;
+            let beta = p.axes::<D>("beta")?;
+            let gamma = p.axes::<D>("gamma")?;
+            let k = p.axes::<D>("k")?;
+            let laws = p.build(
+                |i| Ntsmc {
+                    alpha: pick(&alpha, i),
+                    beta: pick(&beta, i),
+                    gamma: pick(&gamma, i),
+                    k: pick(&k, i),
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::Ntsmc(laws))
+        }
+        "fixed_time_ntsmc" => {
+            let names = [
+                "k1",
+                "k2",
+                "k3",
+                "eps_max",
+                "p1",
+                "p2",
+                "alpha_s",
+                "beta_s",
+                "sigma_phi",
+                "gamma",
+                "rbf_scale_e1",
+                "rbf_scale_e2",
+                "rbf_width",
+            ];
+            let mut g: Vec<Vec<SVector<f64, D>>> = Vec::with_capacity(names.len());
+            for name in names {
+                g.push(p.axes::<D>(name)?);
+            }
+            let nodes = p.shared_count(
+                "rbf_nodes",
+                &[1, 2, 3, 4, 5, 6, 7],
+                "rbf_nodes in 1..=7",
+            )?;
+            let laws = p.build(
+                |i| FixedTimeNtsmc {
+                    k1: pick(&g[0], i),
+                    k2: pick(&g[1], i),
+                    k3: pick(&g[2], i),
+                    eps_max: pick(&g[3], i),
+                    p1: pick(&g[4], i),
+                    p2: pick(&g[5], i),
+                    alpha_s: pick(&g[6], i),
+                    beta_s: pick(&g[7], i),
+                    sigma_phi: pick(&g[8], i),
+                    gamma: pick(&g[9], i),
+                    rbf_nodes: nodes,
+                    rbf_scale_e1: pick(&g[10], i),
+                    rbf_scale_e2: pick(&g[11], i),
+                    rbf_width: pick(&g[12], i),
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::FixedTimeNtsmc(laws))
         }
         other => Err(InputError::Value(format!(
             "unknown controller kind {other:?}; known: {LAW_KINDS:?}"
