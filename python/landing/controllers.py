@@ -157,10 +157,10 @@ class FixedTimeNTSMC(Controller):
     alpha_s: ArrayLike = (0.89, 0.7)
     beta_s: ArrayLike = (1.1, 1.8)
     sigma_phi: ArrayLike = (0.01, 0.001)
-    gamma: ArrayLike = (3700.0, 0.62)
+    gamma: ArrayLike = (3700.0, 0.48)
     rbf_nodes: int = 5
-    rbf_scale_e1: ArrayLike = (math.radians(0.12), math.radians(0.18))
-    rbf_scale_e2: ArrayLike = (0.0045, 0.00027)
-    rbf_width: ArrayLike = (5.9, 1.2)
+    rbf_scale_e1: ArrayLike = (math.radians(0.12), math.radians(2.0))
+    rbf_scale_e2: ArrayLike = (0.0045, 0.00036)
+    rbf_width: ArrayLike = (5.9, 1.4)
 
     kind = "fixed_time_ntsmc"
