@@ -189,6 +189,25 @@ fn the_command_is_eq_22() {
 }
 
 #[test]
+fn the_law_is_symmetric_in_its_two_reaching_exponents() {
+    // Table 2 prints alpha_s and beta_s swapped; swapping them back changes no bit
+    let law = fntsmc(250.0);
+    let swapped = FixedTimeNtsmc {
+        alpha_s: law.beta_s,
+        beta_s: law.alpha_s,
+        ..law
+    };
+    let inp = input([0.015, -0.004], [-1e-3, 0.02], 0.01);
+    let (mut w1, mut w2) = (law.start(&inp), swapped.start(&inp));
+    law.advance(&mut w1, &inp);
+    swapped.advance(&mut w2, &inp);
+    assert_eq!(w1, w2);
+    assert_eq!(law.command(&w1, &inp), swapped.command(&w2, &inp));
+    // (the swapped one is refused by the validation, which follows the text's ranges)
+    assert!(swapped.validate().is_err());
+}
+
+#[test]
 fn validation_follows_the_seeds_ranges() {
     let bad = |f: &dyn Fn(&mut FixedTimeNtsmc<2>)| {
         let mut l = fntsmc(1.0);

@@ -329,19 +329,33 @@ fn check_plant(py: Python<'_>, owner: &str, table: Bound<'_, PyDict>) -> PyResul
     run().map_err(|e| to_pyerr(py, e))
 }
 
-/// Validates a controller table for the axis counts the plants use (3, then 2).
+/// Validates a controller table for the axis counts the plants use (3 and 2): it is valid if
+/// either reading is. A table whose per-axis arrays all have length 2 is read for 2 axes
+/// first, so that an error names the axis (a 2-vector read for 3 axes would be one value per
+/// case of a 2-case batch).
 #[pyfunction]
 fn check_controller(py: Python<'_>, owner: &str, table: Bound<'_, PyDict>) -> PyResult<()> {
     let run = || -> Result<(), InputError> {
         let kind = kind_of(&table, "controller")?;
-        let first = parse_law::<3>(&kind, &mut Params::new(owner, table.clone(), None)).map(|_| ());
-        match first {
-            Err(e) if e.is_shape() => {
-                parse_law::<2>(&kind, &mut Params::new(owner, table.clone(), None))
-                    .map(|_| ())
-                    .map_err(|_| e)
+        let lengths: Vec<usize> = table
+            .values()
+            .iter()
+            .filter_map(|v| v.extract::<numpy::PyReadonlyArrayDyn<'_, f64>>().ok())
+            .filter_map(|a| a.shape().last().copied().filter(|_| !a.shape().is_empty()))
+            .collect();
+        let two_axes = lengths.contains(&2) && !lengths.contains(&3);
+        let parse = |axes: usize| {
+            let mut p = Params::new(owner, table.clone(), None);
+            if axes == 3 {
+                parse_law::<3>(&kind, &mut p).map(|_| ())
+            } else {
+                parse_law::<2>(&kind, &mut p).map(|_| ())
             }
-            other => other,
+        };
+        let (first, second) = if two_axes { (2, 3) } else { (3, 2) };
+        match parse(first) {
+            Err(e) => parse(second).map_err(|_| e),
+            ok => ok,
         }
         .map_err(|e| e.context(owner))
     };
