@@ -225,8 +225,8 @@ TETHER_NODES = 8
 TETHER_SETTLE_TOLERANCE = math.radians(0.02)
 
 #: Rate spread per degree of angle spread in the tether Monte Carlo, rad/s (phi_dot, theta_dot):
-#: a tenth of the rate each angle reaches in the seed manoeuvre (about 1e-3 and 2e-2 rad/s per
-#: degree) times two, so that the rates matter without dominating the angles.
+#: a fifth and a tenth of the peak rates of the FNTSMC's seed manoeuvre (1.1e-3 and 1.9e-2 rad/s
+#: from 1 degree), so that the rates matter without dominating the angles.
 TETHER_RATE_SPREAD = (2e-4, 2e-3)
 
 
@@ -273,7 +273,8 @@ def tether_monte_carlo(spread_deg: float = 10.0, law: str = "fntsmc", fidelity: 
     """Initial angles uniform within +-``spread_deg`` degrees and rates within
     +-``spread_deg`` times TETHER_RATE_SPREAD, the seed comparison otherwise; run it with
     ``landing.monte_carlo(scenario, n)`` and check it with ``landing.theory.check_fntsmc_run``.
-    The horizon grows with the spread (the thrust limit makes large in-plane swings slow)."""
+    The horizon grows with the spread, 40 s per degree rounded up to whole minutes (at least
+    100 s): the thrust limit makes large in-plane swings slow."""
     if not (isinstance(spread_deg, (int, float)) and spread_deg > 0):
         raise ParameterError(f"spread_deg = {spread_deg!r} violates spread_deg > 0")
     hi = np.array([math.radians(spread_deg), math.radians(spread_deg),

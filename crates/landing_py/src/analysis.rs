@@ -95,7 +95,14 @@ pub fn fntsmc_ts_printed(py: Python<'_>, c_v: f64, alpha_s: f64, beta_s: f64) ->
 
 /// Seed 003 eq. 47 as printed (not a bound for eq. 21's exponents; see the core).
 #[pyfunction]
-pub fn fntsmc_td_printed(py: Python<'_>, k1: f64, p1: f64, k2: f64, p2: f64, d: f64) -> PyResult<f64> {
+pub fn fntsmc_td_printed(
+    py: Python<'_>,
+    k1: f64,
+    p1: f64,
+    k2: f64,
+    p2: f64,
+    d: f64,
+) -> PyResult<f64> {
     check(py, theory::fntsmc_td_printed(k1, p1, k2, p2, d))
 }
 
@@ -118,7 +125,9 @@ pub fn fntsmc_bounds<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let b = check(
         py,
-        theory::fntsmc_bounds(k1, p1, k2, p2, k3, alpha_s, beta_s, sigma_phi, tol, d_max, theta),
+        theory::fntsmc_bounds(
+            k1, p1, k2, p2, k3, alpha_s, beta_s, sigma_phi, tol, d_max, theta,
+        ),
     )?;
     let d = PyDict::new(py);
     d.set_item("ts", b.ts)?;

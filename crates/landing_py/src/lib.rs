@@ -22,8 +22,7 @@ use landing_core::control::ControlLaw;
 use landing_core::disturbance::Disturbance;
 use landing_core::integrator::{Euler, IntegratorKind, Rk4};
 use landing_core::plant::tether::{
-    TetheredFlexible2, TetheredFlexible4, TetheredFlexible8, TetheredFlexible16,
-    TetheredSimplified,
+    TetheredFlexible2, TetheredFlexible4, TetheredFlexible8, TetheredFlexible16, TetheredSimplified,
 };
 use landing_core::plant::{DoubleIntegrator, MarsLander, Plant};
 use landing_core::reference::Reference;
@@ -497,8 +496,7 @@ fn plant_info<'py>(
     }
     if let Some(table) = table {
         let mut p = Params::new(format!("plant ({kind})"), table.clone(), None);
-        let spec = parse_plant(kind, &mut p)
-            .map_err(|e| to_pyerr(py, e.context(&p.owner)))?;
+        let spec = parse_plant(kind, &mut p).map_err(|e| to_pyerr(py, e.context(&p.owner)))?;
         fn of<'py, const D: usize, P: Plant<D>>(
             py: Python<'py>,
             _plants: &PerCase<P>,
@@ -514,7 +512,10 @@ fn plant_info<'py>(
         "double_integrator" => info::<3, DoubleIntegrator>(py),
         "tethered_satellite" => Err(to_pyerr(
             py,
-            InputError::Type("plant_info needs the table of a tethered_satellite (its layout depends on it)".into()),
+            InputError::Type(
+                "plant_info needs the table of a tethered_satellite (its layout depends on it)"
+                    .into(),
+            ),
         )),
         other => Err(to_pyerr(
             py,
@@ -547,7 +548,10 @@ fn plant_coordinates<'py>(
             )));
         }
         let view = states.as_array();
-        let (mut q, mut qd) = (Vec::with_capacity(shape[0] * D), Vec::with_capacity(shape[0] * D));
+        let (mut q, mut qd) = (
+            Vec::with_capacity(shape[0] * D),
+            Vec::with_capacity(shape[0] * D),
+        );
         for row in view.outer_iter() {
             let values: Vec<f64> = row.iter().copied().collect();
             let (a, b) = plants.get(0).coordinates(&P::State::from_slice(&values));

@@ -142,7 +142,12 @@ impl<'py> Params<'py> {
 
     /// A count shared by every case (it fixes a type or a size): a whole number in
     /// `allowed`.
-    pub fn shared_count(&mut self, key: &str, allowed: &[usize], rule: &str) -> Result<usize, InputError> {
+    pub fn shared_count(
+        &mut self,
+        key: &str,
+        allowed: &[usize],
+        rule: &str,
+    ) -> Result<usize, InputError> {
         let values = self.scalar(key)?;
         let first = values[0];
         if values.iter().any(|&v| v != first) {
@@ -152,7 +157,9 @@ impl<'py> Params<'py> {
         }
         let n = first as usize;
         if first.fract() != 0.0 || first < 0.0 || !allowed.contains(&n) {
-            return Err(InputError::Value(format!("{key} = {first} violates {rule}")));
+            return Err(InputError::Value(format!(
+                "{key} = {first} violates {rule}"
+            )));
         }
         Ok(n)
     }

@@ -120,7 +120,9 @@ fn parse_tether(p: &mut Params<'_>) -> Result<PlantSpec, InputError> {
             orbital_rate: pick(&rates, i),
             thrust_limit,
             // SPEC 3.3: the thrust times the lever arm a/2 unless set
-            torque_limit: torque.as_ref().map_or(0.5 * side * thrust_limit, |t| pick(t, i)),
+            torque_limit: torque
+                .as_ref()
+                .map_or(0.5 * side * thrust_limit, |t| pick(t, i)),
         }
     };
     if fidelity == "simplified" {
@@ -333,11 +335,8 @@ pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSp
             for name in names {
                 g.push(p.axes::<D>(name)?);
             }
-            let nodes = p.shared_count(
-                "rbf_nodes",
-                &[1, 2, 3, 4, 5, 6, 7],
-                "rbf_nodes in 1..=7",
-            )?;
+            let nodes =
+                p.shared_count("rbf_nodes", &[1, 2, 3, 4, 5, 6, 7], "rbf_nodes in 1..=7")?;
             let laws = p.build(
                 |i| FixedTimeNtsmc {
                     k1: pick(&g[0], i),

@@ -11,9 +11,9 @@ use landing_core::plant::tether::{TetherBody, TetheredFlexible};
 use landing_core::state::State;
 
 use crate::errors::{InputError, to_pyerr};
+use crate::output;
 use crate::params::Params;
 use crate::specs::{PlantSpec, kind_of, parse_plant};
-use crate::output;
 
 fn body_items(d: &Bound<'_, PyDict>, b: &TetherBody) -> PyResult<()> {
     d.set_item("inertia", b.inertia().as_slice().to_vec())?;
@@ -32,7 +32,10 @@ fn flexible_items<const N: usize, const S: usize>(
     d.set_item("nodes", N)?;
     d.set_item("segment_length", first.segment_length())?;
     // the smallest over the cases, so one integrator step serves the whole batch
-    let step = plants.iter().map(|p| p.max_step()).fold(f64::INFINITY, f64::min);
+    let step = plants
+        .iter()
+        .map(|p| p.max_step())
+        .fold(f64::INFINITY, f64::min);
     d.set_item("max_step", step)?;
     Ok(())
 }
@@ -56,23 +59,27 @@ pub fn extras(spec: &PlantSpec, d: &Bound<'_, PyDict>) -> PyResult<()> {
 
 /// Builds a plant's states from rows (phi, theta, phi', theta').
 trait FromAngles: Plant<2> {
-    fn from_angles(&self, a: [f64; 4]) -> Result<Self::State, InputError>;
+    fn state_from_angles(&self, a: [f64; 4]) -> Result<Self::State, InputError>;
 }
 
 impl<const N: usize, const S: usize> FromAngles for TetheredFlexible<N, S> {
-    fn from_angles(&self, a: [f64; 4]) -> Result<Self::State, InputError> {
-        self.state_at(a[0], a[1], a[2], a[3])
-            .map_err(|e| InputError::Value(format!("{} = {} violates {}", e.param, e.value, e.rule)))
+    fn state_from_angles(&self, a: [f64; 4]) -> Result<Self::State, InputError> {
+        self.state_at(a[0], a[1], a[2], a[3]).map_err(|e| {
+            InputError::Value(format!("{} = {} violates {}", e.param, e.value, e.rule))
+        })
     }
 }
 
 impl FromAngles for landing_core::plant::TetheredSimplified {
-    fn from_angles(&self, a: [f64; 4]) -> Result<Self::State, InputError> {
+    fn state_from_angles(&self, a: [f64; 4]) -> Result<Self::State, InputError> {
         Ok(Self::State::from(a))
     }
 }
 
-fn states<P: FromAngles>(plants: &PerCase<P>, rows: &[[f64; 4]]) -> Result<(Vec<f64>, usize), InputError> {
+fn states<P: FromAngles>(
+    plants: &PerCase<P>,
+    rows: &[[f64; 4]],
+) -> Result<(Vec<f64>, usize), InputError> {
     if plants.len() != 1 && plants.len() != rows.len() {
         return Err(InputError::Shape(format!(
             "the plant has {} cases and the angles {} rows",
@@ -84,9 +91,14 @@ fn states<P: FromAngles>(plants: &PerCase<P>, rows: &[[f64; 4]]) -> Result<(Vec<
     let mut out = Vec::with_capacity(rows.len() * nx);
     for (i, r) in rows.iter().enumerate() {
         if let Some(v) = r.iter().find(|v| !v.is_finite()) {
-            return Err(InputError::Value(format!("angles[{i}] = {v} violates finite values")));
+            return Err(InputError::Value(format!(
+                "angles[{i}] = {v} violates finite values"
+            )));
         }
-        let x = plants.get(i).from_angles(*r).map_err(|e| e.context(&format!("row {i}")))?;
+        let x = plants
+            .get(i)
+            .state_from_angles(*r)
+            .map_err(|e| e.context(&format!("row {i}")))?;
         out.extend_from_slice(x.as_slice());
     }
     Ok((out, nx))
