@@ -76,7 +76,7 @@ def main() -> None:
     simple = TetheredSatellite(fidelity="simplified")
     print(row("simplified (rigid dumbbell)", *[metrics(simple, law) for law in laws]))
 
-    print("\n2. Tether properties, one at a time (N = 4)")
+    print("\n2. Tether properties, one at a time (N = 8)")
     cases = {
         "defaults (YES2-class)": {},
         "density 0.35 g/m (SEDS)": dict(tether_density=3.5e-4),
@@ -87,7 +87,7 @@ def main() -> None:
         "c_A 0 (undamped)": dict(axial_damping=0.0),
     }
     for label, kw in cases.items():
-        p = TetheredSatellite(nodes=4, **kw)
+        p = TetheredSatellite(nodes=8, **kw)
         print(row(label, *[metrics(p, law) for law in laws]))
     print(f"\n({time.time() - t0:.0f} s)")
 

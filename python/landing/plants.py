@@ -143,7 +143,8 @@ class TetheredSatellite(Plant):
       its centre; state ``[xs, ys, theta, vxs, vys, omega, x1, y1, vx1, vy1, ...]`` (m, m/s).
       Use :meth:`initial_state` to build states from angles and :meth:`coordinates` to read
       the angles back. Its tether modes are stiff: integrate with ``substeps`` of at least
-      :meth:`substeps_for` (the presets do).
+      :meth:`substeps_for` (the presets do); fewer make the cases diverge (flagged, with a
+      warning).
 
     Parameters
     ----------
@@ -156,7 +157,7 @@ class TetheredSatellite(Plant):
     thrust_limit : limit on the thrust, N (seed: 0.1); None for none.
     torque_limit : limit on the torque, N m; None for ``thrust_limit * side / 2`` (SPEC 3.3).
     nodes : tether nodes of the flexible model, one of 2, 4, 8, 16 (each is its own compiled
-        state size).
+        state size); 8 is within 0.01 s of 16 on the seed comparison (docs/parameters.md).
     tether_density, axial_stiffness, axial_damping : the tether's linear density (kg/m), EA (N)
         and Kelvin-Voigt damping c_A (N s): a YES2-class 0.5 mm Dyneema line
         (docs/parameters.md).
@@ -172,7 +173,7 @@ class TetheredSatellite(Plant):
     orbit_altitude: ArrayLike = 500e3
     thrust_limit: Optional[ArrayLike] = 0.1
     torque_limit: Optional[ArrayLike] = None
-    nodes: int = 4
+    nodes: int = 8
     tether_density: ArrayLike = 1.9e-4
     axial_stiffness: ArrayLike = 1.0e4
     axial_damping: ArrayLike = 5.0
