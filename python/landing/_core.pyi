@@ -51,8 +51,19 @@ def cubic_from_boundary(
 ) -> list[list[float]]:
     """Coefficients c0..c3 (each a list over axes) of the cubic through the boundary states."""
 
-def plant_info(kind: str) -> dict[str, Any]:
-    """state_names, control_names and axes of a plant kind."""
+def plant_info(kind: str, table: Optional[Table] = None) -> dict[str, Any]:
+    """state_names, control_names and axes of a plant kind; with its table (required for a
+    tethered_satellite, whose layout depends on its node count) also, for the tethered
+    satellite, inertia, orbital_rate, thrust_limit, torque_limit, max_step and, for the flexible
+    model, nodes and segment_length."""
+
+def plant_coordinates(
+    table: Table, states: npt.NDArray[np.float64]
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Generalized coordinates q and rates q' (each (M, axes)) of states (M, state dim)."""
+
+def tether_initial_state(table: Table, angles: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """States (M, state dim) of a tethered satellite from rows (phi, theta, phi_dot, theta_dot)."""
 
 def philox4x64(counter: tuple[int, int, int, int], key: tuple[int, int]) -> list[int]:
     """One Philox4x64-10 block (the generator behind every random draw)."""
@@ -106,3 +117,15 @@ def check_fuzzy(table: Table) -> None:
 
 def variable_rate_system_table(resolution: int) -> Table:
     """The seed-002 variable-rate system as a Mamdani table."""
+def fntsmc_ts_printed(c_v: float, alpha_s: float, beta_s: float) -> float:
+    """Seed 003 eq. 42 as printed, as a function of Lemma 2's constant c_v."""
+
+def fntsmc_td_printed(k1: float, p1: float, k2: float, p2: float, d: float) -> float:
+    """Seed 003 eq. 47 as printed (not a bound for eq. 21's exponents)."""
+
+def fntsmc_bounds(
+    k1: float, p1: float, k2: float, p2: float, k3: float, alpha_s: float, beta_s: float,
+    sigma_phi: float, tol: float, d_max: float, theta: float,
+) -> dict[str, float]:
+    """Sound fixed-time bounds of the seed-003 FNTSMC on one axis: ts, s_radius, td, e1_radius,
+    inside_rate, t_inside, total."""

@@ -8,6 +8,7 @@ thrust or torque and saturates it.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -24,6 +25,8 @@ __all__ = [
     "FuzzyFastTerminalSMC",
     "IntegralExponentialReaching",
     "FuzzyVariableRate",
+    "NTSMC",
+    "FixedTimeNTSMC",
 ]
 
 
@@ -232,3 +235,72 @@ class FuzzyVariableRate(Controller):
 
             self.system = variable_rate_system()
         super().__post_init__()
+
+
+@dataclass(eq=False)
+class NTSMC(Controller):
+    """Conventional nonsingular terminal sliding mode, the seed-003 baseline (its eq. 47/48).
+
+    ``s = e1 + (1/beta) sig^(gamma/alpha)(e2)``,
+    ``u = -M (beta (alpha/gamma) sig^(2 - gamma/alpha)(e2) + k sign(s))``, with e1 = q - q_d,
+    e2 = q' - q_d' and M the plant's inertia. Defaults: the seed's alpha = diag(1, 1),
+    beta = diag(0.05, 0.3), gamma = diag(1.07, 1.1), K = diag(0.001, 0.001) for the tethered
+    satellite's (phi, theta); give three values per gain on a 3-axis plant.
+
+    The law is nonsingular by construction: every power is non-negative because
+    ``1 < gamma/alpha < 2`` is required (that range is its singularity guard).
+    """
+
+    alpha: ArrayLike = 1.0
+    beta: ArrayLike = (0.05, 0.3)
+    gamma: ArrayLike = (1.07, 1.1)
+    k: ArrayLike = 0.001
+
+    kind = "ntsmc"
+
+
+@dataclass(eq=False)
+class FixedTimeNTSMC(Controller):
+    """Fixed-time nonsingular terminal sliding mode with RBF compensation (seed 003 eq. 19-24).
+
+    ``s = e2 + k1 zeta1(e1) + k2 zeta2(e1)`` with the piecewise zeta of eq. 21 (``sig^p`` outside
+    ``sigma_phi``, the quadratic matching its value and slope inside: the singularity guard);
+    ``u = -M (k1 zeta1' + k2 zeta2' + k3 (sig^alpha_s(s) + sig^beta_s(s))) - W^T Phi(z)
+    - eps_max sign(s)``; ``W' = gamma Phi N``, ``N = M^-1 k3 (sig^(2 alpha_s - 1)(s) +
+    sig^(2 beta_s - 1)(s))``. Each axis has its own Gaussian network on its normalised errors
+    ``z = (e1 / rbf_scale_e1, e2 / rbf_scale_e2)``, ``rbf_nodes``^2 centres on a grid over
+    [-1, 1]^2 with width ``rbf_width``; its weights start at zero and are the law's state.
+
+    Defaults: the seed's Table 2 for the tethered satellite's (phi, theta), with alpha_s and
+    beta_s in the roles the text gives them (Table 2 prints them swapped; the law is symmetric
+    in the two) and the network of the tuning study (docs/parameters.md).
+
+    Parameters (per axis unless said)
+    ----------
+    k1, k2, k3 : gains (> 0).
+    eps_max : bound of the network's error, in actuator units (N, N m), >= 0.
+    p1, p2 : exponents of zeta1, zeta2: p1 > 1, 0 < p2 < 1.
+    alpha_s, beta_s : exponents of the reaching law, 1/2 < alpha_s < 1 < beta_s.
+    sigma_phi : threshold of the piecewise zeta (> 0), in units of q.
+    gamma : adaptation gain (Gamma = gamma I), >= 0; 0 switches the network off.
+    rbf_nodes : centres per input (1 to 7), shared by the axes and the cases.
+    rbf_scale_e1, rbf_scale_e2 : the errors at the edge of the centre grid.
+    rbf_width : Gaussian width b on the normalised inputs.
+    """
+
+    k1: ArrayLike = (0.08, 0.6)
+    k2: ArrayLike = (0.08, 0.5)
+    k3: ArrayLike = (0.09, 0.8)
+    eps_max: ArrayLike = 1e-4
+    p1: ArrayLike = 1.1
+    p2: ArrayLike = (0.99, 0.6)
+    alpha_s: ArrayLike = (0.89, 0.7)
+    beta_s: ArrayLike = (1.1, 1.8)
+    sigma_phi: ArrayLike = (0.01, 0.001)
+    gamma: ArrayLike = (3700.0, 0.48)
+    rbf_nodes: int = 5
+    rbf_scale_e1: ArrayLike = (math.radians(0.12), math.radians(2.0))
+    rbf_scale_e2: ArrayLike = (0.0045, 0.00036)
+    rbf_width: ArrayLike = (5.9, 1.4)
+
+    kind = "fixed_time_ntsmc"

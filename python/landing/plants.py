@@ -6,16 +6,18 @@ with one entry per case of the batch, or ``(N, 3)`` for per-axis ones).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
-from typing import ClassVar, Optional
+from typing import Any, ClassVar, Literal, Optional
 
 import numpy as np
 
 from landing import _core
 from landing._table import ArrayLike, Table
+from landing.errors import ParameterError
 from landing.gravity import Gravity, TwoPointMass
 
-__all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody"]
+__all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSatellite"]
 
 
 class Plant(Table):
@@ -24,22 +26,40 @@ class Plant(Table):
     def __post_init__(self) -> None:
         _core.check_plant(type(self).__name__, self._table())
 
+    def _info(self) -> dict[str, Any]:
+        return _core.plant_info(self.kind)
+
     @property
     def state_names(self) -> tuple[str, ...]:
-        return tuple(_core.plant_info(self.kind)["state_names"])
+        return tuple(self._info()["state_names"])
 
     @property
     def control_names(self) -> tuple[str, ...]:
-        return tuple(_core.plant_info(self.kind)["control_names"])
+        return tuple(self._info()["control_names"])
 
     @property
     def axes(self) -> int:
         """Number of generalized coordinates (and of command components)."""
-        return int(_core.plant_info(self.kind)["axes"])
+        return int(self._info()["axes"])
 
     @property
     def state_dim(self) -> int:
         return len(self.state_names)
+
+    def coordinates(self, states: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The generalized coordinates q and rates q' the laws read, computed by the core from
+        states ``(..., n_state)`` (e.g. ``result.states``): two arrays ``(..., axes)``."""
+        x = np.ascontiguousarray(np.asarray(states, dtype=np.float64))
+        if x.ndim == 0 or x.shape[-1] != self.state_dim:
+            raise ParameterError(f"states have shape {x.shape}; this plant's have {self.state_dim} components")
+        q, qd = _core.plant_coordinates(self._table(), x.reshape(-1, x.shape[-1]))
+        lead = x.shape[:-1]
+        return q.reshape(lead + (q.shape[-1],)), qd.reshape(lead + (qd.shape[-1],))
+
+    def states_from_draws(self, draws: np.ndarray) -> np.ndarray:
+        """Initial states from what a dispersion draws; the draws are the states themselves
+        unless the plant says otherwise (the flexible tether draws its angles and rates)."""
+        return draws
 
 
 @dataclass(eq=False)
@@ -119,3 +139,104 @@ class SmallBody(Plant):
     acceleration_limit: Optional[ArrayLike] = None
 
     kind: ClassVar[str] = "small_body"
+
+
+@dataclass(eq=False)
+class TetheredSatellite(Plant):
+    """The space-tethered satellite in its orbital plane (seed 003, SPEC 3.3).
+
+    Generalized coordinates ``q = (phi, theta)``: the in-plane angle of the line from the main
+    satellite to the sub-satellite's centre (from nadir) and the sub-satellite's attitude, both
+    in the orbital (Hill) frame, rad. Commands: the in-plane thrust (N, on the sub-satellite,
+    perpendicular to that line) and the attitude torque (N m), each saturated. The controller
+    sees the seed's inertia ``M = diag(mu L0, m_s a^2/6)`` (eq. 17 in the actuators' units,
+    mu the reduced mass) and no other model term.
+
+    Two fidelities share that interface:
+
+    - ``"simplified"``: the rigid dumbbell of seed eq. 17 with its unknown terms written out
+      (gravity gradient, tension torque); state ``[phi, theta, phi_dot, theta_dot]``.
+    - ``"flexible"``: the validation plant: the tether as ``nodes`` lumped masses joined by
+      tension-only Kelvin-Voigt spring-dampers, gravity gradient and Coriolis terms of the Hill
+      frame on every node, a rigid cube sub-satellite pulled at its attachment point a/2 from
+      its centre; state ``[xs, ys, theta, vxs, vys, omega, x1, y1, vx1, vy1, ...]`` (m, m/s).
+      Use :meth:`initial_state` to build states from angles and :meth:`coordinates` to read
+      the angles back. Its tether modes are stiff: integrate with ``substeps`` of at least
+      :meth:`substeps_for` (the presets do); fewer make the cases diverge (flagged, with a
+      warning).
+
+    Parameters
+    ----------
+    fidelity : ``"simplified"`` or ``"flexible"``.
+    main_mass, sub_mass : m_m and m_s, kg (seed Table 1: 1000, 10).
+    tether_length : L0, m (seed: 100).
+    side : a, the sub-satellite cube's side, m (seed: 1); the tether is attached a/2 from its
+        centre.
+    orbit_altitude : altitude of the main satellite's circular orbit, m (seed: 500 km).
+    thrust_limit : limit on the thrust, N (seed: 0.1); None for none.
+    torque_limit : limit on the torque, N m; None for ``thrust_limit * side / 2`` (SPEC 3.3).
+    nodes : tether nodes of the flexible model, one of 2, 4, 8, 16 (each is its own compiled
+        state size); 8 is within 0.01 s of 16 on the seed comparison (docs/parameters.md).
+    tether_density, axial_stiffness, axial_damping : the tether's linear density (kg/m), EA (N)
+        and Kelvin-Voigt damping c_A (N s): a YES2-class 0.5 mm Dyneema line
+        (docs/parameters.md).
+
+    Any numeric parameter but ``nodes`` may be given per case.
+    """
+
+    fidelity: Literal["simplified", "flexible"] = "flexible"
+    main_mass: ArrayLike = 1000.0
+    sub_mass: ArrayLike = 10.0
+    tether_length: ArrayLike = 100.0
+    side: ArrayLike = 1.0
+    orbit_altitude: ArrayLike = 500e3
+    thrust_limit: Optional[ArrayLike] = 0.1
+    torque_limit: Optional[ArrayLike] = None
+    nodes: int = 8
+    tether_density: ArrayLike = 1.9e-4
+    axial_stiffness: ArrayLike = 1.0e4
+    axial_damping: ArrayLike = 5.0
+
+    kind: ClassVar[str] = "tethered_satellite"
+
+    def _info(self) -> dict[str, Any]:
+        return _core.plant_info(self.kind, self._table())
+
+    @property
+    def inertia(self) -> np.ndarray:
+        """The controller's M = (mu L0, m_s a^2 / 6) (of the first case)."""
+        return np.asarray(self._info()["inertia"])
+
+    @property
+    def orbital_rate(self) -> float:
+        """Mean motion n of the orbit, rad/s (of the first case)."""
+        return float(self._info()["orbital_rate"])
+
+    @property
+    def max_step(self) -> float:
+        """Largest stable RK4 step of the tether's fastest mode over the cases, s (infinite for
+        the simplified model)."""
+        return float(self._info()["max_step"])
+
+    def substeps_for(self, dt: float) -> int:
+        """The fewest RK4 substeps per control period ``dt`` that keep the tether stable."""
+        step = self.max_step
+        return 1 if math.isinf(step) else max(1, math.ceil(dt / step))
+
+    def initial_state(self, phi: ArrayLike, theta: ArrayLike, phi_dot: ArrayLike = 0.0,
+                      theta_dot: ArrayLike = 0.0) -> np.ndarray:
+        """States at the given angles (rad) and rates (rad/s), broadcast together: ``(n_state,)``
+        for scalars, ``(..., n_state)`` otherwise. The flexible tether is laid straight and
+        stretched by the rigid dumbbell's tension, every point turning with the line."""
+        a = np.broadcast_arrays(*[np.asarray(v, dtype=np.float64) for v in (phi, theta, phi_dot, theta_dot)])
+        shape = a[0].shape
+        rows = np.ascontiguousarray(np.stack([v.reshape(-1) for v in a], axis=1))
+        x = _core.tether_initial_state(self._table(), rows)
+        return x.reshape(shape + (x.shape[-1],))
+
+    def states_from_draws(self, draws: np.ndarray) -> np.ndarray:
+        """A dispersion of a tethered satellite draws ``(phi, theta, phi_dot, theta_dot)``."""
+        d = np.asarray(draws, dtype=np.float64)
+        if d.shape[-1] == 4:
+            return self.initial_state(d[..., 0], d[..., 1], d[..., 2], d[..., 3])
+        return d

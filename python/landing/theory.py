@@ -11,6 +11,10 @@ each case that violates it:
 - :func:`check_mss`: a recorded run of :class:`~landing.controllers.FixedTimeMSS` against its
   practical neighbourhoods and times (Theorem 4).
 - :func:`min_final_time`: seed Remark 1.
+- :func:`fntsmc_bounds` (seed 003 Theorem 1, made sound) with :func:`check_fntsmc_bound` (the
+  law on a double integrator, where its derivation holds exactly) and
+  :func:`check_fntsmc_run` (a recorded tethered-satellite run); the printed eq. 42 and 47 are
+  :func:`fntsmc_ts_printed` and :func:`fntsmc_td_printed`.
 
 A scalar reaching law is simulated where the library realises it: the exact variant of
 FixedTimeMSS on a :class:`~landing.plants.DoubleIntegrator` makes its second sliding variable
@@ -27,7 +31,7 @@ from typing import Any, Optional
 import numpy as np
 
 from landing import _core
-from landing.controllers import FixedTimeMSS
+from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
 from landing.disturbances import DisturbanceLike, Sinusoid, as_table
 from landing.errors import ParameterError
 from landing.plants import DoubleIntegrator
@@ -49,6 +53,12 @@ __all__ = [
     "check_fixed_time_bound",
     "check_practical_bound",
     "check_mss",
+    "FNTSMCBounds",
+    "fntsmc_bounds",
+    "fntsmc_ts_printed",
+    "fntsmc_td_printed",
+    "check_fntsmc_bound",
+    "check_fntsmc_run",
 ]
 
 
@@ -352,3 +362,177 @@ def check_mss(result: SimulationResult, bounds: MSSBounds) -> dict[str, BoundChe
             extra={"checkable": np.asarray(bound <= t[-1]), "final": np.abs(sig[:, -1, :])},
         )
     return out
+
+
+# Seed 003: the fixed-time NTSMC with RBF compensation (law 9).
+
+_FNTSMC_GAINS = ("k1", "p1", "k2", "p2", "k3", "alpha_s", "beta_s", "sigma_phi")
+
+
+def fntsmc_ts_printed(c_v, alpha_s, beta_s):
+    """Seed 003 eq. 42 as printed, ``2/(c_v (z4 - 1)) + 2/(c_v (1 - z3))`` with
+    ``z3 = (3 alpha_s - 1)/(2 alpha_s)``, ``z4 = (3 beta_s - 1)/(2 beta_s)`` (the seed's
+    degrees). The seed never gives Lemma 2's ``c_v``, so this is a function of it. Arrays
+    broadcast."""
+    return _vectorized(_core.fntsmc_ts_printed, c_v, alpha_s, beta_s)
+
+
+def fntsmc_td_printed(k1, p1, k2, p2, d=0.5):
+    """Seed 003 eq. 47 as printed, ``2/(d g1 (1 - p1)) + 2/(d g2 (p2 - 1))`` with
+    ``g1 = 2^((p1+1)/2) k1``, ``g2 = 2^((p2+1)/2) (k2 - 1/(p2+1))``. Not a bound for the law:
+    Lemma 4 needs p1 < 1 < p2 and g2 > 0, eq. 21 and Table 2 have p1 > 1 > p2 and g2 < 0 (see
+    :func:`fntsmc_bounds`). Returned as printed, whatever its sign. Arrays broadcast."""
+    return _vectorized(_core.fntsmc_td_printed, k1, p1, k2, p2, d)
+
+
+@dataclass(frozen=True)
+class FNTSMCBounds:
+    """Seed 003 Theorem 1 made sound, per axis (shape (D,), or (N, D) for per-case gains).
+
+    ts : time for s to reach its neighbourhood s_radius (eq. 42's role), from any state.
+    td : then, time for |e1| to reach max(sigma_phi, e1_radius) (eq. 47's role).
+    t_inside : then, time to reach ``tol`` inside sigma_phi, where e1 decays at least at
+        ``inside_rate`` (the fixed-time part of the law ends at sigma_phi by design).
+    total : ts + td + t_inside: from then on |e1| <= tol, whatever the initial state.
+    printed_td : eq. 47 as printed with ``d`` (not a bound; kept for the record).
+    With ``d_max = 0`` (no disturbance of the s dynamics) the radii are 0 and the times are
+    the nominal fixed-time bounds; with ``d_max > 0`` they are the practical ones (times
+    divided by ``theta``). The law's derivation assumes an unsaturated actuator.
+    """
+
+    ts: np.ndarray
+    s_radius: np.ndarray
+    td: np.ndarray
+    e1_radius: np.ndarray
+    inside_rate: np.ndarray
+    t_inside: np.ndarray
+    total: np.ndarray
+    printed_td: np.ndarray
+    tol: np.ndarray
+    d_max: np.ndarray
+    theta: float
+    d: float
+
+    def __str__(self) -> str:
+        def fmt(a) -> str:
+            return np.array2string(np.asarray(a), precision=4, floatmode="maxprec")
+
+        return (
+            f"FNTSMCBounds(tol={fmt(self.tol)}, d_max={fmt(self.d_max)}, theta={self.theta})\n"
+            f"  T_s, s reaches {fmt(self.s_radius)}         {fmt(self.ts)} s\n"
+            f"  T_d, |e1| reaches max(sigma_phi, {fmt(self.e1_radius)})  {fmt(self.td)} s\n"
+            f"  then |e1| reaches tol at rate {fmt(self.inside_rate)} 1/s  {fmt(self.t_inside)} s\n"
+            f"  total                                 {fmt(self.total)} s\n"
+            f"  eq. 47 as printed (d = {self.d}, not a bound)  {fmt(self.printed_td)} s"
+        )
+
+
+def _law_gains(law: FixedTimeNTSMC, names: tuple[str, ...], axes: Optional[int]) -> list[np.ndarray]:
+    gains = [np.asarray(getattr(law, n), dtype=float) for n in names]
+    if axes is None:
+        sizes = {g.shape[-1] for g in gains if g.ndim >= 1 and g.shape[-1] > 1}
+        axes = sizes.pop() if len(sizes) == 1 else 2
+    return [np.broadcast_to(g, np.broadcast_shapes(g.shape, (axes,))) if g.ndim <= 1 else g for g in gains]
+
+
+def fntsmc_bounds(law: FixedTimeNTSMC, tol: Any, *, d_max: Any = 0.0, theta: float = 0.5, d: float = 0.5,
+                  axes: Optional[int] = None) -> FNTSMCBounds:
+    """Sound fixed-time bounds of a :class:`~landing.controllers.FixedTimeNTSMC` per axis
+    (seed 003 Theorem 1): after ``total`` seconds ``|e1_i| <= tol_i`` from any initial state,
+    when the lumped disturbance of the s dynamics, ``M^-1 (f - W^T Phi - eps_max sign s)``, is
+    bounded by ``d_max`` (0: the theorem's nominal case) and the actuator does not saturate.
+
+    ``axes`` defaults to the gains' length (2 for the tethered satellite's defaults)."""
+    if not isinstance(law, FixedTimeNTSMC):
+        raise ParameterError(f"fntsmc_bounds takes a FixedTimeNTSMC law, got {type(law).__name__}")
+    gains = _law_gains(law, _FNTSMC_GAINS, axes)
+    args = np.broadcast_arrays(*gains, np.asarray(tol, dtype=float), np.asarray(d_max, dtype=float))
+    shape = args[0].shape
+    keys = ("ts", "s_radius", "td", "e1_radius", "inside_rate", "t_inside", "total")
+    out = {k: np.empty(shape) for k in keys}
+    printed = np.empty(shape)
+    for idx in np.ndindex(shape):
+        k1, p1, k2, p2, k3, a_s, b_s, sg, tl, dm = (float(a[idx]) for a in args)
+        b = _core.fntsmc_bounds(k1, p1, k2, p2, k3, a_s, b_s, sg, tl, dm, float(theta))
+        for k in keys:
+            out[k][idx] = b[k]
+        printed[idx] = _core.fntsmc_td_printed(k1, p1, k2, p2, float(d))
+    return FNTSMCBounds(**out, printed_td=printed, tol=args[-2], d_max=args[-1], theta=float(theta), d=float(d))
+
+
+def _axis_law(law: FixedTimeNTSMC, axis: int) -> FixedTimeNTSMC:
+    """The gains of one axis of ``law`` on every axis, the network and the switching term off:
+    the law of Theorem 1's nominal case."""
+    names = _FNTSMC_GAINS + ("rbf_scale_e1", "rbf_scale_e2", "rbf_width")
+    gains = _law_gains(law, names, None)
+    if any(g.ndim > 1 for g in gains):
+        raise ParameterError("check_fntsmc_bound takes a law with the same gains for every case")
+    kw = {n: float(g[axis]) for n, g in zip(names, gains)}
+    return FixedTimeNTSMC(**kw, eps_max=0.0, gamma=0.0, rbf_nodes=1)
+
+
+def check_fntsmc_bound(law: FixedTimeNTSMC, pairs: Any, *, axis: int = 0, tol: float = 1e-6,
+                       dt: Optional[float] = None) -> dict[str, BoundCheck]:
+    """Simulate the FNTSMC with the gains of ``axis`` on a :class:`~landing.plants.DoubleIntegrator`
+    (unit inertia, no drift, no saturation, network and switching term off: where the seed's
+    derivation holds exactly) from initial errors ``pairs`` ((M, 2): e1, e2) and compare with
+    :func:`fntsmc_bounds`:
+
+    - ``"s"``: the first time |s| <= s_tol against ``ts``;
+    - ``"e1"``: the time from which |e1| <= tol against ``total``.
+
+    The sampled law cannot bring s closer to 0 than its chattering band
+    ``(k3 dt)^(1/(1 - alpha_s))`` (:func:`chattering_band`), nor e1 closer than that band over
+    the inside rate: ``s_tol`` and ``tol`` are raised to ten times those if larger. ``dt``
+    defaults to a period at which the held command is stable from the largest initial s."""
+    one = _axis_law(law, axis)
+    g = {n: float(getattr(one, n)) for n in _FNTSMC_GAINS}
+    e = np.asarray(pairs, dtype=float).reshape(-1, 2)
+    zeta = lambda x, p: np.sign(x) * np.abs(x) ** p  # noqa: E731 (outside sigma, the bound's regime)
+    s0 = e[:, 1] + g["k1"] * zeta(e[:, 0], g["p1"]) + g["k2"] * zeta(e[:, 0], g["p2"])
+    if dt is None:
+        rate = g["k3"] * g["beta_s"] * max(float(np.abs(s0).max()), 1.0) ** (g["beta_s"] - 1.0)
+        rate += g["k1"] * g["p1"] * max(float(np.abs(e[:, 0]).max()), 1.0) ** (g["p1"] - 1.0)
+        dt = float(min(1e-3, 0.1 / rate))
+    band = chattering_band(g["k3"], g["alpha_s"], dt)
+    s_tol = max(1e-6, 10.0 * band)
+    nominal = fntsmc_bounds(one, 1.0, axes=1)
+    tol = max(tol, 10.0 * band / float(nominal.inside_rate[0]))
+    b = fntsmc_bounds(one, tol, axes=1)
+    bound_total, bound_s = float(b.total[0]), float(b.ts[0])
+    # three pairs per double-integrator case, the last one repeated to fill the axes
+    m = e.shape[0]
+    cases = -(-m // 3)
+    padded = np.concatenate([e, np.repeat(e[-1:], 3 * cases - m, axis=0)])
+    x0 = np.concatenate([padded[:, 0].reshape(cases, 3), padded[:, 1].reshape(cases, 3)], axis=1)
+    res = simulate_batch(DoubleIntegrator(), one, x0, t_final=_horizon(dt, 1.2 * bound_total), dt=dt,
+                         record_every=max(1, int(round(0.01 / dt))))
+    s = res.diagnostics["s"]
+    reach_s = entry_time(res.t, s, s_tol).reshape(-1)[:m]
+    settle_e1 = settle_time(res.t, res.states[:, :, :3], tol).reshape(-1)[:m]
+    return {
+        "s": BoundCheck(name=f"|s| <= {s_tol:.3g} within T_s = {bound_s:.4g} s", bound=np.full(m, bound_s),
+                        measured=reach_s, extra={"tolerance": np.asarray(s_tol), "dt": np.asarray(dt)}),
+        "e1": BoundCheck(name=f"|e1| <= {tol:.3g} from T_s + T_d + T_inside = {bound_total:.4g} s on",
+                         bound=np.full(m, bound_total), measured=settle_e1,
+                         extra={"tolerance": np.asarray(tol), "bounds": b}),
+    }
+
+
+def check_fntsmc_run(result: SimulationResult, plant: Any, bounds: FNTSMCBounds) -> BoundCheck:
+    """A recorded run of a plant (e.g. the tethered satellite) under the FNTSMC against
+    ``bounds``: per case and axis, the time from which |q_i - 0| stays within ``bounds.tol``
+    (NaN if it is outside at the end) against ``bounds.total``. The reference must be the
+    origin (the seed's q_d = 0)."""
+    q, _ = plant.coordinates(result.states)
+    if q.ndim == 2:
+        q = q[None]
+    measured = settle_time(result.t, q, np.asarray(bounds.tol))
+    bound = np.broadcast_to(bounds.total, measured.shape)
+    return BoundCheck(
+        name=f"|q_i| <= {np.array2string(np.asarray(bounds.tol), precision=4)} from "
+             f"{np.array2string(np.asarray(bounds.total), precision=4)} s on",
+        bound=bound,
+        measured=measured,
+        extra={"checkable": np.asarray(bound <= result.t[-1])},
+    )

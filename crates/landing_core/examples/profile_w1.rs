@@ -11,7 +11,10 @@ use landing_core::integrator::Rk4;
 use landing_core::workloads::mars_w1;
 
 fn main() {
-    let cases = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(100);
+    let cases = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(100);
     let batch = mars_w1(cases, 2024);
     let cfg = SimConfig::new(10.0, 1e-3, 1, 0, 0).unwrap();
     let start = Instant::now();

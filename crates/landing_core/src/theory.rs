@@ -268,6 +268,148 @@ fn smallest_positive_root(a: f64, b: f64, c: f64) -> f64 {
     best
 }
 
+// Seed 003: the fixed-time NTSMC with RBF compensation (law 9), Theorem 1.
+
+fn check_fntsmc_exponents(p1: f64, p2: f64, alpha_s: f64, beta_s: f64) -> Result<(), ParamError> {
+    require(p1 > 1.0, "p1", p1, "p1 > 1")?;
+    require(p2 > 0.0 && p2 < 1.0, "p2", p2, "0 < p2 < 1")?;
+    require(
+        alpha_s > 0.5 && alpha_s < 1.0,
+        "alpha_s",
+        alpha_s,
+        "1/2 < alpha_s < 1",
+    )?;
+    require(beta_s > 1.0, "beta_s", beta_s, "beta_s > 1")
+}
+
+/// Seed 003 eq. 42 as printed: `T_s <= 2 / (c_v (z4 - 1)) + 2 / (c_v (1 - z3))` with
+/// `z3 = (d_V0 + d_0) / d_V0`, `z4 = (d_Vinf + d_inf) / d_Vinf`. The seed gives
+/// `d_V0 = 2 alpha_s`, `d_Vinf = 2 beta_s`; the degrees of the limit fields `-K3 sig^alpha_s`,
+/// `-K3 sig^beta_s` (weight 1) are `alpha_s - 1` and `beta_s - 1`, so
+/// `z3 = (3 alpha_s - 1) / (2 alpha_s)` and `z4 = (3 beta_s - 1) / (2 beta_s)`. The constant
+/// `c_v` of Lemma 2 is never given ("selecting the suitable c_v"), so the printed bound cannot
+/// be evaluated from the seed alone; it is a function of `c_v` here. K3 does not appear in it.
+pub fn fntsmc_ts_printed(c_v: f64, alpha_s: f64, beta_s: f64) -> Result<f64, ParamError> {
+    require(c_v > 0.0, "c_v", c_v, "c_v > 0")?;
+    require(
+        alpha_s > 0.5 && alpha_s < 1.0,
+        "alpha_s",
+        alpha_s,
+        "1/2 < alpha_s < 1",
+    )?;
+    require(beta_s > 1.0, "beta_s", beta_s, "beta_s > 1")?;
+    let z3 = (3.0 * alpha_s - 1.0) / (2.0 * alpha_s);
+    let z4 = (3.0 * beta_s - 1.0) / (2.0 * beta_s);
+    Ok(2.0 / (c_v * (z4 - 1.0)) + 2.0 / (c_v * (1.0 - z3)))
+}
+
+/// Seed 003 eq. 47 as printed: `T_d <= 2 / (d g1 (1 - p1)) + 2 / (d g2 (p2 - 1))` with
+/// `g1 = 2^((p1+1)/2) K1`, `g2 = 2^((p2+1)/2) (K2 - 1/(p2+1))` (eq. 45), `0 < d < 1`.
+///
+/// It is not a bound for the law of eq. 21. Lemma 4 needs `0 < (p1+1)/2 < 1 < (p2+1)/2`, i.e.
+/// p1 < 1 < p2, while eq. 21 asks p1 > 1 > p2 (and Table 2 follows eq. 21): both terms change
+/// sign. It also needs g2 > 0, i.e. K2 > 1/(p2+1), which Table 2 breaks on both axes
+/// (0.08 < 0.50, 0.5 < 0.63). The value is returned as printed, whatever its sign, so that the
+/// reproduction can show it; [`fntsmc_bounds`] is the sound bound.
+pub fn fntsmc_td_printed(k1: f64, p1: f64, k2: f64, p2: f64, d: f64) -> Result<f64, ParamError> {
+    require(k1 > 0.0, "k1", k1, "k1 > 0")?;
+    require(k2 > 0.0, "k2", k2, "k2 > 0")?;
+    require(p1 > 0.0 && p1 != 1.0, "p1", p1, "p1 > 0, p1 != 1")?;
+    require(p2 > 0.0 && p2 != 1.0, "p2", p2, "p2 > 0, p2 != 1")?;
+    require(d > 0.0 && d < 1.0, "d", d, "0 < d < 1")?;
+    let g1 = 2f64.powf((p1 + 1.0) / 2.0) * k1;
+    let g2 = 2f64.powf((p2 + 1.0) / 2.0) * (k2 - 1.0 / (p2 + 1.0));
+    Ok(2.0 / (d * g1 * (1.0 - p1)) + 2.0 / (d * g2 * (p2 - 1.0)))
+}
+
+/// Sound fixed-time bounds of the FNTSMC on one axis (see [`fntsmc_bounds`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FntsmcBounds {
+    /// Time for s to reach its neighbourhood (0 without disturbance): the reaching law
+    /// `s' = -K3 (sig^alpha_s(s) + sig^beta_s(s)) + Delta`, Lemma 2 (k = 1) on V = s^2/2.
+    pub ts: f64,
+    /// Neighbourhood of s under |Delta| <= d_max.
+    pub s_radius: f64,
+    /// Time for |e1| to come within max(sigma_phi, e1_radius) once s is in its neighbourhood:
+    /// outside sigma_phi, `e1' = -K2 sig^p2(e1) - K1 sig^p1(e1) + s` is the same reaching law.
+    pub td: f64,
+    /// Neighbourhood of e1 (outside sigma_phi) under |s| <= s_radius.
+    pub e1_radius: f64,
+    /// Inside sigma_phi, `|e1|' <= -rate |e1| + |s|`: the smallest of (K1 zeta1 + K2 zeta2)/e1.
+    pub inside_rate: f64,
+    /// Time from sigma_phi to the tolerance at that rate (infinite if the tolerance is below
+    /// what |s| <= s_radius lets e1 reach).
+    pub t_inside: f64,
+    /// ts + td + t_inside: |e1| stays within the tolerance from then on.
+    pub total: f64,
+}
+
+/// Seed 003 Theorem 1 made sound, for one axis of the FNTSMC on a plant where the law holds
+/// as derived (`M q'' = u + f`, no saturation) and the lumped disturbance of the s dynamics,
+/// `Delta = M^-1 (f - W^T Phi - eps_max sign(s))`, is bounded by `d_max`.
+///
+/// With `d_max = 0` these are the fixed-time bounds the theorem claims, from Lemma 2 as in
+/// seed 001 (`fixed_time_bound`): `ts` for s to reach 0, then `td` for |e1| to reach
+/// sigma_phi, then `t_inside` to reach `tol` (e1 decays at least exponentially inside
+/// sigma_phi: the fixed-time part of the law ends there, by design of eq. 21). With
+/// `d_max > 0`, Theorem 1 of seed 001 with the splitting constant theta gives the practical
+/// neighbourhoods and `/ theta` times.
+#[allow(clippy::too_many_arguments)]
+pub fn fntsmc_bounds(
+    k1: f64,
+    p1: f64,
+    k2: f64,
+    p2: f64,
+    k3: f64,
+    alpha_s: f64,
+    beta_s: f64,
+    sigma_phi: f64,
+    tol: f64,
+    d_max: f64,
+    theta: f64,
+) -> Result<FntsmcBounds, ParamError> {
+    require(k1 > 0.0, "k1", k1, "k1 > 0")?;
+    require(k2 > 0.0, "k2", k2, "k2 > 0")?;
+    require(k3 > 0.0, "k3", k3, "k3 > 0")?;
+    check_fntsmc_exponents(p1, p2, alpha_s, beta_s)?;
+    require(sigma_phi > 0.0, "sigma_phi", sigma_phi, "sigma_phi > 0")?;
+    require(tol > 0.0, "tol", tol, "tol > 0")?;
+    require(d_max >= 0.0, "d_max", d_max, "d_max >= 0")?;
+    check_theta(theta)?;
+    let reach_s = fixed_time_bound(k3, alpha_s, k3, beta_s)?;
+    let reach_e = fixed_time_bound(k2, p2, k1, p1)?;
+    // (K1 zeta1 + K2 zeta2) / e1 over 0 < |e1| <= sigma: l + m |e1| lies between l and
+    // l + m sigma = sigma^(p-1)
+    let floor =
+        |k: f64, p: f64| k * ((2.0 - p) * sigma_phi.powf(p - 1.0)).min(sigma_phi.powf(p - 1.0));
+    let rate = floor(k1, p1) + floor(k2, p2);
+    let (ts, s_radius, td, e1_radius, shrink) = if d_max == 0.0 {
+        (reach_s, 0.0, reach_e, 0.0, 1.0)
+    } else {
+        let s_radius = practical_radius(k3, alpha_s, k3, beta_s, d_max, theta)?;
+        let e1_radius = practical_radius(k2, p2, k1, p1, s_radius, theta)?;
+        (reach_s / theta, s_radius, reach_e / theta, e1_radius, theta)
+    };
+    // after ts + td, |e1| <= max(sigma_phi, e1_radius); inside sigma_phi,
+    // |e1|' <= -rate |e1| + s_radius <= -shrink rate |e1| while (1 - shrink) rate |e1| >= s_radius
+    let t_inside = if tol >= sigma_phi.max(e1_radius) {
+        0.0
+    } else if e1_radius > sigma_phi || rate <= 0.0 || (1.0 - shrink) * rate * tol < s_radius {
+        f64::INFINITY
+    } else {
+        (sigma_phi / tol).ln() / (shrink * rate)
+    };
+    Ok(FntsmcBounds {
+        ts,
+        s_radius,
+        td,
+        e1_radius,
+        inside_rate: rate,
+        t_inside,
+        total: ts + td + t_inside,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -339,5 +481,47 @@ mod tests {
         assert_eq!(e.param, "q1");
         let e = mss_bounds(0.8, 0.9, 0.4, 1.05, 0.9, 0.9, 0.5, 1.1, 20.0, 1.2, 0.1).unwrap_err();
         assert_eq!(e.param, "theta1");
+    }
+
+    #[test]
+    fn fntsmc_bounds_compose_the_reaching_laws() {
+        // Table 2, attitude axis (alpha_s, beta_s in the text's roles)
+        let b = fntsmc_bounds(0.6, 1.1, 0.5, 0.6, 0.8, 0.7, 1.8, 0.001, 1e-5, 0.0, 0.5).unwrap();
+        assert_eq!(b.ts, fixed_time_bound(0.8, 0.7, 0.8, 1.8).unwrap());
+        assert_eq!(b.td, fixed_time_bound(0.5, 0.6, 0.6, 1.1).unwrap());
+        // inside sigma: K1 (2 - p1) sigma^(p1-1) + K2 sigma^(p2-1)
+        let rate = 0.6 * 0.9 * 0.001f64.powf(0.1) + 0.5 * 0.001f64.powf(-0.4);
+        assert!((b.inside_rate - rate).abs() < 1e-12 * rate);
+        assert!((b.t_inside - (100.0f64).ln() / rate).abs() < 1e-12);
+        assert_eq!(b.total, b.ts + b.td + b.t_inside);
+        // a disturbance stretches the times by 1/theta and opens neighbourhoods
+        let p = fntsmc_bounds(0.6, 1.1, 0.5, 0.6, 0.8, 0.7, 1.8, 0.001, 1e-3, 1e-3, 0.5).unwrap();
+        assert_eq!(p.ts, 2.0 * b.ts);
+        assert!(p.s_radius > 0.0 && p.e1_radius > 0.0 && p.t_inside == 0.0);
+        // a tolerance below what the disturbed s allows is never guaranteed
+        let q = fntsmc_bounds(0.6, 1.1, 0.5, 0.6, 0.8, 0.7, 1.8, 0.001, 1e-9, 1e-3, 0.5).unwrap();
+        assert_eq!(q.total, f64::INFINITY);
+        let e =
+            fntsmc_bounds(0.6, 0.9, 0.5, 0.6, 0.8, 0.7, 1.8, 0.001, 1e-5, 0.0, 0.5).unwrap_err();
+        assert_eq!((e.param, e.rule), ("p1", "p1 > 1"));
+    }
+
+    #[test]
+    fn fntsmc_printed_bounds_as_printed() {
+        // eq. 47 with Table 2 (in-plane axis): g2 = 2^0.995 (0.08 - 1/1.99) < 0, and both
+        // terms flip sign with p1 > 1 > p2; their sum happens to be positive
+        let d = 0.5;
+        let g1 = 2f64.powf(1.05) * 0.08;
+        let g2 = 2f64.powf(0.995) * (0.08 - 1.0 / 1.99);
+        assert!(g2 < 0.0);
+        let printed = fntsmc_td_printed(0.08, 1.1, 0.08, 0.99, d).unwrap();
+        let first = 2.0 / (d * g1 * (1.0 - 1.1));
+        assert!(first < 0.0);
+        assert!((printed - first - 2.0 / (d * g2 * (0.99 - 1.0))).abs() < 1e-9);
+        // eq. 42: z3 = (3 as - 1)/(2 as), z4 = (3 bs - 1)/(2 bs)
+        let ts = fntsmc_ts_printed(2.0, 0.89, 1.1).unwrap();
+        let z3 = (3.0 * 0.89 - 1.0) / 1.78;
+        let z4 = (3.3 - 1.0) / 2.2;
+        assert!((ts - (1.0 / (z4 - 1.0) + 1.0 / (1.0 - z3))).abs() < 1e-12);
     }
 }

@@ -102,6 +102,59 @@ pub fn min_time_to_rest(py: Python<'_>, r0: f64, v0: f64, a_max: f64, g: f64) ->
     check(py, theory::min_time_to_rest(r0, v0, a_max, g))
 }
 
+/// Seed 003 eq. 42 as printed, as a function of Lemma 2's constant c_v (not in the seed).
+#[pyfunction]
+pub fn fntsmc_ts_printed(py: Python<'_>, c_v: f64, alpha_s: f64, beta_s: f64) -> PyResult<f64> {
+    check(py, theory::fntsmc_ts_printed(c_v, alpha_s, beta_s))
+}
+
+/// Seed 003 eq. 47 as printed (not a bound for eq. 21's exponents; see the core).
+#[pyfunction]
+pub fn fntsmc_td_printed(
+    py: Python<'_>,
+    k1: f64,
+    p1: f64,
+    k2: f64,
+    p2: f64,
+    d: f64,
+) -> PyResult<f64> {
+    check(py, theory::fntsmc_td_printed(k1, p1, k2, p2, d))
+}
+
+/// Sound fixed-time bounds of the seed-003 FNTSMC on one axis.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn fntsmc_bounds<'py>(
+    py: Python<'py>,
+    k1: f64,
+    p1: f64,
+    k2: f64,
+    p2: f64,
+    k3: f64,
+    alpha_s: f64,
+    beta_s: f64,
+    sigma_phi: f64,
+    tol: f64,
+    d_max: f64,
+    theta: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let b = check(
+        py,
+        theory::fntsmc_bounds(
+            k1, p1, k2, p2, k3, alpha_s, beta_s, sigma_phi, tol, d_max, theta,
+        ),
+    )?;
+    let d = PyDict::new(py);
+    d.set_item("ts", b.ts)?;
+    d.set_item("s_radius", b.s_radius)?;
+    d.set_item("td", b.td)?;
+    d.set_item("e1_radius", b.e1_radius)?;
+    d.set_item("inside_rate", b.inside_rate)?;
+    d.set_item("t_inside", b.t_inside)?;
+    d.set_item("total", b.total)?;
+    Ok(d)
+}
+
 fn parse_dispersion(table: &Bound<'_, PyDict>) -> Result<Dispersion, InputError> {
     let kind = kind_of(table, "dispersion")?;
     let mut p = Params::new(format!("dispersion ({kind})"), table.clone(), None);
@@ -210,5 +263,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sample_dispersion, m)?)?;
     m.add_function(wrap_pyfunction!(check_dispersion, m)?)?;
     m.add_function(wrap_pyfunction!(disturbance_bound, m)?)?;
+    m.add_function(wrap_pyfunction!(fntsmc_ts_printed, m)?)?;
+    m.add_function(wrap_pyfunction!(fntsmc_td_printed, m)?)?;
+    m.add_function(wrap_pyfunction!(fntsmc_bounds, m)?)?;
     Ok(())
 }

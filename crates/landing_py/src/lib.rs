@@ -11,6 +11,7 @@ mod gravity_spec;
 mod output;
 mod params;
 mod specs;
+mod tether;
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -23,6 +24,9 @@ use landing_core::control::ControlLaw;
 use landing_core::disturbance::Disturbance;
 use landing_core::gravity::{Harmonic2, PointMass, TwoPointMass};
 use landing_core::integrator::{Euler, IntegratorKind, Rk4};
+use landing_core::plant::tether::{
+    TetheredFlexible2, TetheredFlexible4, TetheredFlexible8, TetheredFlexible16, TetheredSimplified,
+};
 use landing_core::plant::{DoubleIntegrator, MarsLander, Plant, SmallBody};
 use landing_core::reference::Reference;
 use landing_core::rng::philox4x64_10;
@@ -33,6 +37,7 @@ use errors::{InputError, batch_error, internal_error, param_error, to_pyerr};
 use params::Params;
 use specs::{
     LawSpec, PlantSpec, kind_of, parse_disturbance, parse_law, parse_plant, parse_reference,
+    with_plants,
 };
 
 /// What a batch needs besides its law, owned, ready to cross into the GIL-free region.
@@ -89,6 +94,8 @@ impl<const D: usize, P: Plant<D>> Job<D, P> {
             LawSpec::FuzzyFastTerminalSmc(l) => self.setting.run(l),
             LawSpec::IntegralExponentialReaching(l) => self.setting.run(l),
             LawSpec::FuzzyVariableRate(l) => self.setting.run(l),
+            LawSpec::Ntsmc(l) => self.setting.run(l),
+            LawSpec::FixedTimeNtsmc(l) => self.setting.run(l),
         }
     }
 }
@@ -180,6 +187,11 @@ enum Prepared {
     SmallBodyPointMass(Job<3, SmallBody<PointMass>>),
     SmallBodyTwoPointMass(Job<3, SmallBody<TwoPointMass>>),
     SmallBodyHarmonic2(Job<3, SmallBody<Harmonic2>>),
+    TetherSimplified(Job<2, TetheredSimplified>),
+    TetherFlexible2(Job<2, TetheredFlexible2>),
+    TetherFlexible4(Job<2, TetheredFlexible4>),
+    TetherFlexible8(Job<2, TetheredFlexible8>),
+    TetherFlexible16(Job<2, TetheredFlexible16>),
 }
 
 /// Runs a prepared job without the GIL, turning a panic into an exception.
@@ -281,27 +293,31 @@ fn simulate_batch<'py>(
         let kind = kind_of(&plant, "plant")?;
         let mut p = Params::new(format!("plant ({kind})"), plant.clone(), n);
         let spec = parse_plant(&kind, &mut p).map_err(|e| e.context(&p.owner))?;
-        let (reference, disturbance) = (reference.as_ref(), disturbance.as_ref());
         macro_rules! job {
-            ($plants:expr) => {
-                prepare::<3, _>(
+            ($variant:ident, $plants:expr, $d:literal) => {
+                Prepared::$variant(prepare::<$d, _>(
                     $plants,
                     &controller,
                     &x0,
-                    reference,
-                    disturbance,
+                    reference.as_ref(),
+                    disturbance.as_ref(),
                     integ,
                     cfg,
                     threads,
-                )?
+                )?)
             };
         }
         let prepared = match spec {
-            PlantSpec::Mars(p) => Prepared::Mars(job!(p)),
-            PlantSpec::DoubleIntegrator(p) => Prepared::DoubleIntegrator(job!(p)),
-            PlantSpec::SmallBodyPointMass(p) => Prepared::SmallBodyPointMass(job!(p)),
-            PlantSpec::SmallBodyTwoPointMass(p) => Prepared::SmallBodyTwoPointMass(job!(p)),
-            PlantSpec::SmallBodyHarmonic2(p) => Prepared::SmallBodyHarmonic2(job!(p)),
+            PlantSpec::Mars(plants) => job!(Mars, plants, 3),
+            PlantSpec::DoubleIntegrator(plants) => job!(DoubleIntegrator, plants, 3),
+            PlantSpec::SmallBodyPointMass(plants) => job!(SmallBodyPointMass, plants, 3),
+            PlantSpec::SmallBodyTwoPointMass(plants) => job!(SmallBodyTwoPointMass, plants, 3),
+            PlantSpec::SmallBodyHarmonic2(plants) => job!(SmallBodyHarmonic2, plants, 3),
+            PlantSpec::TetherSimplified(plants) => job!(TetherSimplified, plants, 2),
+            PlantSpec::TetherFlexible2(plants) => job!(TetherFlexible2, plants, 2),
+            PlantSpec::TetherFlexible4(plants) => job!(TetherFlexible4, plants, 2),
+            PlantSpec::TetherFlexible8(plants) => job!(TetherFlexible8, plants, 2),
+            PlantSpec::TetherFlexible16(plants) => job!(TetherFlexible16, plants, 2),
         };
         Ok(prepared)
     })();
@@ -311,6 +327,11 @@ fn simulate_batch<'py>(
         Prepared::SmallBodyPointMass(job) => execute(py, job),
         Prepared::SmallBodyTwoPointMass(job) => execute(py, job),
         Prepared::SmallBodyHarmonic2(job) => execute(py, job),
+        Prepared::TetherSimplified(job) => execute(py, job),
+        Prepared::TetherFlexible2(job) => execute(py, job),
+        Prepared::TetherFlexible4(job) => execute(py, job),
+        Prepared::TetherFlexible8(job) => execute(py, job),
+        Prepared::TetherFlexible16(job) => execute(py, job),
     }
 }
 
@@ -326,19 +347,33 @@ fn check_plant(py: Python<'_>, owner: &str, table: Bound<'_, PyDict>) -> PyResul
     run().map_err(|e| to_pyerr(py, e))
 }
 
-/// Validates a controller table for the axis counts the plants use (3, then 2).
+/// Validates a controller table for the axis counts the plants use (3 and 2): it is valid if
+/// either reading is. A table whose per-axis arrays all have length 2 is read for 2 axes
+/// first, so that an error names the axis (a 2-vector read for 3 axes would be one value per
+/// case of a 2-case batch).
 #[pyfunction]
 fn check_controller(py: Python<'_>, owner: &str, table: Bound<'_, PyDict>) -> PyResult<()> {
     let run = || -> Result<(), InputError> {
         let kind = kind_of(&table, "controller")?;
-        let first = parse_law::<3>(&kind, &mut Params::new(owner, table.clone(), None)).map(|_| ());
-        match first {
-            Err(e) if e.is_shape() => {
-                parse_law::<2>(&kind, &mut Params::new(owner, table.clone(), None))
-                    .map(|_| ())
-                    .map_err(|_| e)
+        let lengths: Vec<usize> = table
+            .values()
+            .iter()
+            .filter_map(|v| v.extract::<numpy::PyReadonlyArrayDyn<'_, f64>>().ok())
+            .filter_map(|a| a.shape().last().copied().filter(|_| !a.shape().is_empty()))
+            .collect();
+        let two_axes = lengths.contains(&2) && !lengths.contains(&3);
+        let parse = |axes: usize| {
+            let mut p = Params::new(owner, table.clone(), None);
+            if axes == 3 {
+                parse_law::<3>(&kind, &mut p).map(|_| ())
+            } else {
+                parse_law::<2>(&kind, &mut p).map(|_| ())
             }
-            other => other,
+        };
+        let (first, second) = if two_axes { (2, 3) } else { (3, 2) };
+        match parse(first) {
+            Err(e) => parse(second).map_err(|_| e),
+            ok => ok,
         }
         .map_err(|e| e.context(owner))
     };
@@ -461,9 +496,16 @@ fn cubic_from_boundary(
     run().map_err(|e| to_pyerr(py, e))
 }
 
-/// State, control and axis names of a plant kind.
+/// State, control and axis names of a plant kind. Plants whose layout depends on their
+/// parameters (the flexible tether's node count) need their table, which also adds the
+/// model's derived figures (see `tether::extras`).
 #[pyfunction]
-fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (kind, table=None))]
+fn plant_info<'py>(
+    py: Python<'py>,
+    kind: &str,
+    table: Option<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
     fn info<'py, const D: usize, P: Plant<D>>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
         d.set_item("state_names", P::STATE_NAMES.to_vec())?;
@@ -471,10 +513,30 @@ fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> 
         d.set_item("axes", D)?;
         Ok(d)
     }
+    if let Some(table) = table {
+        let mut p = Params::new(format!("plant ({kind})"), table.clone(), None);
+        let spec = parse_plant(kind, &mut p).map_err(|e| to_pyerr(py, e.context(&p.owner)))?;
+        fn of<'py, const D: usize, P: Plant<D>>(
+            py: Python<'py>,
+            _plants: &PerCase<P>,
+        ) -> PyResult<Bound<'py, PyDict>> {
+            info::<D, P>(py)
+        }
+        let d = with_plants!(&spec, plants, D => of::<D, _>(py, plants)?);
+        tether::extras(&spec, &d)?;
+        return Ok(d);
+    }
     match kind {
         "mars_lander" => info::<3, MarsLander>(py),
         "double_integrator" => info::<3, DoubleIntegrator>(py),
         "small_body" => info::<3, SmallBody<PointMass>>(py),
+        "tethered_satellite" => Err(to_pyerr(
+            py,
+            InputError::Type(
+                "plant_info needs the table of a tethered_satellite (its layout depends on it)"
+                    .into(),
+            ),
+        )),
         other => Err(to_pyerr(
             py,
             InputError::Value(format!(
@@ -483,6 +545,50 @@ fn plant_info<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyDict>> 
             )),
         )),
     }
+}
+
+/// The generalized coordinates (q, q') the laws read, for states (M, state dim) of a plant.
+#[pyfunction]
+fn plant_coordinates<'py>(
+    py: Python<'py>,
+    table: Bound<'py, PyDict>,
+    states: PyReadonlyArray2<'py, f64>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    fn coords<const D: usize, P: Plant<D>>(
+        plants: &PerCase<P>,
+        states: &PyReadonlyArray2<'_, f64>,
+    ) -> Result<(Vec<f64>, Vec<f64>, usize), InputError> {
+        let nx = P::State::DIM;
+        let shape = states.shape();
+        if shape[1] != nx {
+            return Err(InputError::Shape(format!(
+                "states have {} components; this plant's have {nx} ({:?})",
+                shape[1],
+                P::STATE_NAMES
+            )));
+        }
+        let view = states.as_array();
+        let (mut q, mut qd) = (
+            Vec::with_capacity(shape[0] * D),
+            Vec::with_capacity(shape[0] * D),
+        );
+        for row in view.outer_iter() {
+            let values: Vec<f64> = row.iter().copied().collect();
+            let (a, b) = plants.get(0).coordinates(&P::State::from_slice(&values));
+            q.extend_from_slice(a.as_slice());
+            qd.extend_from_slice(b.as_slice());
+        }
+        Ok((q, qd, D))
+    }
+    let run = || -> Result<(Vec<f64>, Vec<f64>, usize), InputError> {
+        let kind = kind_of(&table, "plant")?;
+        let mut p = Params::new(format!("plant ({kind})"), table.clone(), None);
+        let spec = parse_plant(&kind, &mut p).map_err(|e| e.context(&p.owner))?;
+        with_plants!(&spec, plants, D => coords::<D, _>(plants, &states))
+    };
+    let (q, qd, d) = run().map_err(|e| to_pyerr(py, e))?;
+    let m = states.shape()[0];
+    Ok((output::array2(py, q, m, d)?, output::array2(py, qd, m, d)?))
 }
 
 /// One Philox4x64-10 block, exposed so the tests can compare with `numpy.random.Philox`.
@@ -502,6 +608,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cubic_from_boundary, m)?)?;
     m.add_function(wrap_pyfunction!(philox4x64, m)?)?;
     m.add_function(wrap_pyfunction!(plant_info, m)?)?;
+    m.add_function(wrap_pyfunction!(plant_coordinates, m)?)?;
+    m.add_function(wrap_pyfunction!(tether::tether_initial_state, m)?)?;
     analysis::register(m)?;
     fuzzy_spec::register(m)?;
     gravity_spec::register(m)?;

@@ -132,6 +132,38 @@ impl<'py> Params<'py> {
         }
     }
 
+    /// An optional scalar parameter (absent or None gives `None`).
+    pub fn opt_scalar(&mut self, key: &str) -> Result<Option<Vec<f64>>, InputError> {
+        if self.raw(key)?.is_none() {
+            return Ok(None);
+        }
+        self.scalar(key).map(Some)
+    }
+
+    /// A count shared by every case (it fixes a type or a size): a whole number in
+    /// `allowed`.
+    pub fn shared_count(
+        &mut self,
+        key: &str,
+        allowed: &[usize],
+        rule: &str,
+    ) -> Result<usize, InputError> {
+        let values = self.scalar(key)?;
+        let first = values[0];
+        if values.iter().any(|&v| v != first) {
+            return Err(InputError::Value(format!(
+                "{key} must be the same for every case (it fixes the model's size)"
+            )));
+        }
+        let n = first as usize;
+        if first.fract() != 0.0 || first < 0.0 || !allowed.contains(&n) {
+            return Err(InputError::Value(format!(
+                "{key} = {first} violates {rule}"
+            )));
+        }
+        Ok(n)
+    }
+
     /// A per-axis parameter (see the module documentation for the accepted shapes).
     pub fn axes<const D: usize>(&mut self, key: &str) -> Result<Vec<SVector<f64, D>>, InputError> {
         self.opt_axes(key)?.ok_or_else(|| self.required(key))

@@ -11,17 +11,21 @@ use landing_core::PerCase;
 use std::sync::Arc;
 
 use landing_core::control::{
-    ControlLaw, FastTerminalSmc, FixedTimeMss, FuzzyFastTerminalSmc, FuzzyVariableRate,
-    IntegralExponentialReaching, IntegralSurface, MssVariant, OpenLoop, PdSlidingMode,
-    SuperTwisting, SuperTwistingVariant, TerminalSurface,
+    ControlLaw, FastTerminalSmc, FixedTimeMss, FixedTimeNtsmc, FuzzyFastTerminalSmc,
+    FuzzyVariableRate, IntegralExponentialReaching, IntegralSurface, MssVariant, Ntsmc, OpenLoop,
+    PdSlidingMode, SuperTwisting, SuperTwistingVariant, TerminalSurface,
 };
 use landing_core::disturbance::{Disturbance, MAX_SINUSOIDS, Sinusoid};
 use landing_core::gravity::{Harmonic2, PointMass, TwoPointMass, Uniform};
 use landing_core::math::Switch;
+use landing_core::plant::tether::{
+    TetherBody, TetheredFlexible, TetheredFlexible2, TetheredFlexible4, TetheredFlexible8,
+    TetheredFlexible16, TetheredSimplified, orbital_rate,
+};
 use landing_core::plant::{DoubleIntegrator, MarsLander, SmallBody};
 use landing_core::reference::Reference;
 
-use crate::errors::InputError;
+use crate::errors::{InputError, param_error};
 use crate::fuzzy_spec::parse_mamdani;
 use crate::gravity_spec::{GravitySpec, parse_gravity_into};
 use crate::params::{Params, pick};
@@ -38,10 +42,75 @@ pub enum PlantSpec {
     SmallBodyPointMass(PerCase<SmallBody<PointMass>>),
     SmallBodyTwoPointMass(PerCase<SmallBody<TwoPointMass>>),
     SmallBodyHarmonic2(PerCase<SmallBody<Harmonic2>>),
+    TetherSimplified(PerCase<TetheredSimplified>),
+    TetherFlexible2(PerCase<TetheredFlexible2>),
+    TetherFlexible4(PerCase<TetheredFlexible4>),
+    TetherFlexible8(PerCase<TetheredFlexible8>),
+    TetherFlexible16(PerCase<TetheredFlexible16>),
 }
 
+/// The node counts of the flexible tether that the bindings dispatch on (each one is its own
+/// fixed-size state type): enough for the refinement study to show convergence, few enough to
+/// keep the number of monomorphised rollouts small.
+pub const TETHER_NODES: [usize; 4] = [2, 4, 8, 16];
+
+/// Runs `$body` with `$plants` bound to the typed plants of a `PlantSpec` and `$d` to their
+/// number of axes (a const usable as a generic argument): the dispatch on the plant.
+macro_rules! with_plants {
+    ($spec:expr, $plants:ident, $d:ident => $body:expr) => {
+        match $spec {
+            PlantSpec::Mars($plants) => {
+                const $d: usize = 3;
+                $body
+            }
+            PlantSpec::DoubleIntegrator($plants) => {
+                const $d: usize = 3;
+                $body
+            }
+            PlantSpec::SmallBodyPointMass($plants) => {
+                const $d: usize = 3;
+                $body
+            }
+            PlantSpec::SmallBodyTwoPointMass($plants) => {
+                const $d: usize = 3;
+                $body
+            }
+            PlantSpec::SmallBodyHarmonic2($plants) => {
+                const $d: usize = 3;
+                $body
+            }
+            PlantSpec::TetherSimplified($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible2($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible4($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible8($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+            PlantSpec::TetherFlexible16($plants) => {
+                const $d: usize = 2;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_plants;
+
 impl PlantSpec {
-    pub const KINDS: [&'static str; 3] = ["mars_lander", "double_integrator", "small_body"];
+    pub const KINDS: [&'static str; 4] = [
+        "mars_lander",
+        "double_integrator",
+        "small_body",
+        "tethered_satellite",
+    ];
 
     pub fn axes(&self) -> usize {
         match self {
@@ -50,6 +119,11 @@ impl PlantSpec {
             | Self::SmallBodyPointMass(_)
             | Self::SmallBodyTwoPointMass(_)
             | Self::SmallBodyHarmonic2(_) => 3,
+            Self::TetherSimplified(_)
+            | Self::TetherFlexible2(_)
+            | Self::TetherFlexible4(_)
+            | Self::TetherFlexible8(_)
+            | Self::TetherFlexible16(_) => 2,
         }
     }
 }
@@ -71,6 +145,72 @@ fn small_bodies<G: landing_core::gravity::GravityField>(
         },
         landing_core::plant::Plant::validate,
     )
+}
+
+/// The tethered satellite's table: `fidelity` ("simplified" or "flexible"), the shared body
+/// (seed Table 1, the orbit, the actuator limits) and, for the flexible model, the tether.
+fn parse_tether(p: &mut Params<'_>) -> Result<PlantSpec, InputError> {
+    let fidelity = p.choice("fidelity", &["simplified", "flexible"])?;
+    let main_mass = p.scalar("main_mass")?;
+    let sub_mass = p.scalar("sub_mass")?;
+    let length = p.scalar("tether_length")?;
+    let side = p.scalar("side")?;
+    let altitude = p.scalar("orbit_altitude")?;
+    let rates = altitude
+        .iter()
+        .map(|&h| orbital_rate(h).map_err(|e| param_error(&e, None)))
+        .collect::<Result<Vec<f64>, _>>()?;
+    let thrust = p.opt_scalar("thrust_limit")?;
+    let torque = p.opt_scalar("torque_limit")?;
+    let body = |i: usize| {
+        let thrust_limit = thrust.as_ref().map_or(f64::INFINITY, |t| pick(t, i));
+        let side = pick(&side, i);
+        TetherBody {
+            main_mass: pick(&main_mass, i),
+            sub_mass: pick(&sub_mass, i),
+            length: pick(&length, i),
+            side,
+            orbital_rate: pick(&rates, i),
+            thrust_limit,
+            // SPEC 3.3: the thrust times the lever arm a/2 unless set
+            torque_limit: torque
+                .as_ref()
+                .map_or(0.5 * side * thrust_limit, |t| pick(t, i)),
+        }
+    };
+    if fidelity == "simplified" {
+        let plants = p.build(
+            |i| TetheredSimplified { body: body(i) },
+            |t: &TetheredSimplified| landing_core::plant::Plant::validate(t),
+        )?;
+        return Ok(PlantSpec::TetherSimplified(plants));
+    }
+    let nodes = p.shared_count("nodes", &TETHER_NODES, "nodes in {2, 4, 8, 16}")?;
+    let density = p.scalar("tether_density")?;
+    let stiffness = p.scalar("axial_stiffness")?;
+    let damping = p.scalar("axial_damping")?;
+    fn flexible<const N: usize, const S: usize>(
+        p: &Params<'_>,
+        body: &dyn Fn(usize) -> TetherBody,
+        tether: [&[f64]; 3],
+    ) -> Result<PerCase<TetheredFlexible<N, S>>, InputError> {
+        p.build(
+            |i| TetheredFlexible {
+                body: body(i),
+                density: pick(tether[0], i),
+                axial_stiffness: pick(tether[1], i),
+                axial_damping: pick(tether[2], i),
+            },
+            |t: &TetheredFlexible<N, S>| landing_core::plant::Plant::validate(t),
+        )
+    }
+    let tether = [density.as_slice(), stiffness.as_slice(), damping.as_slice()];
+    Ok(match nodes {
+        2 => PlantSpec::TetherFlexible2(flexible(p, &body, tether)?),
+        4 => PlantSpec::TetherFlexible4(flexible(p, &body, tether)?),
+        8 => PlantSpec::TetherFlexible8(flexible(p, &body, tether)?),
+        _ => PlantSpec::TetherFlexible16(flexible(p, &body, tether)?),
+    })
 }
 
 pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputError> {
@@ -131,6 +271,7 @@ pub fn parse_plant(kind: &str, p: &mut Params<'_>) -> Result<PlantSpec, InputErr
                 }
             })
         }
+        "tethered_satellite" => parse_tether(p),
         other => Err(InputError::Value(format!(
             "unknown plant kind {other:?}; known: {:?}",
             PlantSpec::KINDS
@@ -147,9 +288,11 @@ pub enum LawSpec<const D: usize> {
     FuzzyFastTerminalSmc(PerCase<FuzzyFastTerminalSmc<D>>),
     IntegralExponentialReaching(PerCase<IntegralExponentialReaching<D>>),
     FuzzyVariableRate(PerCase<FuzzyVariableRate<D>>),
+    Ntsmc(PerCase<Ntsmc<D>>),
+    FixedTimeNtsmc(PerCase<FixedTimeNtsmc<D>>),
 }
 
-pub const LAW_KINDS: [&str; 8] = [
+pub const LAW_KINDS: [&str; 10] = [
     "fixed_time_mss",
     "super_twisting",
     "open_loop",
@@ -158,6 +301,8 @@ pub const LAW_KINDS: [&str; 8] = [
     "fuzzy_fast_terminal_smc",
     "integral_exponential_reaching",
     "fuzzy_variable_rate",
+    "ntsmc",
+    "fixed_time_ntsmc",
 ];
 
 /// Names and widths of a law's diagnostic signals, in recording order.
@@ -180,6 +325,8 @@ impl<const D: usize> LawSpec<D> {
             Self::FuzzyFastTerminalSmc(_) => layout::<D, FuzzyFastTerminalSmc<D>>(),
             Self::IntegralExponentialReaching(_) => layout::<D, IntegralExponentialReaching<D>>(),
             Self::FuzzyVariableRate(_) => layout::<D, FuzzyVariableRate<D>>(),
+            Self::Ntsmc(_) => layout::<D, Ntsmc<D>>(),
+            Self::FixedTimeNtsmc(_) => layout::<D, FixedTimeNtsmc<D>>(),
         }
     }
 }
@@ -373,6 +520,65 @@ pub fn parse_law<const D: usize>(kind: &str, p: &mut Params<'_>) -> Result<LawSp
                 ControlLaw::validate,
             )?;
             Ok(LawSpec::FuzzyVariableRate(laws))
+        }
+        "ntsmc" => {
+            let alpha = p.axes::<D>("alpha")?;
+            let beta = p.axes::<D>("beta")?;
+            let gamma = p.axes::<D>("gamma")?;
+            let k = p.axes::<D>("k")?;
+            let laws = p.build(
+                |i| Ntsmc {
+                    alpha: pick(&alpha, i),
+                    beta: pick(&beta, i),
+                    gamma: pick(&gamma, i),
+                    k: pick(&k, i),
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::Ntsmc(laws))
+        }
+        "fixed_time_ntsmc" => {
+            let names = [
+                "k1",
+                "k2",
+                "k3",
+                "eps_max",
+                "p1",
+                "p2",
+                "alpha_s",
+                "beta_s",
+                "sigma_phi",
+                "gamma",
+                "rbf_scale_e1",
+                "rbf_scale_e2",
+                "rbf_width",
+            ];
+            let mut g: Vec<Vec<SVector<f64, D>>> = Vec::with_capacity(names.len());
+            for name in names {
+                g.push(p.axes::<D>(name)?);
+            }
+            let nodes =
+                p.shared_count("rbf_nodes", &[1, 2, 3, 4, 5, 6, 7], "rbf_nodes in 1..=7")?;
+            let laws = p.build(
+                |i| FixedTimeNtsmc {
+                    k1: pick(&g[0], i),
+                    k2: pick(&g[1], i),
+                    k3: pick(&g[2], i),
+                    eps_max: pick(&g[3], i),
+                    p1: pick(&g[4], i),
+                    p2: pick(&g[5], i),
+                    alpha_s: pick(&g[6], i),
+                    beta_s: pick(&g[7], i),
+                    sigma_phi: pick(&g[8], i),
+                    gamma: pick(&g[9], i),
+                    rbf_nodes: nodes,
+                    rbf_scale_e1: pick(&g[10], i),
+                    rbf_scale_e2: pick(&g[11], i),
+                    rbf_width: pick(&g[12], i),
+                },
+                ControlLaw::validate,
+            )?;
+            Ok(LawSpec::FixedTimeNtsmc(laws))
         }
         other => Err(InputError::Value(format!(
             "unknown controller kind {other:?}; known: {LAW_KINDS:?}"

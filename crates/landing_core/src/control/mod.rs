@@ -9,18 +9,23 @@
 
 mod fast_terminal;
 mod fixed_time_mss;
+mod fixed_time_ntsmc;
 mod fuzzy_fast_terminal;
 mod fuzzy_variable_rate;
 mod integral_reaching;
+mod ntsmc;
 mod open_loop;
 mod pd_sliding;
+pub mod rbf;
 mod super_twisting;
 
 pub use fast_terminal::{FastTerminalSmc, TerminalSurface};
 pub use fixed_time_mss::{FixedTimeMss, MssVariant};
+pub use fixed_time_ntsmc::{FixedTimeNtsmc, zeta, zeta_slope};
 pub use fuzzy_fast_terminal::FuzzyFastTerminalSmc;
 pub use fuzzy_variable_rate::{FuzzyVariableRate, VariableRateMemory};
 pub use integral_reaching::{IntegralExponentialReaching, IntegralSurface};
+pub use ntsmc::Ntsmc;
 pub use open_loop::OpenLoop;
 pub use pd_sliding::PdSlidingMode;
 pub use super_twisting::{SuperTwisting, SuperTwistingVariant};

@@ -8,10 +8,12 @@
 mod double_integrator;
 mod mars;
 mod small_body;
+pub mod tether;
 
 pub use double_integrator::DoubleIntegrator;
 pub use mars::MarsLander;
 pub use small_body::SmallBody;
+pub use tether::{TetheredFlexible, TetheredSimplified};
 
 use nalgebra::SVector;
 

@@ -1,0 +1,168 @@
+//! Conventional nonsingular terminal sliding mode (seed 003, the baseline at the end of its
+//! section 4, printed as eq. 47/48; SPEC 5 law 8).
+//!
+//! ```text
+//! s = e1 + (1/beta) sig^(gamma/alpha)(e2)
+//! u = -M (beta (alpha/gamma) sig^(2 - gamma/alpha)(e2) + K sign(s))
+//! ```
+//! with e1 = q - q_d, e2 = q' - q_d'. It is Feng et al.'s NTSMC for a double integrator: with
+//! r = gamma/alpha, s' = e2 + (r/beta) |e2|^(r-1) e2' and the law gives
+//! `s' = -(r/beta) |e2|^(r-1) K sign(s)`, so s reaches 0 and then e1 follows
+//! `e1' = -sig^(1/r)(beta e1)` to 0 in finite time. The commanded acceleration here is the
+//! bracket (the plant's actuator multiplies by M), plus the reference acceleration and minus
+//! the plant's modelled drift, both zero on the tethered satellite, where the law is the seed's.
+//!
+//! Singularity guard: the nonsingular form itself. Every power is non-negative when
+//! `1 < gamma/alpha < 2` (the NTSMC's defining range, validated), so no floor is needed; a
+//! ratio of 2 or more would make `|e2|^(2 - gamma/alpha)` singular and is refused.
+//!
+//! Meaningful on any fully actuated plant (it is a double-integrator law); on the landers the
+//! drift cancellation makes it one.
+
+use nalgebra::SVector;
+
+use super::{ControlLaw, LawInput};
+use crate::error::{ParamError, require, require_axes};
+use crate::math::{sgn, sig};
+
+/// Gains per axis with the seed's symbols (seed: alpha = 1, beta = (0.05, 0.3),
+/// gamma = (1.07, 1.1), K = 0.001).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ntsmc<const D: usize> {
+    pub alpha: SVector<f64, D>,
+    pub beta: SVector<f64, D>,
+    pub gamma: SVector<f64, D>,
+    pub k: SVector<f64, D>,
+}
+
+impl<const D: usize> Ntsmc<D> {
+    /// The sliding variable on axis i.
+    #[inline(always)]
+    fn s_axis(&self, i: usize, e1: f64, e2: f64) -> f64 {
+        e1 + sig(e2, self.gamma[i] / self.alpha[i]) / self.beta[i]
+    }
+
+    /// The sliding variable s per axis.
+    pub fn s(&self, input: &LawInput<D>) -> SVector<f64, D> {
+        SVector::from_fn(|i, _| self.s_axis(i, input.e[i], input.de[i]))
+    }
+}
+
+impl<const D: usize> ControlLaw<D> for Ntsmc<D> {
+    type Memory = ();
+    const DIAGNOSTICS: &'static [&'static str] = &["s"];
+
+    fn start(&self, _input: &LawInput<D>) {}
+
+    #[inline(always)]
+    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
+        let mut a = input.reference.acceleration - input.drift;
+        for i in 0..D {
+            let r = self.gamma[i] / self.alpha[i];
+            let e2 = input.de[i];
+            let s = self.s_axis(i, input.e[i], e2);
+            a[i] -= self.beta[i] / r * sig(e2, 2.0 - r) + self.k[i] * sgn(s);
+        }
+        a
+    }
+
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+        out[..D].copy_from_slice(self.s(input).as_slice());
+    }
+
+    fn validate(&self) -> Result<(), ParamError> {
+        require_axes(self.alpha.as_slice(), "alpha", "alpha > 0", |v| v > 0.0)?;
+        require_axes(self.beta.as_slice(), "beta", "beta > 0", |v| v > 0.0)?;
+        require_axes(self.gamma.as_slice(), "gamma", "gamma > 0", |v| v > 0.0)?;
+        for i in 0..D {
+            let r = self.gamma[i] / self.alpha[i];
+            require(
+                r > 1.0 && r < 2.0,
+                "gamma",
+                self.gamma[i],
+                "1 < gamma / alpha < 2",
+            )
+            .map_err(|e| e.on_axis(i))?;
+        }
+        require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::RefPoint;
+    use nalgebra::Vector2;
+
+    fn seed() -> Ntsmc<2> {
+        Ntsmc {
+            alpha: Vector2::repeat(1.0),
+            beta: Vector2::new(0.05, 0.3),
+            gamma: Vector2::new(1.07, 1.1),
+            k: Vector2::repeat(0.001),
+        }
+    }
+
+    fn input(e: [f64; 2], de: [f64; 2]) -> LawInput<2> {
+        let zero = Vector2::zeros();
+        LawInput {
+            t: 0.0,
+            dt: 0.01,
+            e: Vector2::from(e),
+            de: Vector2::from(de),
+            reference: RefPoint {
+                position: zero,
+                velocity: zero,
+                acceleration: zero,
+            },
+            drift: zero,
+            inertia: Vector2::new(990.0, 10.0 / 6.0),
+        }
+    }
+
+    #[test]
+    fn command_matches_the_printed_law() {
+        let law = seed();
+        let inp = input([0.01, -0.02], [-2e-3, 0.05]);
+        let a = law.command(&(), &inp);
+        // by hand: s = e1 + (1/beta) |e2|^r sgn(e2), a = -(beta/r) |e2|^(2-r) sgn(e2) - K sgn(s)
+        let s0 = 0.01 - (2e-3f64).powf(1.07) / 0.05;
+        let a0 = (0.05 / 1.07) * (2e-3f64).powf(0.93) - 0.001 * s0.signum();
+        let s1 = -0.02 + (0.05f64).powf(1.1) / 0.3;
+        let a1 = -(0.3 / 1.1) * (0.05f64).powf(0.9) - 0.001 * s1.signum();
+        assert!((a[0] - a0).abs() < 1e-15, "{} {}", a[0], a0);
+        assert!((a[1] - a1).abs() < 1e-15, "{} {}", a[1], a1);
+        assert!((law.s(&inp)[0] - s0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn sliding_variable_decreases_where_the_law_applies() {
+        // on a double integrator, s' = e2 + (r/beta)|e2|^(r-1) a: negative for s > 0, e2 != 0
+        let law = seed();
+        let inp = input([0.02, 0.02], [0.01, 0.01]);
+        let a = law.command(&(), &inp);
+        for i in 0..2 {
+            let r = law.gamma[i] / law.alpha[i];
+            let e2: f64 = 0.01;
+            let ds = e2 + r / law.beta[i] * e2.powf(r - 1.0) * a[i];
+            assert!(ds < 0.0, "axis {i}: s' = {ds}");
+        }
+    }
+
+    #[test]
+    fn the_exponent_range_is_the_guard() {
+        let mut law = seed();
+        law.gamma[1] = 2.2;
+        let e = law.validate().unwrap_err();
+        assert_eq!(
+            (e.param, e.rule, e.axis),
+            ("gamma", "1 < gamma / alpha < 2", Some(1))
+        );
+        law.gamma[1] = 0.9;
+        assert_eq!(law.validate().unwrap_err().rule, "1 < gamma / alpha < 2");
+        assert!(seed().validate().is_ok());
+        // at e2 = 0 every power is finite
+        let a = seed().command(&(), &input([0.01, 0.0], [0.0, 0.0]));
+        assert!(a.iter().all(|v| v.is_finite()));
+    }
+}

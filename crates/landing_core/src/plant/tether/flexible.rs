@@ -1,0 +1,388 @@
+//! The flexible tethered satellite: the plant the seed-003 controllers are validated on.
+//!
+//! The seed's finite-element model (its eq. 1-8) is not reproducible from its text; this is a
+//! planar model of the same physics (SPEC 3.3), written in the orbital (Hill) frame of the
+//! main satellite's circular orbit, with the main satellite as its origin:
+//!
+//! - the tether is N lumped masses (the nodal-position discretisation: each node carries one
+//!   segment's mass, rho_t h, and the sub-satellite the half segment at its end), joined by
+//!   N + 1 axial spring-dampers of rest length h = L0 / (N + 1) from the main satellite to the
+//!   sub-satellite's attachment point. A
+//!   segment pulls with `T = EA (l - h)/h + c_A l'/h` when stretched (Kelvin-Voigt material
+//!   damping) and never pushes: `T = 0` when slack, and `T >= 0` always;
+//! - every node and the sub-satellite's centre feel the linearised gravity gradient and the
+//!   frame's Coriolis terms (Clohessy-Wiltshire): `x'' = 2 n y' + 3 n^2 x + F_x/m`,
+//!   `y'' = -2 n x' + F_y/m` (x radial up, y along track);
+//! - the sub-satellite is a rigid cube of side a and mass m_s; the tether is attached a/2 from
+//!   its centre along its body axis (the one that looks at the main satellite at theta = 0), so
+//!   the tension turns it; a cube's gravity-gradient torque is zero (isotropic inertia);
+//! - the main satellite (100 times heavier) keeps its circular orbit: it is the frame's fixed
+//!   origin, and its attitude is not modelled.
+//!
+//! State layout (see `names.rs`): `[xs, ys, theta, vxs, vys, omega]` for the sub-satellite
+//! (omega = theta'), then `[x_k, y_k, vx_k, vy_k]` for the nodes k = 1..N from the main
+//! satellite outwards; `4 N + 6` components in all. Const generics cannot compute `4 N + 6`
+//! from N, so the state size S is a second parameter, checked at compile time.
+//!
+//! phi and theta are read off the state: phi is the angle of the sub-satellite's centre seen
+//! from the main satellite, from nadir; theta is the cube's attitude. The thrust acts on the
+//! centre, perpendicular to the main-to-centre line; a generalized disturbance d enters as an
+//! extra force `m rho d_phi` along the thrust (m the sub-satellite's translational mass) and an
+//! extra torque `J d_theta`, which add exactly d to phi'' and theta'' of the rigid limit.
+
+use nalgebra::{SVector, Vector2};
+
+use super::names::{MAX_NODES, NAMES};
+use super::{TetherBody, rigid_tension};
+use crate::error::{ParamError, require};
+use crate::plant::Plant;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TetheredFlexible<const N: usize, const S: usize> {
+    pub body: TetherBody,
+    /// Tether linear density rho_t, kg/m.
+    pub density: f64,
+    /// Axial stiffness EA, N.
+    pub axial_stiffness: f64,
+    /// Kelvin-Voigt axial damping c_A (tension per unit strain rate), N s.
+    pub axial_damping: f64,
+}
+
+pub type TetheredFlexible2 = TetheredFlexible<2, 14>;
+pub type TetheredFlexible4 = TetheredFlexible<4, 22>;
+pub type TetheredFlexible8 = TetheredFlexible<8, 38>;
+pub type TetheredFlexible16 = TetheredFlexible<16, 70>;
+
+/// 2D cross product (z component).
+#[inline(always)]
+fn cross(a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+impl<const N: usize, const S: usize> Default for TetheredFlexible<N, S> {
+    /// The defaults of docs/parameters.md: a YES2-class 0.5 mm Dyneema tether.
+    fn default() -> Self {
+        Self {
+            body: TetherBody::default(),
+            density: 1.9e-4,
+            axial_stiffness: 1.0e4,
+            axial_damping: 5.0,
+        }
+    }
+}
+
+impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
+    const LAYOUT: () = assert!(
+        S == 4 * N + 6 && N >= 1 && N <= MAX_NODES,
+        "the state size must be 4 N + 6, with 1 <= N <= MAX_NODES"
+    );
+
+    pub const NODES: usize = N;
+
+    /// Rest length of one segment, h = L0 / (N + 1).
+    #[inline(always)]
+    pub fn segment_length(&self) -> f64 {
+        self.body.length / (N + 1) as f64
+    }
+
+    /// Mass of one node, rho_t h.
+    #[inline(always)]
+    pub fn node_mass(&self) -> f64 {
+        self.density * self.segment_length()
+    }
+
+    /// The sub-satellite's translational mass: m_s plus the half segment lumped at its end
+    /// (so that the discretised tether keeps its whole mass, and refining N converges at
+    /// second order). Its rotation keeps J = m_s a^2 / 6.
+    #[inline(always)]
+    pub fn end_mass(&self) -> f64 {
+        self.body.sub_mass + 0.5 * self.node_mass()
+    }
+
+    /// Position and velocity of the tether's attachment point on the sub-satellite.
+    #[inline(always)]
+    pub fn attachment(&self, x: &SVector<f64, S>) -> (Vector2<f64>, Vector2<f64>) {
+        let half = 0.5 * self.body.side;
+        let (s, c) = x[2].sin_cos();
+        (
+            Vector2::new(x[0] + half * c, x[1] + half * s),
+            Vector2::new(x[3] - half * x[5] * s, x[4] + half * x[5] * c),
+        )
+    }
+
+    /// Point j of the chain: 0 is the main satellite, 1..=N the nodes, N + 1 the attachment.
+    #[inline(always)]
+    fn point(&self, x: &SVector<f64, S>, j: usize) -> (Vector2<f64>, Vector2<f64>) {
+        if j == 0 {
+            (Vector2::zeros(), Vector2::zeros())
+        } else if j <= N {
+            let k = 6 + 4 * (j - 1);
+            (
+                Vector2::new(x[k], x[k + 1]),
+                Vector2::new(x[k + 2], x[k + 3]),
+            )
+        } else {
+            self.attachment(x)
+        }
+    }
+
+    /// Tension of a segment from point (p0, v0) to (p1, v1), and the unit vector from 0 to 1.
+    #[inline(always)]
+    fn pull(
+        &self,
+        p0: &Vector2<f64>,
+        v0: &Vector2<f64>,
+        p1: &Vector2<f64>,
+        v1: &Vector2<f64>,
+    ) -> (f64, Vector2<f64>) {
+        let d = p1 - p0;
+        let l = d.norm();
+        let h = self.segment_length();
+        if l <= h {
+            return (0.0, Vector2::zeros());
+        }
+        let u = d / l;
+        let strain = (l - h) / h;
+        let rate = u.dot(&(v1 - v0)) / h;
+        let t = self.axial_stiffness * strain + self.axial_damping * rate;
+        (t.max(0.0), u)
+    }
+
+    /// Tension of segment j (0 at the main satellite, N at the sub-satellite), N.
+    pub fn tension(&self, x: &SVector<f64, S>, j: usize) -> f64 {
+        assert!(j <= N, "segment {j} of {}", N + 1);
+        let (p0, v0) = self.point(x, j);
+        let (p1, v1) = self.point(x, j + 1);
+        self.pull(&p0, &v0, &p1, &v1).0
+    }
+
+    /// The Jacobi integral of the Hill frame, the energy-like constant of the motion without
+    /// control and damping: per mass `|v|^2 / 2 - 3 n^2 x^2 / 2`, the cube's `J omega^2 / 2`
+    /// (its inertial rate is omega + n; the frame's share is a constant), and the elastic energy
+    /// `EA (l - h)^2 / (2 h)` of each stretched segment.
+    pub fn jacobi(&self, x: &SVector<f64, S>) -> f64 {
+        let n2 = self.body.orbital_rate * self.body.orbital_rate;
+        let point_mass = |m: f64, px: f64, vx: f64, vy: f64| {
+            m * (0.5 * (vx * vx + vy * vy) - 1.5 * n2 * px * px)
+        };
+        let mut c = point_mass(self.end_mass(), x[0], x[3], x[4])
+            + 0.5 * self.body.moment_of_inertia() * x[5] * x[5];
+        for k in 0..N {
+            let i = 6 + 4 * k;
+            c += point_mass(self.node_mass(), x[i], x[i + 2], x[i + 3]);
+        }
+        let h = self.segment_length();
+        for j in 0..=N {
+            let l = (self.point(x, j + 1).0 - self.point(x, j).0).norm();
+            if l > h {
+                c += 0.5 * self.axial_stiffness * (l - h) * (l - h) / h;
+            }
+        }
+        c
+    }
+
+    /// A state at the given angles and rates: the sub-satellite's centre at angle phi, the
+    /// tether straight from the main satellite to the attachment point and stretched by the
+    /// rigid dumbbell's tension, its nodes evenly spaced, every point of the line turning at
+    /// phi' about the main satellite except the cube, which turns at theta'.
+    pub fn state_at(
+        &self,
+        phi: f64,
+        theta: f64,
+        dphi: f64,
+        dtheta: f64,
+    ) -> Result<SVector<f64, S>, ParamError> {
+        let () = Self::LAYOUT;
+        self.validate()?;
+        for (name, v) in [
+            ("phi", phi),
+            ("theta", theta),
+            ("phi_dot", dphi),
+            ("theta_dot", dtheta),
+        ] {
+            require(true, name, v, "finite values")?;
+        }
+        let b = &self.body;
+        let a = b.side;
+        let t0 = rigid_tension(b.sub_mass, b.length + 0.5 * a, b.orbital_rate, phi, dphi);
+        let l = b.length * (1.0 + t0 / self.axial_stiffness);
+        // |rho e(phi) - (a/2) e(theta)| = l, with e(x) = -(cos x, sin x)
+        let cd = (theta - phi).cos();
+        let rho = 0.5 * (a * cd + (a * a * cd * cd - a * a + 4.0 * l * l).sqrt());
+        let (sp, cp) = phi.sin_cos();
+        let r = Vector2::new(-rho * cp, -rho * sp);
+        let v = Vector2::new(-r[1], r[0]) * dphi;
+        let mut x = SVector::<f64, S>::zeros();
+        x[0] = r[0];
+        x[1] = r[1];
+        x[2] = theta;
+        x[3] = v[0];
+        x[4] = v[1];
+        x[5] = dtheta;
+        let (pa, va) = self.attachment(&x);
+        for k in 0..N {
+            let f = (k + 1) as f64 / (N + 1) as f64;
+            let i = 6 + 4 * k;
+            x[i] = pa[0] * f;
+            x[i + 1] = pa[1] * f;
+            x[i + 2] = va[0] * f;
+            x[i + 3] = va[1] * f;
+        }
+        Ok(x)
+    }
+
+    /// The largest RK4 step that keeps the tether's fastest axial mode stable. A node between
+    /// two segments has stiffness and damping eigenvalues up to K = 4 k / m and C = 4 c / m
+    /// (k = EA / h, c = c_A / h); the mode's roots of `l^2 + C l + K = 0` have modulus
+    /// `sqrt(K)` when complex and `(C + sqrt(C^2 - 4 K)) / 2` at most when real. RK4's stability
+    /// region reaches |lambda| dt = 2.5 in every left-half-plane direction.
+    pub fn max_step(&self) -> f64 {
+        let h = self.segment_length();
+        let m = self.node_mass();
+        let k = 4.0 * self.axial_stiffness / (h * m);
+        let c = 4.0 * self.axial_damping / (h * m);
+        let lambda = if c * c <= 4.0 * k {
+            k.sqrt()
+        } else {
+            0.5 * (c + (c * c - 4.0 * k).sqrt())
+        };
+        2.5 / lambda
+    }
+}
+
+impl<const N: usize, const S: usize> Plant<2> for TetheredFlexible<N, S> {
+    type State = SVector<f64, S>;
+    const STATE_NAMES: &'static [&'static str] = NAMES.split_at(S).0;
+    const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
+
+    #[inline(always)]
+    fn coordinates(&self, x: &SVector<f64, S>) -> (Vector2<f64>, Vector2<f64>) {
+        let (px, py, vx, vy) = (x[0], x[1], x[3], x[4]);
+        let phi = (-py).atan2(-px);
+        let dphi = (px * vy - py * vx) / (px * px + py * py);
+        (Vector2::new(phi, x[2]), Vector2::new(dphi, x[5]))
+    }
+
+    /// Nothing: the controller knows the inertia only (seed section 3.1.3).
+    #[inline(always)]
+    fn modelled_acceleration(&self, _t: f64, _x: &SVector<f64, S>) -> Vector2<f64> {
+        Vector2::zeros()
+    }
+
+    /// The simplified model's M: the controller does not know the flexible dynamics.
+    #[inline(always)]
+    fn inertia(&self, _x: &SVector<f64, S>) -> Vector2<f64> {
+        self.body.inertia()
+    }
+
+    #[inline(always)]
+    fn actuate(&self, _x: &SVector<f64, S>, acceleration: &Vector2<f64>) -> Vector2<f64> {
+        self.body.actuate(acceleration)
+    }
+
+    #[inline(always)]
+    fn derivative(
+        &self,
+        _t: f64,
+        x: &SVector<f64, S>,
+        u: &Vector2<f64>,
+        d: &Vector2<f64>,
+    ) -> SVector<f64, S> {
+        let () = Self::LAYOUT;
+        let b = &self.body;
+        let n = b.orbital_rate;
+        let n2 = n * n;
+        let inv_node = 1.0 / self.node_mass();
+        let mut dx = SVector::<f64, S>::zeros();
+        // Hill-frame field on every point mass; spring forces are added below
+        let field = |px: f64, vx: f64, vy: f64| (2.0 * n * vy + 3.0 * n2 * px, -2.0 * n * vx);
+        for k in 0..N {
+            let i = 6 + 4 * k;
+            dx[i] = x[i + 2];
+            dx[i + 1] = x[i + 3];
+            let (ax, ay) = field(x[i], x[i + 2], x[i + 3]);
+            dx[i + 2] = ax;
+            dx[i + 3] = ay;
+        }
+        let mut pull_on_attachment = Vector2::zeros();
+        let (mut p0, mut v0) = self.point(x, 0);
+        for j in 0..=N {
+            let (p1, v1) = self.point(x, j + 1);
+            let (t, dir) = self.pull(&p0, &v0, &p1, &v1);
+            let f = dir * t;
+            if j >= 1 {
+                let i = 6 + 4 * (j - 1);
+                dx[i + 2] += f[0] * inv_node;
+                dx[i + 3] += f[1] * inv_node;
+            }
+            if j < N {
+                let i = 6 + 4 * j;
+                dx[i + 2] -= f[0] * inv_node;
+                dx[i + 3] -= f[1] * inv_node;
+            } else {
+                pull_on_attachment = -f;
+            }
+            p0 = p1;
+            v0 = v1;
+        }
+        // the sub-satellite: thrust perpendicular to the main-to-centre line, through the centre
+        let r = Vector2::new(x[0], x[1]);
+        let rho = r.norm();
+        let along = Vector2::new(-r[1], r[0]) / rho;
+        let m = self.end_mass();
+        let force = pull_on_attachment + along * (u[0] + m * rho * d[0]);
+        let (ax, ay) = field(x[0], x[3], x[4]);
+        let half = 0.5 * b.side;
+        let (s, c) = x[2].sin_cos();
+        let arm = Vector2::new(half * c, half * s);
+        let j_s = b.moment_of_inertia();
+        dx[0] = x[3];
+        dx[1] = x[4];
+        dx[2] = x[5];
+        dx[3] = ax + force[0] / m;
+        dx[4] = ay + force[1] / m;
+        dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) / j_s + d[1];
+        dx
+    }
+
+    #[inline(always)]
+    fn admissible(&self, x: &SVector<f64, S>) -> bool {
+        x.iter().all(|v| v.is_finite()) && (x[0] != 0.0 || x[1] != 0.0)
+    }
+
+    fn check_initial(&self, x: &SVector<f64, S>) -> Result<(), ParamError> {
+        for (i, v) in x.iter().enumerate() {
+            require(true, "x0", *v, "finite values").map_err(|e| e.on_axis(i))?;
+        }
+        let rho = x[0].hypot(x[1]);
+        require(
+            rho > 0.0,
+            "x0",
+            rho,
+            "the sub-satellite away from the main satellite, hypot(x0[0], x0[1]) > 0",
+        )
+    }
+
+    fn validate(&self) -> Result<(), ParamError> {
+        let () = Self::LAYOUT;
+        self.body.validate()?;
+        require(
+            self.density > 0.0,
+            "tether_density",
+            self.density,
+            "tether_density > 0",
+        )?;
+        require(
+            self.axial_stiffness > 0.0,
+            "axial_stiffness",
+            self.axial_stiffness,
+            "axial_stiffness > 0",
+        )?;
+        require(
+            self.axial_damping >= 0.0,
+            "axial_damping",
+            self.axial_damping,
+            "axial_damping >= 0",
+        )
+    }
+}
