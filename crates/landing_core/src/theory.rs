@@ -270,9 +270,7 @@ fn smallest_positive_root(a: f64, b: f64, c: f64) -> f64 {
 
 // Seed 003: the fixed-time NTSMC with RBF compensation (law 9), Theorem 1.
 
-fn check_fntsmc_exponents(p1: f64, p2: f64, alpha_s: f64, beta_s: f64) -> Result<(), ParamError> {
-    require(p1 > 1.0, "p1", p1, "p1 > 1")?;
-    require(p2 > 0.0 && p2 < 1.0, "p2", p2, "0 < p2 < 1")?;
+fn check_reaching_exponents(alpha_s: f64, beta_s: f64) -> Result<(), ParamError> {
     require(
         alpha_s > 0.5 && alpha_s < 1.0,
         "alpha_s",
@@ -280,6 +278,12 @@ fn check_fntsmc_exponents(p1: f64, p2: f64, alpha_s: f64, beta_s: f64) -> Result
         "1/2 < alpha_s < 1",
     )?;
     require(beta_s > 1.0, "beta_s", beta_s, "beta_s > 1")
+}
+
+fn check_fntsmc_exponents(p1: f64, p2: f64, alpha_s: f64, beta_s: f64) -> Result<(), ParamError> {
+    require(p1 > 1.0, "p1", p1, "p1 > 1")?;
+    require(p2 > 0.0 && p2 < 1.0, "p2", p2, "0 < p2 < 1")?;
+    check_reaching_exponents(alpha_s, beta_s)
 }
 
 /// Seed 003 eq. 42 as printed: `T_s <= 2 / (c_v (z4 - 1)) + 2 / (c_v (1 - z3))` with
@@ -291,13 +295,7 @@ fn check_fntsmc_exponents(p1: f64, p2: f64, alpha_s: f64, beta_s: f64) -> Result
 /// be evaluated from the seed alone; it is a function of `c_v` here. K3 does not appear in it.
 pub fn fntsmc_ts_printed(c_v: f64, alpha_s: f64, beta_s: f64) -> Result<f64, ParamError> {
     require(c_v > 0.0, "c_v", c_v, "c_v > 0")?;
-    require(
-        alpha_s > 0.5 && alpha_s < 1.0,
-        "alpha_s",
-        alpha_s,
-        "1/2 < alpha_s < 1",
-    )?;
-    require(beta_s > 1.0, "beta_s", beta_s, "beta_s > 1")?;
+    check_reaching_exponents(alpha_s, beta_s)?;
     let z3 = (3.0 * alpha_s - 1.0) / (2.0 * alpha_s);
     let z4 = (3.0 * beta_s - 1.0) / (2.0 * beta_s);
     Ok(2.0 / (c_v * (z4 - 1.0)) + 2.0 / (c_v * (1.0 - z3)))
