@@ -1,8 +1,8 @@
 """Every law runs on every plant (SPEC 5: "every one available on every compatible plant").
 
-Three-axis plants: from a 10 m offset each law brings the plant to its target. Gains are moderate and shared,
-with two physical exceptions: the super-twisting gains are in force units and so scale with the
-plant's inertia, and the fuzzy-blended FTSMC drops its equivalent control (gravity cancellation
+Three-axis plants: from a 10 m offset each law brings the plant to its target. Gains are
+moderate and shared, with two physical exceptions: the super-twisting gains are in force units
+and so scale with the plant's inertia, and the fuzzy-blended FTSMC drops its equivalent control (gravity cancellation
 included) far from the surface (seed 000 eq. 20), so its switching gain must exceed the plant's
 gravity, and near the surface the blend leaves a steady offset unless b(D) rises fast
 (M = 10): 0.5 m/s^2 suffices near an asteroid, the Mars lander needs 5.
