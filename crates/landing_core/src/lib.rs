@@ -14,6 +14,7 @@ pub mod error;
 pub mod fuzzy;
 pub mod gravity;
 pub mod integrator;
+pub mod lanes;
 pub mod math;
 pub mod metrics;
 pub mod plant;
