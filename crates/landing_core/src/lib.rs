@@ -14,6 +14,7 @@ pub mod error;
 pub mod fuzzy;
 pub mod gravity;
 pub mod integrator;
+pub mod kernel;
 pub mod lanes;
 pub mod math;
 pub mod metrics;
@@ -25,7 +26,8 @@ pub mod state;
 pub mod theory;
 pub mod workloads;
 
-pub use batch::{Batch, BatchError, BatchOutput, PerCase};
+pub use batch::{Batch, BatchError, BatchOutput, PerCase, RunOptions};
 pub use error::ParamError;
 pub use metrics::{CaseMetrics, Touchdown};
 pub use rollout::{SimConfig, Tolerance};
+pub use kernel::Level;

@@ -2,6 +2,8 @@
 
 use nalgebra::SVector;
 
+use crate::lanes::{Real, abs, norm, scale, select_vector};
+
 /// First crossing of the landing surface (altitude from positive to non-positive),
 /// interpolated linearly within the integrator step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,7 +52,7 @@ pub struct CaseMetrics<const D: usize> {
 }
 
 impl<const D: usize> CaseMetrics<D> {
-    pub(crate) fn new() -> Self {
+    pub fn new() -> Self {
         Self {
             final_error: SVector::repeat(f64::NAN),
             final_rate_error: SVector::repeat(f64::NAN),
@@ -92,22 +94,23 @@ impl HighPass {
     }
 
     /// Filter state for an input that has been `x` forever (zero output).
-    #[inline]
-    fn steady<const D: usize>(&self, x: &SVector<f64, D>) -> [SVector<f64, D>; 2] {
-        let z2 = x * self.b[2];
-        [x * self.b[1] + z2, z2]
+    #[inline(always)]
+    fn steady<const D: usize, R: Real>(&self, x: &SVector<R, D>) -> [SVector<R, D>; 2] {
+        let z2 = scale(x, self.b[2]);
+        [scale(x, self.b[1]) + z2, z2]
     }
 
+    /// One sample: the output and the next state.
     #[inline(always)]
-    fn step<const D: usize>(
+    fn step<const D: usize, R: Real>(
         &self,
-        z: &mut [SVector<f64, D>; 2],
-        x: &SVector<f64, D>,
-    ) -> SVector<f64, D> {
-        let y = x * self.b[0] + z[0];
-        z[0] = x * self.b[1] - y * self.a[0] + z[1];
-        z[1] = x * self.b[2] - y * self.a[1];
-        y
+        z: &[SVector<R, D>; 2],
+        x: &SVector<R, D>,
+    ) -> (SVector<R, D>, [SVector<R, D>; 2]) {
+        let y = scale(x, self.b[0]) + z[0];
+        let z0 = scale(x, self.b[1]) - scale(&y, self.a[0]) + z[1];
+        let z1 = scale(x, self.b[2]) - scale(&y, self.a[1]);
+        (y, [z0, z1])
     }
 
     /// Magnitude response at `hz` (for tests and documentation).
@@ -127,72 +130,92 @@ impl HighPass {
     }
 }
 
-/// Accumulates the command and tracking-error statistics over the applied commands.
-pub(crate) struct CommandStats<const D: usize> {
+/// Accumulates the command and tracking-error statistics over the applied commands, per lane.
+/// A lane stops accumulating when its case stops (the `live` mask of [`CommandStats::add`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CommandStats<const D: usize, R: Real> {
     filter: HighPass,
-    state: Option<[SVector<f64, D>; 2]>,
-    last: SVector<f64, D>,
-    peak: f64,
-    peak_axis: SVector<f64, D>,
-    effort: f64,
-    iae: SVector<f64, D>,
-    variation: SVector<f64, D>,
-    high: SVector<f64, D>,
-    energy: SVector<f64, D>,
-    time: f64,
+    started: bool,
+    z: [SVector<R, D>; 2],
+    last: SVector<R, D>,
+    peak: R,
+    peak_axis: SVector<R, D>,
+    effort: R,
+    iae: SVector<R, D>,
+    variation: SVector<R, D>,
+    high: SVector<R, D>,
+    energy: SVector<R, D>,
+    time: R,
 }
 
-impl<const D: usize> CommandStats<D> {
+impl<const D: usize, R: Real> CommandStats<D, R> {
     pub(crate) fn new(filter: HighPass) -> Self {
         let z = SVector::zeros();
         Self {
             filter,
-            state: None,
+            started: false,
+            z: [z, z],
             last: z,
-            peak: 0.0,
+            peak: R::zero(),
             peak_axis: z,
-            effort: 0.0,
+            effort: R::zero(),
             iae: z,
             variation: z,
             high: z,
             energy: z,
-            time: 0.0,
+            time: R::zero(),
         }
     }
 
-    /// The command `u` applied over a period `dt` with the tracking error `e` at its start.
+    /// The command `u` applied over a period `dt` with the tracking error `e` at its start, in
+    /// the lanes of `live`. Every case starts at the same instant, so the filter's steady-state
+    /// start is taken for all lanes at the first call.
     #[inline(always)]
-    pub(crate) fn add(&mut self, u: &SVector<f64, D>, e: &SVector<f64, D>, dt: f64) {
-        let norm = u.norm();
-        self.peak = self.peak.max(norm);
-        self.peak_axis = self.peak_axis.sup(&u.abs());
-        self.effort += norm * dt;
-        self.iae += e.abs() * dt;
-        self.time += dt;
-        let z = match &mut self.state {
-            Some(z) => {
-                self.variation += (u - self.last).abs();
-                z
-            }
-            None => self.state.insert(self.filter.steady(u)),
-        };
-        let y = self.filter.step(z, u);
-        self.high += y.component_mul(&y);
-        self.energy += u.component_mul(u);
-        self.last = *u;
+    pub(crate) fn add(&mut self, live: R::Mask, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64) {
+        let n = norm(u);
+        let dtl = R::splat(dt);
+        let abs_u = abs(u);
+        let mut peak_axis = self.peak_axis;
+        for i in 0..D {
+            peak_axis[i] = peak_axis[i].max(abs_u[i]);
+        }
+        self.peak = R::select(live, self.peak.max(n), self.peak);
+        self.peak_axis = select_vector(live, &peak_axis, &self.peak_axis);
+        self.effort = R::select(live, self.effort + n * dtl, self.effort);
+        self.iae = select_vector(live, &(self.iae + abs(e) * dtl), &self.iae);
+        self.time = R::select(live, self.time + dtl, self.time);
+        if self.started {
+            let dv = abs(&(u - self.last));
+            self.variation = select_vector(live, &(self.variation + dv), &self.variation);
+        } else {
+            self.z = self.filter.steady(u);
+            self.started = true;
+        }
+        let (y, z) = self.filter.step(&self.z, u);
+        self.z = [
+            select_vector(live, &z[0], &self.z[0]),
+            select_vector(live, &z[1], &self.z[1]),
+        ];
+        self.high = select_vector(live, &(self.high + y.component_mul(&y)), &self.high);
+        self.energy = select_vector(live, &(self.energy + u.component_mul(u)), &self.energy);
+        self.last = select_vector(live, u, &self.last);
     }
 
-    pub(crate) fn finish_into(&self, m: &mut CaseMetrics<D>) {
-        m.peak_command = self.peak;
-        m.peak_command_axis = self.peak_axis;
-        m.control_effort = self.effort;
-        m.iae = self.iae;
-        if self.time > 0.0 {
-            m.command_variation = self.variation / self.time;
+    /// The statistics of lane `i`.
+    pub(crate) fn finish_lane(&self, i: usize, m: &mut CaseMetrics<D>) {
+        m.peak_command = self.peak.lane(i);
+        m.peak_command_axis = SVector::from_fn(|k, _| self.peak_axis[k].lane(i));
+        m.control_effort = self.effort.lane(i);
+        m.iae = SVector::from_fn(|k, _| self.iae[k].lane(i));
+        let time = self.time.lane(i);
+        if time > 0.0 {
+            m.command_variation = SVector::from_fn(|k, _| self.variation[k].lane(i) / time);
         }
         let share = |h: f64, e: f64| if e > 0.0 { h / e } else { 0.0 };
-        m.high_frequency_share = SVector::from_fn(|i, _| share(self.high[i], self.energy[i]));
-        m.high_frequency_share_total = share(self.high.sum(), self.energy.sum());
+        let high = SVector::<f64, D>::from_fn(|k, _| self.high[k].lane(i));
+        let energy = SVector::<f64, D>::from_fn(|k, _| self.energy[k].lane(i));
+        m.high_frequency_share = SVector::from_fn(|k, _| share(high[k], energy[k]));
+        m.high_frequency_share_total = share(high.sum(), energy.sum());
     }
 }
 
@@ -214,12 +237,12 @@ mod tests {
     }
 
     fn share_of(signal: impl Fn(f64) -> f64, hz: f64, dt: f64, n: usize) -> f64 {
-        let mut s = CommandStats::<1>::new(HighPass::butterworth2(hz, dt));
+        let mut s = CommandStats::<1, f64>::new(HighPass::butterworth2(hz, dt));
         for k in 0..n {
-            s.add(&Vector1::new(signal(k as f64 * dt)), &Vector1::zeros(), dt);
+            s.add(true, &Vector1::new(signal(k as f64 * dt)), &Vector1::zeros(), dt);
         }
         let mut m = CaseMetrics::<1>::new();
-        s.finish_into(&mut m);
+        s.finish_lane(0, &mut m);
         m.high_frequency_share[0]
     }
 
@@ -264,12 +287,14 @@ mod tests {
 
     #[test]
     fn variation_and_iae() {
-        let mut s = CommandStats::<1>::new(HighPass::butterworth2(5.0, 0.01));
+        let mut s = CommandStats::<1, f64>::new(HighPass::butterworth2(5.0, 0.01));
         for (u, e) in [(0.0, 1.0), (2.0, -1.0), (1.0, 0.5), (1.0, 0.0)] {
-            s.add(&Vector1::new(u), &Vector1::new(e), 0.5);
+            s.add(true, &Vector1::new(u), &Vector1::new(e), 0.5);
         }
+        // a stopped case keeps what it had
+        s.add(false, &Vector1::new(100.0), &Vector1::new(100.0), 0.5);
         let mut m = CaseMetrics::<1>::new();
-        s.finish_into(&mut m);
+        s.finish_lane(0, &mut m);
         assert_eq!(m.command_variation[0], 3.0 / 2.0);
         assert_eq!(m.iae[0], 2.5 * 0.5);
         assert_eq!(m.peak_command, 2.0);

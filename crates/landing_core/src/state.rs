@@ -3,34 +3,45 @@
 use nalgebra::SVector;
 use std::ops::{Add, Mul};
 
-/// A fixed-size plant state: copied by value, no heap, arithmetic for the integrators.
-pub trait State:
-    Copy + Send + Sync + 'static + Add<Output = Self> + Mul<f64, Output = Self>
+use crate::lanes::{Real, all_finite, vector};
+
+/// A fixed-size plant state over lanes: copied by value, no heap, the arithmetic the
+/// integrators need (`x + k h`, with `h` splat over the lanes).
+pub trait State<R: Real>:
+    Copy + Send + Sync + 'static + Add<Output = Self> + Mul<R, Output = Self>
 {
     /// Number of components.
     const DIM: usize;
 
-    fn as_slice(&self) -> &[f64];
+    fn component(&self, i: usize) -> R;
 
-    /// Build from exactly `DIM` values.
-    fn from_slice(values: &[f64]) -> Self;
+    fn from_components(f: impl FnMut(usize) -> R) -> Self;
 
-    #[inline]
-    fn all_finite(&self) -> bool {
-        self.as_slice().iter().all(|v| v.is_finite())
+    /// Whether every component is finite, per lane.
+    fn all_finite(&self) -> R::Mask;
+
+    /// Lane-wise select: `a` where the mask is set, `b` elsewhere.
+    #[inline(always)]
+    fn select(mask: R::Mask, a: &Self, b: &Self) -> Self {
+        Self::from_components(|i| R::select(mask, a.component(i), b.component(i)))
     }
 }
 
-impl<const N: usize> State for SVector<f64, N> {
+impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     const DIM: usize = N;
 
-    #[inline]
-    fn as_slice(&self) -> &[f64] {
-        nalgebra::Matrix::as_slice(self)
+    #[inline(always)]
+    fn component(&self, i: usize) -> R {
+        self[i]
     }
 
-    #[inline]
-    fn from_slice(values: &[f64]) -> Self {
-        SVector::<f64, N>::from_column_slice(values)
+    #[inline(always)]
+    fn from_components(f: impl FnMut(usize) -> R) -> Self {
+        vector(f)
+    }
+
+    #[inline(always)]
+    fn all_finite(&self) -> R::Mask {
+        all_finite(self)
     }
 }

@@ -5,9 +5,8 @@ mod common;
 use common::*;
 use landing_core::SimConfig;
 use landing_core::batch::{Batch, PerCase, run_with_threads};
-use landing_core::control::{FixedTimeMss, MssVariant};
+use landing_core::control::{AnyLaw, FixedTimeMss, MssVariant};
 use landing_core::disturbance::Disturbance;
-use landing_core::integrator::Rk4;
 use landing_core::plant::MarsLander;
 use landing_core::reference::Reference;
 use landing_core::workloads::{mars_dispersed, mars_storm};
@@ -23,8 +22,8 @@ fn noisy() -> Disturbance<3> {
 
 fn batch(
     x0: Vec<MarsState>,
-    laws: PerCase<FixedTimeMss<3>>,
-) -> Batch<3, MarsLander, FixedTimeMss<3>> {
+    laws: PerCase<AnyLaw<3>>,
+) -> Batch<3, MarsLander> {
     Batch {
         plants: PerCase::shared(MarsLander {
             thrust_limit: Vector3::repeat(50_000.0),
@@ -41,12 +40,12 @@ fn batch(
 fn results_do_not_depend_on_the_thread_count() {
     let b = batch(
         dispersed(37),
-        PerCase::shared(spec_gains(MssVariant::Printed)),
+        PerCase::shared(spec_gains(MssVariant::Printed).into()),
     );
     let cfg = SimConfig::new(2.0, 0.001, 2, 50, 9).unwrap();
-    let one = run_with_threads(&b, Rk4, &cfg, Some(1)).unwrap();
-    let two = run_with_threads(&b, Rk4, &cfg, Some(2)).unwrap();
-    let five = run_with_threads(&b, Rk4, &cfg, Some(5)).unwrap();
+    let one = run_with_threads(&b, &cfg, Some(1)).unwrap();
+    let two = run_with_threads(&b, &cfg, Some(2)).unwrap();
+    let five = run_with_threads(&b, &cfg, Some(5)).unwrap();
     for other in [&two, &five] {
         assert_eq!(bits(&one.states), bits(&other.states));
         assert_eq!(bits(&one.controls), bits(&other.controls));
@@ -72,8 +71,7 @@ fn a_case_is_the_same_alone_or_in_a_batch() {
         .collect();
     let cfg = SimConfig::new(1.0, 0.001, 1, 100, 3).unwrap();
     let all = run_with_threads(
-        &batch(x0.clone(), PerCase::from_vec(laws.clone())),
-        Rk4,
+        &batch(x0.clone(), PerCase::from_vec(laws.iter().map(|&l| l.into()).collect())),
         &cfg,
         Some(2),
     )
@@ -82,8 +80,7 @@ fn a_case_is_the_same_alone_or_in_a_batch() {
         // alone, the case keeps its global index (and so its random streams)
         let alone_cfg = cfg.with_first_case(i as u64);
         let alone = run_with_threads(
-            &batch(vec![x0[i]], PerCase::shared(laws[i])),
-            Rk4,
+            &batch(vec![x0[i]], PerCase::shared(laws[i].into())),
             &alone_cfg,
             Some(1),
         )
@@ -107,8 +104,7 @@ fn chunks_of_a_campaign_reproduce_it() {
     let x0 = dispersed(10);
     let cfg = SimConfig::new(0.5, 0.001, 1, 0, 5).unwrap();
     let whole = run_with_threads(
-        &batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed))),
-        Rk4,
+        &batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed).into())),
         &cfg,
         None,
     )
@@ -117,10 +113,10 @@ fn chunks_of_a_campaign_reproduce_it() {
     for (start, end) in [(0, 3), (3, 4), (4, 10)] {
         let part = batch(
             x0[start..end].to_vec(),
-            PerCase::shared(spec_gains(MssVariant::Printed)),
+            PerCase::shared(spec_gains(MssVariant::Printed).into()),
         );
         pieces.extend(
-            run_with_threads(&part, Rk4, &cfg.with_first_case(start as u64), Some(1))
+            run_with_threads(&part, &cfg.with_first_case(start as u64), Some(1))
                 .unwrap()
                 .final_state,
         );
@@ -130,9 +126,8 @@ fn chunks_of_a_campaign_reproduce_it() {
     let wrong = run_with_threads(
         &batch(
             x0[3..4].to_vec(),
-            PerCase::shared(spec_gains(MssVariant::Printed)),
+            PerCase::shared(spec_gains(MssVariant::Printed).into()),
         ),
-        Rk4,
         &cfg,
         None,
     )
@@ -146,13 +141,13 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     // within a few steps. The others have the 50 kN limit.
     let mut x0 = dispersed(4);
     x0[2] = mars_state([1e200, 0.0, 1500.0], [0.0, 0.0, 0.0], 1905.0);
-    let mut b = batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed)));
+    let mut b = batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed).into()));
     let limited = *b.plants.get(0);
     let mut plants = vec![limited; 4];
     plants[2] = MarsLander::default();
     b.plants = PerCase::from_vec(plants);
     let cfg = SimConfig::new(1.0, 0.01, 1, 10, 0).unwrap();
-    let out = run_with_threads(&b, Rk4, &cfg, Some(2)).unwrap();
+    let out = run_with_threads(&b, &cfg, Some(2)).unwrap();
     let flags: Vec<bool> = out
         .metrics
         .iter()
@@ -165,8 +160,7 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     let mut clean = x0.clone();
     clean[2] = x0[0];
     let ref_out = run_with_threads(
-        &batch(clean, PerCase::shared(spec_gains(MssVariant::Printed))),
-        Rk4,
+        &batch(clean, PerCase::shared(spec_gains(MssVariant::Printed).into())),
         &cfg,
         Some(1),
     )
@@ -188,14 +182,14 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
 fn recording_keeps_every_kth_instant_and_the_last() {
     let b = batch(
         dispersed(2),
-        PerCase::shared(spec_gains(MssVariant::Printed)),
+        PerCase::shared(spec_gains(MssVariant::Printed).into()),
     );
     let cfg = SimConfig::new(1.0, 0.1, 1, 3, 0).unwrap();
     assert_eq!(
         cfg.record_times(),
         vec![0.0, 0.30000000000000004, 0.6000000000000001, 0.9, 1.0]
     );
-    let out = run_with_threads(&b, Rk4, &cfg, None).unwrap();
+    let out = run_with_threads(&b, &cfg, None).unwrap();
     assert_eq!(out.n_records(), 5);
     // first record is x0, last equals the final state
     assert_eq!(&out.states[0..7], b.x0[0].as_slice());
@@ -203,7 +197,7 @@ fn recording_keeps_every_kth_instant_and_the_last() {
     assert_eq!(&out.states[(nr - 1) * 7..nr * 7], &out.final_state[0..7]);
     // record_every = 0 keeps the final states and metrics only
     let cfg0 = SimConfig::new(1.0, 0.1, 1, 0, 0).unwrap();
-    let out0 = run_with_threads(&b, Rk4, &cfg0, None).unwrap();
+    let out0 = run_with_threads(&b, &cfg0, None).unwrap();
     assert!(out0.states.is_empty() && out0.times.is_empty());
     assert_eq!(bits(&out0.final_state), bits(&out.final_state));
 }

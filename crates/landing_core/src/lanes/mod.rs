@@ -16,7 +16,10 @@
 //! an unfused `a * b + c` differ in the last bit. (Rust never contracts `a * b + c` on its
 //! own.)
 
+pub mod gather;
 pub mod math;
+
+pub use gather::Gather;
 
 use std::fmt;
 use std::ops::{
@@ -115,9 +118,15 @@ pub trait Real:
 
     // -- derived operations, written once on top of the primitives --------------------------
 
+    /// `lo` below `lo`, `hi` above `hi`, `self` between; a NaN stays NaN (so a non-finite
+    /// command is still seen as one after saturation).
     #[inline(always)]
     fn clamp(self, lo: Self, hi: Self) -> Self {
-        self.max(lo).min(hi)
+        Self::select(
+            self.simd_lt(lo),
+            lo,
+            Self::select(self.simd_gt(hi), hi, self),
+        )
     }
 
     /// `sgn(x)` with `sgn(0) = 0` (and 0 for NaN).
@@ -594,6 +603,38 @@ pub fn sum<R: Real, const N: usize>(v: &SVector<R, N>) -> R {
     acc
 }
 
+/// The vector `(f(0), ..., f(N - 1))`: an `SVector::from_fn` that is sure to be inlined. The
+/// hot loop must inline everything it calls, so that all of it is compiled with the kernel's
+/// instruction set; a call left out of line would run at the baseline level.
+#[inline(always)]
+pub fn vector<R: Real, const N: usize>(mut f: impl FnMut(usize) -> R) -> SVector<R, N> {
+    let mut a = [R::zero(); N];
+    for (i, v) in a.iter_mut().enumerate() {
+        *v = f(i);
+    }
+    SVector::from(a)
+}
+
+/// `v * c` for a plain number `c` (the same operation in every lane).
+#[inline(always)]
+pub fn scale<R: Real, const N: usize>(v: &SVector<R, N>, c: f64) -> SVector<R, N> {
+    let mut out = *v;
+    for i in 0..N {
+        out[i] = v[i] * c;
+    }
+    out
+}
+
+/// `|v_i|` per component.
+#[inline(always)]
+pub fn abs<R: Real, const N: usize>(v: &SVector<R, N>) -> SVector<R, N> {
+    let mut out = *v;
+    for i in 0..N {
+        out[i] = v[i].abs();
+    }
+    out
+}
+
 /// A vector with every component equal to `value` in every lane.
 #[inline(always)]
 pub fn splat_vector<R: Real, const N: usize>(value: f64) -> SVector<R, N> {
@@ -607,7 +648,11 @@ pub fn select_vector<R: Real, const N: usize>(
     a: &SVector<R, N>,
     b: &SVector<R, N>,
 ) -> SVector<R, N> {
-    SVector::from_fn(|i, _| R::select(mask, a[i], b[i]))
+    let mut out = *b;
+    for i in 0..N {
+        out[i] = R::select(mask, a[i], b[i]);
+    }
+    out
 }
 
 /// Whether every component is finite, per lane.
