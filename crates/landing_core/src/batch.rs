@@ -17,13 +17,15 @@ use rayon::prelude::*;
 
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
-use crate::kernel::{AVX2_LANES, AVX512_LANES, BASELINE_LANES, Level, LevelError};
+use crate::kernel::{AVX2_LANES, AVX512_LANES, BASELINE_LANES, BaselineLaws, Level, LevelError};
+#[cfg(target_arch = "x86_64")]
+use crate::kernel::{Avx2Laws, Avx512Laws};
 use crate::lanes::{Gather, Lanes};
 use crate::metrics::CaseMetrics;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
 use crate::rollout::{
-    BlockBuffers, Cancelled, MAX_DIAGNOSTIC_WIDTH, SimConfig, StageTable, rollout_block,
+    BlockBuffers, Cancelled, LawCalls, MAX_DIAGNOSTIC_WIDTH, SimConfig, StageTable, rollout_block,
 };
 use crate::state::State;
 
@@ -204,7 +206,7 @@ struct BlockJob<'a, 'b, const D: usize, P: PlantModel<D>> {
 /// Gathers the block's cases into W lanes and runs them. `#[inline(always)]`: it is compiled
 /// inside each level's trampoline, with that level's target features.
 #[inline(always)]
-fn run_block<const D: usize, P: PlantModel<D>, const W: usize>(
+fn run_block<const D: usize, P: PlantModel<D>, const W: usize, K: LawCalls<D, Lanes<W>>>(
     mut job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
     let sh = job.shared;
@@ -219,7 +221,7 @@ fn run_block<const D: usize, P: PlantModel<D>, const W: usize>(
         |c| Lanes(std::array::from_fn(|i| b.x0[case(i)].component(c))),
     );
     let cases: [u64; W] = std::array::from_fn(|i| sh.cfg.first_case + case(i) as u64);
-    rollout_block(
+    rollout_block::<D, Lanes<W>, _, K>(
         &plant,
         &law,
         &reference,
@@ -238,7 +240,7 @@ fn run_block<const D: usize, P: PlantModel<D>, const W: usize>(
 fn run_block_baseline<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, BASELINE_LANES>(job)
+    run_block::<D, P, BASELINE_LANES, BaselineLaws>(job)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -246,7 +248,7 @@ fn run_block_baseline<const D: usize, P: PlantModel<D>>(
 fn run_block_avx2<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, AVX2_LANES>(job)
+    run_block::<D, P, AVX2_LANES, Avx2Laws>(job)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -256,7 +258,7 @@ fn run_block_avx2<const D: usize, P: PlantModel<D>>(
 fn run_block_avx512<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, AVX512_LANES>(job)
+    run_block::<D, P, AVX512_LANES, Avx512Laws>(job)
 }
 
 /// Runs a block at `level` (which [`Level::resolve`] has checked this CPU supports).

@@ -8,7 +8,11 @@ use nalgebra::SVector;
 
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Gather, Real};
+use crate::params::{FromParams, ParamSource};
 use crate::rng::{CaseStream, streams};
+
+/// The disturbance components' kinds at the Python boundary.
+pub const COMPONENT_KINDS: [&str; 4] = ["constant", "sinusoid", "uniform_noise", "command_noise"];
 
 /// Most sinusoidal components one disturbance carries (kept fixed so the type stays `Copy`).
 pub const MAX_SINUSOIDS: usize = 4;
@@ -130,6 +134,19 @@ impl<const D: usize> Disturbance<D> {
             (1..D).all(|i| s.omega[i] == s.omega[0] && s.phase[i] == s.phase[0]);
         self.n_sinusoids += 1;
         Ok(self)
+    }
+
+    /// Both disturbances acting together (their components add up); fails past
+    /// [`MAX_SINUSOIDS`] sinusoids.
+    pub fn add(&self, other: &Self) -> Result<Self, ParamError> {
+        let mut d = self
+            .with_constant(other.constant)
+            .with_noise(other.noise_bound)
+            .with_command_noise(other.relative_bound);
+        for s in other.sinusoids() {
+            d = d.with_sinusoid(*s)?;
+        }
+        Ok(d)
     }
 
     pub fn sinusoids(&self) -> &[Sinusoid<D>] {
@@ -258,6 +275,30 @@ pub fn disturbance_stream(seed: u64, case: u64) -> NoiseStreams {
     NoiseStreams {
         additive: CaseStream::new(seed, streams::DISTURBANCE, case),
         relative: CaseStream::new(seed, streams::COMMAND_NOISE, case),
+    }
+}
+
+impl<const D: usize> FromParams for Disturbance<D> {
+    /// A list `components` of tables, each with a `kind`: `constant` (value), `sinusoid`
+    /// (amplitude, omega, phase), `uniform_noise` (bound) or `command_noise` (fraction); they
+    /// add up.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let mut d = Disturbance::none();
+        for j in 0..p.list_len("components")? {
+            d = p.list_item("components", j, |c| {
+                Ok(match c.kind(&COMPONENT_KINDS)? {
+                    0 => d.with_constant(c.axes("value")?),
+                    1 => d.with_sinusoid(Sinusoid {
+                        amplitude: c.axes("amplitude")?,
+                        omega: c.axes("omega")?,
+                        phase: c.axes("phase")?,
+                    })?,
+                    2 => d.with_noise(c.axes("bound")?),
+                    _ => d.with_command_noise(c.axes("fraction")?),
+                })
+            })?;
+        }
+        Ok(d)
     }
 }
 

@@ -102,22 +102,65 @@ impl IntegratorKind {
         }
     }
 
-    /// One step of length `h` from `x`, with `f(stage, y)` the derivative at that stage.
-    #[inline(always)]
-    pub fn step<R: Real, S: State<R>>(self, f: &impl StageDerivative<R, S>, x: &S, h: f64) -> S {
+    /// The method's Butcher tableau, in the form its step uses.
+    fn tableau(self) -> &'static Tableau {
         match self {
-            Self::Rk4 => {
-                let hh = R::splat(0.5 * h);
-                let k1 = f.at(Stage::Start, x);
-                let k2 = f.at(Stage::Middle, &(*x + k1 * hh));
-                let k3 = f.at(Stage::Middle, &(*x + k2 * hh));
-                let k4 = f.at(Stage::End, &(*x + k3 * R::splat(h)));
-                *x + (k1 + (k2 + k3) * R::splat(2.0) + k4) * R::splat(h / 6.0)
-            }
-            Self::Euler => *x + f.at(Stage::Start, x) * R::splat(h),
+            Self::Rk4 => &RK4,
+            Self::Euler => &EULER,
         }
     }
+
+    /// One step of length `h` from `x`, with `f(stage, y)` the derivative at that stage.
+    ///
+    /// Both methods run through one loop over their tableau's stages, so the derivative (the
+    /// bulk of the code) is inlined once, whatever the method: the choice of method is a
+    /// number of stages and a few coefficients read at run time, not a second copy.
+    #[inline(always)]
+    pub fn step<R: Real, S: State<R>>(self, f: &impl StageDerivative<R, S>, x: &S, h: f64) -> S {
+        let tab = self.tableau();
+        let mut y = *x;
+        let mut sum = *x;
+        for i in 0..tab.stages {
+            let k = f.at(tab.at[i], &y);
+            sum = if i == 0 {
+                k * R::splat(tab.weight[0])
+            } else {
+                sum + k * R::splat(tab.weight[i])
+            };
+            if i + 1 < tab.stages {
+                y = *x + k * R::splat(tab.next[i] * h);
+            }
+        }
+        *x + sum * R::splat(h / tab.divisor)
+    }
 }
+
+/// An explicit Runge-Kutta method whose stage i evaluates at `x + next[i-1] h k_(i-1)` (a
+/// diagonal tableau, as Euler's and the classic RK4's are) and whose step is
+/// `x + (h / divisor) sum_i weight_i k_i`.
+struct Tableau {
+    stages: usize,
+    at: [Stage; 4],
+    next: [f64; 4],
+    weight: [f64; 4],
+    divisor: f64,
+}
+
+const RK4: Tableau = Tableau {
+    stages: 4,
+    at: [Stage::Start, Stage::Middle, Stage::Middle, Stage::End],
+    next: [0.5, 0.5, 1.0, 0.0],
+    weight: [1.0, 2.0, 2.0, 1.0],
+    divisor: 6.0,
+};
+
+const EULER: Tableau = Tableau {
+    stages: 1,
+    at: [Stage::Start; 4],
+    next: [0.0; 4],
+    weight: [1.0, 0.0, 0.0, 0.0],
+    divisor: 1.0,
+};
 
 #[cfg(test)]
 mod tests {

@@ -138,3 +138,99 @@ impl Level {
 pub(crate) const BASELINE_LANES: usize = 8;
 pub(crate) const AVX2_LANES: usize = 16;
 pub(crate) const AVX512_LANES: usize = 16;
+
+/// The laws compiled for one level: out-of-line trampolines, generic over the axis count only,
+/// that the level's block rollouts call once per control period (see
+/// [`LawCalls`](crate::rollout::LawCalls)).
+macro_rules! level_laws {
+    ($name:ident, $lanes:expr $(, $features:literal)?) => {
+        pub(crate) struct $name;
+
+        const _: () = {
+            use nalgebra::SVector;
+
+            use crate::control::{AnyLaw, AnyMemory, LawInput};
+            use crate::lanes::Lanes;
+            use crate::rollout::LawCalls;
+
+            type L = Lanes<{ $lanes }>;
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn start<const D: usize>(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
+                law.start(input)
+            }
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn command<const D: usize>(
+                law: &AnyLaw<D, L>,
+                memory: &AnyMemory<D, L>,
+                input: &LawInput<D, L>,
+            ) -> SVector<L, D> {
+                law.command(memory, input)
+            }
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn advance<const D: usize>(
+                law: &AnyLaw<D, L>,
+                memory: &mut AnyMemory<D, L>,
+                input: &LawInput<D, L>,
+            ) {
+                law.advance(memory, input)
+            }
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn diagnostics<const D: usize>(
+                law: &AnyLaw<D, L>,
+                memory: &AnyMemory<D, L>,
+                input: &LawInput<D, L>,
+                out: &mut [L],
+            ) {
+                law.diagnostics(memory, input, out)
+            }
+
+            // SAFETY (every call below): this type is used only by the block rollouts of its
+            // own level, which run only once `Level::resolve` has checked the CPU has it.
+            impl<const D: usize> LawCalls<D, L> for $name {
+                #[inline(always)]
+                fn start(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
+                    unsafe { start(law, input) }
+                }
+                #[inline(always)]
+                fn command(
+                    law: &AnyLaw<D, L>,
+                    memory: &AnyMemory<D, L>,
+                    input: &LawInput<D, L>,
+                ) -> SVector<L, D> {
+                    unsafe { command(law, memory, input) }
+                }
+                #[inline(always)]
+                fn advance(law: &AnyLaw<D, L>, memory: &mut AnyMemory<D, L>, input: &LawInput<D, L>) {
+                    unsafe { advance(law, memory, input) }
+                }
+                #[inline(always)]
+                fn diagnostics(
+                    law: &AnyLaw<D, L>,
+                    memory: &AnyMemory<D, L>,
+                    input: &LawInput<D, L>,
+                    out: &mut [L],
+                ) {
+                    unsafe { diagnostics(law, memory, input, out) }
+                }
+            }
+        };
+    };
+}
+
+level_laws!(BaselineLaws, BASELINE_LANES);
+#[cfg(target_arch = "x86_64")]
+level_laws!(Avx2Laws, AVX2_LANES, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
+#[cfg(target_arch = "x86_64")]
+level_laws!(
+    Avx512Laws,
+    AVX512_LANES,
+    "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
+);

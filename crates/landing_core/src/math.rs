@@ -1,6 +1,7 @@
 //! Scalar conventions shared by every law (SPEC section 2), over [`Real`] lanes.
 
 use crate::lanes::{Gather, Real};
+use crate::params::{FromParams, ParamSource};
 
 /// Sign with `sgn(0) = 0`.
 ///
@@ -68,6 +69,15 @@ impl<R: Real> Gather<R> for Switch<R> {
 
     fn same_shape(a: &Switch, b: &Switch) -> bool {
         std::mem::discriminant(a) == std::mem::discriminant(b)
+    }
+}
+
+impl FromParams for Switch {
+    /// `switch` ("sign", "sat" or "tanh") and its `boundary_layer` width.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let kind = p.choice("switch", &Switch::NAMES)?;
+        let phi = p.scalar("boundary_layer")?;
+        Ok([Switch::Sign, Switch::Sat(phi), Switch::Tanh(phi)][kind])
     }
 }
 

@@ -261,6 +261,23 @@ impl<const D: usize> StageTable<D> {
     }
 }
 
+/// How a block calls its law. The laws are the bulk of the code: inlined into every plant's
+/// rollout at every instruction-set level they would be compiled thirty times over; called
+/// out of line (once per control period) they are compiled once per level and axis count
+/// ([`crate::kernel`]), at the price of one call per period.
+pub(crate) trait LawCalls<const D: usize, R: Real> {
+    fn start(law: &AnyLaw<D, R>, input: &LawInput<D, R>) -> AnyMemory<D, R>;
+    fn command(law: &AnyLaw<D, R>, memory: &AnyMemory<D, R>, input: &LawInput<D, R>)
+    -> SVector<R, D>;
+    fn advance(law: &AnyLaw<D, R>, memory: &mut AnyMemory<D, R>, input: &LawInput<D, R>);
+    fn diagnostics(
+        law: &AnyLaw<D, R>,
+        memory: &AnyMemory<D, R>,
+        input: &LawInput<D, R>,
+        out: &mut [R],
+    );
+}
+
 /// The plant's derivative over one step with the command held: what the integrator steps.
 struct Held<'a, const D: usize, R: Real, P> {
     plant: &'a P,
@@ -332,7 +349,7 @@ fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
 /// Writes record `slot` of the live lanes.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn record<const D: usize, R: Real, S: State<R>>(
+fn record<const D: usize, R: Real, S: State<R>, K: LawCalls<D, R>>(
     out: &mut BlockBuffers<'_, D>,
     used: usize,
     n_records: usize,
@@ -347,7 +364,7 @@ fn record<const D: usize, R: Real, S: State<R>>(
     let nx = S::DIM;
     let nd = law.diagnostic_width();
     let mut diag = [R::zero(); MAX_DIAGNOSTIC_WIDTH];
-    law.diagnostics(memory, input, &mut diag[..nd]);
+    K::diagnostics(law, memory, input, &mut diag[..nd]);
     for i in 0..used {
         if !live.lane(i) {
             continue;
@@ -370,7 +387,7 @@ fn record<const D: usize, R: Real, S: State<R>>(
 /// are dropped. Stops early, with nothing written that matters, when `cancel` is raised.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>>(
+pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls<D, R>>(
     plant: &P,
     law: &AnyLaw<D, R>,
     reference: &Reference<D, R>,
@@ -398,7 +415,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>>(
     let mut x = *x0;
     let m0 = plant.mass(&x);
     let mut input = law_input(plant, reference, 0.0, cfg.dt, &x);
-    let mut memory = law.start(&input);
+    let mut memory = K::start(law, &input);
     let mut live = R::Mask::splat(true);
     let mut diverged_at = nan;
     let mut touched = R::Mask::splat(false);
@@ -425,7 +442,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>>(
             return Err(Cancelled);
         }
         let t = k as f64 * cfg.dt;
-        let u = plant.actuate(&x, &law.command(&memory, &input));
+        let u = plant.actuate(&x, &K::command(law, &memory, &input));
         let bad = live & !all_finite(&u);
         if bad.any() {
             diverged_at = R::select(bad, R::splat(t), diverged_at);
@@ -435,7 +452,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>>(
             }
         }
         if recording && k == next_record {
-            record(out, used, n_records, slot, live, &x, &u, law, &memory, &input);
+            record::<D, R, _, K>(out, used, n_records, slot, live, &x, &u, law, &memory, &input);
             slot += 1;
             next_record += cfg.record_every;
         }
@@ -452,7 +469,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>>(
         } else {
             SVector::zeros()
         };
-        law.advance(&mut memory, &input);
+        K::advance(law, &mut memory, &input);
         for j in 0..substeps {
             let tj = t + j as f64 * h;
             let f = Held {
@@ -496,12 +513,14 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>>(
     // The command at t_final is recorded (it is what would be held next) but not applied.
     let mut finished = live;
     if live.any() {
-        let u = plant.actuate(&x, &law.command(&memory, &input));
+        let u = plant.actuate(&x, &K::command(law, &memory, &input));
         let bad = live & !all_finite(&u);
         diverged_at = R::select(bad, R::splat(cfg.t_final()), diverged_at);
         finished = live & !bad;
         if recording {
-            record(out, used, n_records, slot, finished, &x, &u, law, &memory, &input);
+            record::<D, R, _, K>(
+                out, used, n_records, slot, finished, &x, &u, law, &memory, &input,
+            );
         }
     }
     let inside = dot(&input.e, &input.e).simd_le(tolerance_sq);

@@ -15,6 +15,7 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Mask, Real};
+use crate::params::{FromParams, ParamSource};
 use crate::math::{Switch, sgn};
 
 /// The fast terminal surface and its equivalent control, shared with the fuzzy-blended law.
@@ -108,5 +109,27 @@ impl<const D: usize> Validate for FastTerminalSmc<D> {
         self.surface.validate()?;
         require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for TerminalSurface<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            alpha: p.axes("alpha")?,
+            beta: p.axes("beta")?,
+            p: p.axes("p")?,
+            q: p.axes("q")?,
+            e_floor: p.scalar("e_floor")?,
+        })
+    }
+}
+
+impl<const D: usize> FromParams for FastTerminalSmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: TerminalSurface::from_params(p)?,
+            k: p.axes("k")?,
+            switch: Switch::from_params(p)?,
+        })
     }
 }

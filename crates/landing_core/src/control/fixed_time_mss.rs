@@ -21,6 +21,7 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Mask, Real, vector};
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MssVariant {
@@ -201,5 +202,23 @@ impl<const D: usize> Validate for FixedTimeMss<D> {
             self.s1_floor,
             "s1_floor > 0",
         )
+    }
+}
+
+impl<const D: usize> FromParams for FixedTimeMss<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            beta1: p.axes("beta1")?,
+            beta2: p.axes("beta2")?,
+            q1: p.axes("q1")?,
+            q2: p.axes("q2")?,
+            alpha1: p.axes("alpha1")?,
+            alpha2: p.axes("alpha2")?,
+            gamma1: p.axes("gamma1")?,
+            gamma2: p.axes("gamma2")?,
+            variant: [MssVariant::Printed, MssVariant::Exact]
+                [p.choice("variant", &MssVariant::NAMES)?],
+            s1_floor: p.scalar("s1_floor")?,
+        })
     }
 }

@@ -39,6 +39,7 @@ use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Mask, Real, vector};
+use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
 
 /// zeta of eq. 21 with exponent p and threshold sigma (one case).
@@ -292,5 +293,26 @@ impl<const D: usize> Validate for FixedTimeNtsmc<D> {
             "rbf_width > 0",
             |v| v > 0.0,
         )
+    }
+}
+
+impl<const D: usize> FromParams for FixedTimeNtsmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            k1: p.axes("k1")?,
+            k2: p.axes("k2")?,
+            k3: p.axes("k3")?,
+            eps_max: p.axes("eps_max")?,
+            p1: p.axes("p1")?,
+            p2: p.axes("p2")?,
+            alpha_s: p.axes("alpha_s")?,
+            beta_s: p.axes("beta_s")?,
+            sigma_phi: p.axes("sigma_phi")?,
+            gamma: p.axes("gamma")?,
+            rbf_nodes: p.count("rbf_nodes", &[1, 2, 3, 4, 5, 6, 7], "rbf_nodes in 1..=7")?,
+            rbf_scale_e1: p.axes("rbf_scale_e1")?,
+            rbf_scale_e2: p.axes("rbf_scale_e2")?,
+            rbf_width: p.axes("rbf_width")?,
+        })
     }
 }

@@ -15,6 +15,7 @@ use super::fast_terminal::TerminalSurface;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Real, norm};
+use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -83,5 +84,17 @@ impl<const D: usize> Validate for FuzzyFastTerminalSmc<D> {
         require(self.n > 0.0, "n", self.n, "n > 0")?;
         require(self.m > 0.0, "m", self.m, "m > 0")?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for FuzzyFastTerminalSmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: TerminalSurface::from_params(p)?,
+            k: p.axes("k")?,
+            switch: Switch::from_params(p)?,
+            n: p.scalar("n")?,
+            m: p.scalar("m")?,
+        })
     }
 }

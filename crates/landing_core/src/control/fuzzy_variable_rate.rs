@@ -23,6 +23,7 @@ use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
 use crate::fuzzy::Mamdani;
 use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct FuzzyVariableRate<const D: usize, R = f64> {
@@ -127,5 +128,17 @@ impl<const D: usize> Validate for FuzzyVariableRate<D> {
             ));
         }
         Ok(())
+    }
+}
+
+impl<const D: usize> FromParams for FuzzyVariableRate<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: IntegralSurface::from_params(p)?,
+            ke: p.axes("ke")?,
+            kec: p.axes("kec")?,
+            ku: p.axes("ku")?,
+            system: p.fuzzy_system("system")?,
+        })
     }
 }

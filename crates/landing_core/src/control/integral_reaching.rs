@@ -18,6 +18,7 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
 use crate::lanes::{Real, scale};
+use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
 
 /// The integral surface with gains c1, c2 and the exponential rate k, shared with the fuzzy
@@ -114,5 +115,25 @@ impl<const D: usize> Validate for IntegralExponentialReaching<D> {
             v >= 0.0
         })?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for IntegralSurface<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            c1: p.axes("c1")?,
+            c2: p.axes("c2")?,
+            k: p.axes("k")?,
+        })
+    }
+}
+
+impl<const D: usize> FromParams for IntegralExponentialReaching<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: IntegralSurface::from_params(p)?,
+            epsilon: p.axes("epsilon")?,
+            switch: Switch::from_params(p)?,
+        })
     }
 }

@@ -40,6 +40,7 @@ use nalgebra::SVector;
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Gather, Real};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 use crate::reference::RefPoint;
 
 /// What a law sees at a control instant.
@@ -207,6 +208,18 @@ macro_rules! laws {
                         <$variant<D, R> as Gather<R>>::same_shape(x, y),)*
                     _ => false,
                 }
+            }
+        }
+
+        impl<const D: usize> AnyLaw<D> {
+            /// The law a table describes (its `kind` names it), validated.
+            pub fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+                let law = match LAW_KINDS[p.kind(LAW_KINDS)?] {
+                    $($kind => Self::$variant(<$variant<D>>::from_params(p)?),)*
+                    _ => unreachable!("kind() returns a registered kind"),
+                };
+                law.validate()?;
+                Ok(law)
             }
         }
 

@@ -24,6 +24,7 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Real, vector};
+use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
 
 /// Gains per axis with the seed's symbols (seed: alpha = 1, beta = (0.05, 0.3),
@@ -94,6 +95,17 @@ impl<const D: usize> Validate for Ntsmc<D> {
             .map_err(|e| e.on_axis(i))?;
         }
         require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)
+    }
+}
+
+impl<const D: usize> FromParams for Ntsmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            alpha: p.axes("alpha")?,
+            beta: p.axes("beta")?,
+            gamma: p.axes("gamma")?,
+            k: p.axes("k")?,
+        })
     }
 }
 

@@ -5,6 +5,7 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OpenLoop<const D: usize, R = f64> {
@@ -31,5 +32,13 @@ impl<const D: usize> Validate for OpenLoop<D> {
             require(true, "acceleration", *a, "finite values").map_err(|e| e.on_axis(i))?;
         }
         Ok(())
+    }
+}
+
+impl<const D: usize> FromParams for OpenLoop<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            acceleration: p.axes("acceleration")?,
+        })
     }
 }

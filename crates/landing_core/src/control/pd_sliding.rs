@@ -6,6 +6,7 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
 use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -53,5 +54,15 @@ impl<const D: usize> Validate for PdSlidingMode<D> {
         require_axes(self.lambda.as_slice(), "lambda", "lambda > 0", |v| v > 0.0)?;
         require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for PdSlidingMode<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            lambda: p.axes("lambda")?,
+            k: p.axes("k")?,
+            switch: Switch::from_params(p)?,
+        })
     }
 }

@@ -22,6 +22,7 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -122,5 +123,18 @@ impl<const D: usize> Validate for SuperTwisting<D> {
         require_axes(self.b2.as_slice(), "b2", "b2 > 0", |v| v > 0.0)?;
         require_axes(self.c.as_slice(), "c", "c > 0", |v| v > 0.0)?;
         require(self.s_floor > 0.0, "s_floor", self.s_floor, "s_floor > 0")
+    }
+}
+
+impl<const D: usize> FromParams for SuperTwisting<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            b1: p.axes("b1")?,
+            b2: p.axes("b2")?,
+            c: p.axes("c")?,
+            variant: [SuperTwistingVariant::Printed, SuperTwistingVariant::Standard]
+                [p.choice("variant", &SuperTwistingVariant::NAMES)?],
+            s_floor: p.scalar("s_floor")?,
+        })
     }
 }

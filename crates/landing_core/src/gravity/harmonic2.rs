@@ -5,6 +5,7 @@ use nalgebra::Vector3;
 use super::{GravityField, GravityModel};
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Real, dot};
+use crate::params::{FromParams, ParamSource};
 
 /// `U = (mu/r) [1 + (R0/r)^2 (C20 (3 z^2/r^2 - 1)/2 + 3 C22 (x^2 - y^2)/r^2)]`.
 ///
@@ -81,4 +82,15 @@ impl<R: Real> GravityField<R> for Harmonic2<R> {
 
 impl GravityModel for Harmonic2 {
     type At<R: Real> = Harmonic2<R>;
+}
+
+impl FromParams for Harmonic2 {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            mu: p.scalar("mu")?,
+            r0: p.scalar("r0")?,
+            c20: p.scalar("c20")?,
+            c22: p.scalar("c22")?,
+        })
+    }
 }

@@ -3,6 +3,7 @@ use nalgebra::Vector3;
 use super::{GravityField, GravityModel};
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Real, dot};
+use crate::params::{FromParams, ParamSource};
 
 /// A point mass, `U = mu / r`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,4 +35,10 @@ impl<R: Real> GravityField<R> for PointMass<R> {
 
 impl GravityModel for PointMass {
     type At<R: Real> = PointMass<R>;
+}
+
+impl FromParams for PointMass {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self { mu: p.scalar("mu")? })
+    }
 }

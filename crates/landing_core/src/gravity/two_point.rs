@@ -5,6 +5,7 @@ use nalgebra::Vector3;
 use super::{GravityField, GravityModel};
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Real, dot};
+use crate::params::{FromParams, ParamSource};
 
 /// Newton's constant, m^3 / (kg s^2) (CODATA 2018).
 pub const G: f64 = 6.6743e-11;
@@ -86,4 +87,13 @@ impl<R: Real> GravityField<R> for TwoPointMass<R> {
 
 impl GravityModel for TwoPointMass {
     type At<R: Real> = TwoPointMass<R>;
+}
+
+impl FromParams for TwoPointMass {
+    /// Masses `m1`, `m2` (kg) at `position1`, `position2` (m), with Newton's constant `G`.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let m = [p.scalar("m1")?, p.scalar("m2")?];
+        let positions = [p.axes::<3>("position1")?, p.axes::<3>("position2")?];
+        Ok(Self::from_masses_with(p.scalar("G")?, m, positions))
+    }
 }

@@ -7,6 +7,7 @@ use nalgebra::SVector;
 use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate};
 use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 
 pub type DoubleIntegratorState<R = f64> = SVector<R, 6>;
 
@@ -86,5 +87,15 @@ impl Validate for DoubleIntegrator {
             }
         }
         Ok(())
+    }
+}
+
+impl FromParams for DoubleIntegrator {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            acceleration_limit: p
+                .opt_axes::<3>("acceleration_limit")?
+                .unwrap_or(SVector::repeat(f64::INFINITY)),
+        })
     }
 }

@@ -21,6 +21,7 @@ use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::gravity::{GravityField, Uniform};
 use crate::lanes::{Real, norm};
+use crate::params::{FromParams, ParamSource};
 
 pub type MarsState<R = f64> = SVector<R, 7>;
 
@@ -208,6 +209,25 @@ impl Validate for MarsLander {
             }
         }
         Ok(())
+    }
+}
+
+impl FromParams for MarsLander {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            isp: p.scalar("isp")?,
+            area: p.axes::<3>("area")?,
+            gravity: Uniform {
+                g0: p.scalar("gravity")?,
+            },
+            g0: p.scalar("g0")?,
+            drag: p.flag("drag")?,
+            drag_coefficient: p.scalar("drag_coefficient")?,
+            density_decay: p.scalar("density_decay")?,
+            thrust_limit: p
+                .opt_axes::<3>("thrust_limit")?
+                .unwrap_or(Vector3::repeat(f64::INFINITY)),
+        })
     }
 }
 

@@ -102,6 +102,27 @@ pub trait PlantModel<const D: usize>:
     /// Names of the applied-command components.
     const CONTROL_NAMES: &'static [&'static str];
 
+    /// Derived figures of the model, for tables and documentation (e.g. the tethered
+    /// satellite's inertia and orbital rate): names and values.
+    fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        Vec::new()
+    }
+
+    /// The largest stable RK4 step of the model's fastest mode, s (infinite unless stiff).
+    fn max_step(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    /// The state at generalized coordinates `q` and rates `qd`, for plants whose state they
+    /// determine (None for the others).
+    fn state_at(
+        &self,
+        _q: &SVector<f64, D>,
+        _qd: &SVector<f64, D>,
+    ) -> Option<Result<Vec<f64>, ParamError>> {
+        None
+    }
+
     /// Checks an initial state; by default, that it is finite.
     fn check_initial(&self, x: &[f64]) -> Result<(), ParamError> {
         for (i, v) in x.iter().enumerate() {

@@ -17,6 +17,7 @@ use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate, require};
 use crate::gravity::{GravityField, GravityModel};
 use crate::lanes::{Gather, Real};
+use crate::params::{FromParams, ParamSource};
 
 pub type SmallBodyState<R = f64> = SVector<R, 6>;
 
@@ -150,6 +151,20 @@ impl<G: Validate> Validate for SmallBody<G> {
             }
         }
         self.gravity.validate()
+    }
+}
+
+impl<G: FromParams> FromParams for SmallBody<G> {
+    /// The body's rotation and limit, and its field from the nested table `gravity` (whose kind
+    /// the registry has matched with `G`).
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            gravity: p.nested("gravity", G::from_params)?,
+            omega: p.scalar("omega")?,
+            acceleration_limit: p
+                .opt_axes::<3>("acceleration_limit")?
+                .unwrap_or(Vector3::repeat(f64::INFINITY)),
+        })
     }
 }
 

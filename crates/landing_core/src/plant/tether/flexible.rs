@@ -36,6 +36,7 @@ use super::names::{MAX_NODES, NAMES};
 use super::{TetherBody, rigid_tension};
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Gather, Real};
+use crate::params::{FromParams, ParamSource};
 use crate::plant::{Plant, PlantModel};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -394,6 +395,27 @@ impl<const N: usize, const S: usize> PlantModel<2> for TetheredFlexible<N, S> {
     const STATE_NAMES: &'static [&'static str] = NAMES.split_at(S).0;
     const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
 
+    fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        let mut f = self.body.figures();
+        f.push(("nodes", vec![N as f64]));
+        f.push(("segment_length", vec![self.segment_length()]));
+        f
+    }
+
+    fn max_step(&self) -> f64 {
+        TetheredFlexible::max_step(self)
+    }
+
+    /// The tether laid straight and stretched by the rigid dumbbell's tension
+    /// ([`TetheredFlexible::state_at`]).
+    fn state_at(
+        &self,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Option<Result<Vec<f64>, ParamError>> {
+        Some(TetheredFlexible::state_at(self, q[0], q[1], qd[0], qd[1]).map(|x| x.as_slice().to_vec()))
+    }
+
     fn check_initial(&self, x: &[f64]) -> Result<(), ParamError> {
         for (i, v) in x.iter().enumerate() {
             require(true, "x0", *v, "finite values").map_err(|e| e.on_axis(i))?;
@@ -430,5 +452,18 @@ impl<const N: usize, const S: usize> Validate for TetheredFlexible<N, S> {
             self.axial_damping,
             "axial_damping >= 0",
         )
+    }
+}
+
+impl<const N: usize, const S: usize> FromParams for TetheredFlexible<N, S> {
+    /// The shared body and the tether (`nodes` itself picks the type, in the registry).
+    fn from_params<Src: ParamSource>(p: &mut Src) -> Result<Self, Src::Error> {
+        p.skip("nodes");
+        Ok(Self {
+            body: TetherBody::from_params(p)?,
+            density: p.scalar("tether_density")?,
+            axial_stiffness: p.scalar("axial_stiffness")?,
+            axial_damping: p.scalar("axial_damping")?,
+        })
     }
 }

@@ -37,6 +37,7 @@ use nalgebra::Vector2;
 
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 
 /// Earth's gravitational parameter, m^3/s^2 (WGS 84).
 pub const MU_EARTH: f64 = 3.986_004_418e14;
@@ -128,6 +129,19 @@ impl<R: Real> TetherBody<R> {
     }
 }
 
+impl TetherBody {
+    /// The figures the Python layer shows: the controller's inertia, the orbital rate and the
+    /// actuator limits.
+    pub(crate) fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        vec![
+            ("inertia", self.inertia().as_slice().to_vec()),
+            ("orbital_rate", vec![self.orbital_rate]),
+            ("thrust_limit", vec![self.thrust_limit]),
+            ("torque_limit", vec![self.torque_limit]),
+        ]
+    }
+}
+
 impl Validate for TetherBody {
     fn validate(&self) -> Result<(), ParamError> {
         require(
@@ -170,6 +184,27 @@ impl Validate for TetherBody {
             }
         }
         Ok(())
+    }
+}
+
+impl FromParams for TetherBody {
+    /// Table 1 and the orbit: the orbital rate from `orbit_altitude` (a circular Earth orbit);
+    /// no limit where `thrust_limit` is absent, and the torque limit from the thrust limit
+    /// where `torque_limit` is ([`TetherBody::default_torque_limit`]).
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let side = p.scalar("side")?;
+        let thrust_limit = p.opt_scalar("thrust_limit")?.unwrap_or(f64::INFINITY);
+        Ok(Self {
+            main_mass: p.scalar("main_mass")?,
+            sub_mass: p.scalar("sub_mass")?,
+            length: p.scalar("tether_length")?,
+            side,
+            orbital_rate: orbital_rate(p.scalar("orbit_altitude")?)?,
+            thrust_limit,
+            torque_limit: p
+                .opt_scalar("torque_limit")?
+                .unwrap_or(Self::default_torque_limit(side, thrust_limit)),
+        })
     }
 }
 

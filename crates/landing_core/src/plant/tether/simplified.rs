@@ -23,6 +23,7 @@ use nalgebra::{SVector, Vector2};
 use super::{TetherBody, rigid_tension};
 use crate::error::{ParamError, Validate};
 use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 use crate::plant::{Plant, PlantModel};
 
 pub type SimplifiedState<R = f64> = SVector<R, 4>;
@@ -111,11 +112,36 @@ impl PlantModel<2> for TetheredSimplified {
     type At<R: Real> = TetheredSimplified<R>;
     const STATE_NAMES: &'static [&'static str] = &["phi", "theta", "phi_dot", "theta_dot"];
     const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
+
+    fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        self.body.figures()
+    }
+
+    /// The state is the angles and rates themselves.
+    fn state_at(
+        &self,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Option<Result<Vec<f64>, ParamError>> {
+        Some(Ok(vec![q[0], q[1], qd[0], qd[1]]))
+    }
 }
 
 impl Validate for TetheredSimplified {
     fn validate(&self) -> Result<(), ParamError> {
         self.body.validate()
+    }
+}
+
+impl FromParams for TetheredSimplified {
+    /// The shared body; the flexible model's tether parameters are known but unused here.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        for key in ["nodes", "tether_density", "axial_stiffness", "axial_damping"] {
+            p.skip(key);
+        }
+        Ok(Self {
+            body: TetherBody::from_params(p)?,
+        })
     }
 }
 
