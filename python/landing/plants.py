@@ -14,7 +14,7 @@ import numpy as np
 
 from landing import _core
 from landing._table import ArrayLike, Table
-from landing.errors import ParameterError
+from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
 
 __all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSatellite"]
@@ -138,6 +138,13 @@ class SmallBody(Plant):
     acceleration_limit: Optional[ArrayLike] = None
 
     kind: ClassVar[str] = "small_body"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.gravity, Gravity):
+            raise ParameterTypeError(
+                f"SmallBody: gravity must be a landing.gravity field, got {self.gravity!r}"
+            )
+        super().__post_init__()
 
 
 @dataclass(frozen=True, eq=False)

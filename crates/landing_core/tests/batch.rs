@@ -220,3 +220,131 @@ fn horizon_must_be_whole_periods() {
         "substeps"
     );
 }
+
+/// Final states and metrics of a batch as bits (NaN-safe).
+fn fingerprint<const D: usize>(out: &landing_core::BatchOutput<D>) -> (Vec<u64>, Vec<u64>, String) {
+    (
+        bits(&out.final_state),
+        bits(&out.states),
+        format!("{:?}", out.metrics),
+    )
+}
+
+#[test]
+fn every_level_gives_the_same_bits() {
+    use landing_core::batch::{RunOptions, run};
+    use landing_core::workloads::{eros_w3, eros_w5, tether_w6};
+    use landing_core::{Level, SimConfig};
+    let levels = Level::supported();
+    let at = |level: Level| RunOptions {
+        threads: Some(2),
+        level: Some(level),
+        cancel: None,
+    };
+    // W1-like with noise, per-case gains and recording; W3; W5 (fuzzy, command noise); W6
+    let mut x0 = dispersed(21);
+    x0[3][3] = 1e200; // drag overflows: the case diverges (a masked lane among live ones)
+    let laws: Vec<AnyLaw<3>> = (0..21)
+        .map(|i| {
+            FixedTimeMss {
+                alpha1: Vector3::repeat(0.5 + 0.05 * i as f64),
+                ..spec_gains(MssVariant::Printed)
+            }
+            .into()
+        })
+        .collect();
+    let mars = batch(x0, PerCase::from_vec(laws));
+    let cfg = SimConfig::new(0.5, 0.001, 2, 37, 7).unwrap();
+    let w3 = eros_w3(19, 3);
+    let cfg3 = SimConfig::new(2.0, 0.01, 1, 10, 0).unwrap();
+    let w5 = eros_w5(19, 3);
+    let cfg5 = SimConfig::new(20.0, 0.1, 1, 10, 11).unwrap();
+    let w6 = tether_w6(9, 3);
+    let cfg6 = SimConfig::new(0.5, 0.01, 6, 5, 0).unwrap();
+    let reference = (
+        fingerprint(&run(&mars, &cfg, &at(Level::Baseline)).unwrap()),
+        fingerprint(&run(&w3, &cfg3, &at(Level::Baseline)).unwrap()),
+        fingerprint(&run(&w5, &cfg5, &at(Level::Baseline)).unwrap()),
+        fingerprint(&run(&w6, &cfg6, &at(Level::Baseline)).unwrap()),
+    );
+    assert!(
+        run(&mars, &cfg, &at(Level::Baseline)).unwrap().metrics[3]
+            .diverged_at
+            .is_some(),
+        "the case with an absurd speed diverges"
+    );
+    for &level in &levels[1..] {
+        let out = run(&mars, &cfg, &at(level)).unwrap();
+        assert_eq!(out.level, level);
+        assert_eq!(fingerprint(&out), reference.0, "W1 at {level:?}");
+        assert_eq!(fingerprint(&run(&w3, &cfg3, &at(level)).unwrap()), reference.1, "W3 at {level:?}");
+        assert_eq!(fingerprint(&run(&w5, &cfg5, &at(level)).unwrap()), reference.2, "W5 at {level:?}");
+        assert_eq!(fingerprint(&run(&w6, &cfg6, &at(level)).unwrap()), reference.3, "W6 at {level:?}");
+    }
+    eprintln!("compared levels {levels:?}");
+}
+
+#[test]
+fn a_case_does_not_depend_on_its_lane_or_its_block_mates() {
+    use landing_core::batch::{RunOptions, run};
+    use landing_core::{Level, SimConfig};
+    // 5 cases numbered 40..45; then the same cases behind k other cases (so that they sit at
+    // other lanes of other blocks, beside other cases), with the same global indices
+    let x0 = dispersed(60);
+    let laws = |range: std::ops::Range<usize>| -> PerCase<AnyLaw<3>> {
+        PerCase::from_vec(
+            range
+                .map(|i| {
+                    FixedTimeMss {
+                        beta1: Vector3::repeat(0.7 + 0.01 * i as f64),
+                        ..spec_gains(MssVariant::Printed)
+                    }
+                    .into()
+                })
+                .collect(),
+        )
+    };
+    let cfg = SimConfig::new(0.3, 0.001, 1, 50, 17).unwrap();
+    for level in Level::supported() {
+        let options = RunOptions {
+            threads: Some(1),
+            level: Some(level),
+            cancel: None,
+        };
+        let alone = run(
+            &batch(x0[40..45].to_vec(), laws(40..45)),
+            &cfg.with_first_case(40),
+            &options,
+        )
+        .unwrap();
+        for k in [1usize, 3, 7, 13, 21, 35] {
+            let shifted = run(
+                &batch(x0[40 - k..45].to_vec(), laws(40 - k..45)),
+                &cfg.with_first_case((40 - k) as u64),
+                &options,
+            )
+            .unwrap();
+            let nr = alone.n_records();
+            assert_eq!(
+                bits(&shifted.final_state[k * 7..]),
+                bits(&alone.final_state),
+                "{level:?}, {k} cases before"
+            );
+            assert_eq!(bits(&shifted.states[k * nr * 7..]), bits(&alone.states));
+            assert_eq!(
+                format!("{:?}", &shifted.metrics[k..]),
+                format!("{:?}", alone.metrics)
+            );
+        }
+        // and one case alone in a padded block
+        for i in 40..45 {
+            let one = run(
+                &batch(vec![x0[i]], laws(i..i + 1)),
+                &cfg.with_first_case(i as u64),
+                &options,
+            )
+            .unwrap();
+            assert_eq!(bits(&one.final_state), bits(&alone.final_state[(i - 40) * 7..(i - 39) * 7]));
+        }
+    }
+}
