@@ -16,7 +16,9 @@
 //! an unfused `a * b + c` differ in the last bit. (Rust never contracts `a * b + c` on its
 //! own.)
 
+mod exp_log;
 pub mod math;
+mod trig;
 
 use std::fmt;
 use std::ops::{
