@@ -16,8 +16,10 @@
 //! an unfused `a * b + c` differ in the last bit. (Rust never contracts `a * b + c` on its
 //! own.)
 
+mod exp_log;
 pub mod gather;
 pub mod math;
+mod trig;
 
 pub use gather::Gather;
 
