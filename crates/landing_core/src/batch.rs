@@ -17,10 +17,10 @@ use rayon::prelude::*;
 
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
-use crate::kernel::{AVX2_LANES, AVX512_LANES, BASELINE_LANES, BaselineLaws, Level, LevelError};
+use crate::kernel::{BaselineLanes, BaselineLaws, Level, LevelError};
 #[cfg(target_arch = "x86_64")]
-use crate::kernel::{Avx2Laws, Avx512Laws};
-use crate::lanes::{Gather, Lanes};
+use crate::kernel::{Avx2Lanes, Avx2Laws, Avx512Lanes, Avx512Laws};
+use crate::lanes::{Gather, Real};
 use crate::metrics::CaseMetrics;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
@@ -203,25 +203,27 @@ struct BlockJob<'a, 'b, const D: usize, P: PlantModel<D>> {
     out: BlockBuffers<'b, D>,
 }
 
-/// Gathers the block's cases into W lanes and runs them. `#[inline(always)]`: it is compiled
-/// inside each level's trampoline, with that level's target features.
+/// Gathers the block's cases into the lanes of `R` and runs them. `#[inline(always)]`: it is
+/// compiled inside each level's trampoline, with that level's target features.
 #[inline(always)]
-fn run_block<const D: usize, P: PlantModel<D>, const W: usize, K: LawCalls<D, Lanes<W>>>(
+fn run_block<const D: usize, P: PlantModel<D>, R: Real, K: LawCalls<D, R>>(
     mut job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
     let sh = job.shared;
     let b = sh.batch;
     // lane i is case first + i; the padding lanes repeat the last case
     let case = |i: usize| job.first + i.min(job.used - 1);
-    let plant = <P::At<Lanes<W>> as Gather<Lanes<W>>>::gather(&|i| b.plants.get(case(i)));
-    let law = AnyLaw::<D, Lanes<W>>::gather(&|i| b.laws.get(case(i)));
-    let reference = Reference::<D, Lanes<W>>::gather(&|i| b.references.get(case(i)));
-    let disturbance = Disturbance::<D, Lanes<W>>::gather(&|i| b.disturbances.get(case(i)));
-    let x0 = <<P::At<Lanes<W>> as Plant<Lanes<W>, D>>::State as State<Lanes<W>>>::from_components(
-        |c| Lanes(std::array::from_fn(|i| b.x0[case(i)].component(c))),
-    );
-    let cases: [u64; W] = std::array::from_fn(|i| sh.cfg.first_case + case(i) as u64);
-    rollout_block::<D, Lanes<W>, _, K>(
+    let plant = <P::At<R> as Gather<R>>::gather(&|i| b.plants.get(case(i)));
+    let law = AnyLaw::<D, R>::gather(&|i| b.laws.get(case(i)));
+    let reference = Reference::<D, R>::gather(&|i| b.references.get(case(i)));
+    let disturbance = Disturbance::<D, R>::gather(&|i| b.disturbances.get(case(i)));
+    let x0 = <<P::At<R> as Plant<R, D>>::State as State<R>>::from_components(|c| {
+        R::from_fn(|i| b.x0[case(i)].component(c))
+    });
+    let cases: Vec<u64> = (0..R::LANES)
+        .map(|i| sh.cfg.first_case + case(i) as u64)
+        .collect();
+    rollout_block::<D, R, _, K>(
         &plant,
         &law,
         &reference,
@@ -240,7 +242,7 @@ fn run_block<const D: usize, P: PlantModel<D>, const W: usize, K: LawCalls<D, La
 fn run_block_baseline<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, BASELINE_LANES, BaselineLaws>(job)
+    run_block::<D, P, BaselineLanes, BaselineLaws>(job)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -248,7 +250,7 @@ fn run_block_baseline<const D: usize, P: PlantModel<D>>(
 fn run_block_avx2<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, AVX2_LANES, Avx2Laws>(job)
+    run_block::<D, P, Avx2Lanes, Avx2Laws>(job)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -258,7 +260,7 @@ fn run_block_avx2<const D: usize, P: PlantModel<D>>(
 fn run_block_avx512<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, AVX512_LANES, Avx512Laws>(job)
+    run_block::<D, P, Avx512Lanes, Avx512Laws>(job)
 }
 
 /// Runs a block at `level` (which [`Level::resolve`] has checked this CPU supports).

@@ -7,7 +7,7 @@
 use nalgebra::SVector;
 
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Gather, Real};
+use crate::lanes::{Gather, Real, add, mul, scale_by};
 use crate::params::{FromParams, ParamSource};
 use crate::rng::{CaseStream, streams};
 
@@ -196,11 +196,11 @@ impl<const D: usize, R: Real> Disturbance<D, R> {
         let mut held = SVector::zeros();
         if self.noisy {
             let u = lane_uniforms::<D, R>(rng, period, |s| &s.additive);
-            held += self.noise_bound.component_mul(&u);
+            held = add(&held, &mul(&self.noise_bound, &u));
         }
         if self.command_noisy {
             let u = lane_uniforms::<D, R>(rng, period, |s| &s.relative);
-            held += self.relative_bound.component_mul(&u).component_mul(command);
+            held = add(&held, &mul(&mul(&self.relative_bound, &u), command));
         }
         held
     }
@@ -212,7 +212,7 @@ impl<const D: usize, R: Real> Disturbance<D, R> {
         for j in 0..self.n_sinusoids {
             let s = &self.sinusoids[j];
             if self.in_phase[j] {
-                d += s.amplitude * (s.omega[0] * t + s.phase[0]).sin();
+                d = add(&d, &scale_by(&s.amplitude, (s.omega[0] * t + s.phase[0]).sin()));
             } else {
                 for i in 0..D {
                     d[i] += s.amplitude[i] * (s.omega[i] * t + s.phase[i]).sin();

@@ -123,15 +123,15 @@ impl IntegratorKind {
         for i in 0..tab.stages {
             let k = f.at(tab.at[i], &y);
             sum = if i == 0 {
-                k * R::splat(tab.weight[0])
+                S::from_components(|c| k.component(c) * R::splat(tab.weight[0]))
             } else {
-                sum + k * R::splat(tab.weight[i])
+                sum.add_scaled(&k, R::splat(tab.weight[i]))
             };
             if i + 1 < tab.stages {
-                y = *x + k * R::splat(tab.next[i] * h);
+                y = x.add_scaled(&k, R::splat(tab.next[i] * h));
             }
         }
-        *x + sum * R::splat(h / tab.divisor)
+        x.add_scaled(&sum, R::splat(h / tab.divisor))
     }
 }
 

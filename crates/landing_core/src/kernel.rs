@@ -13,6 +13,8 @@
 
 use std::fmt;
 
+use crate::lanes::Real;
+
 /// An instruction-set level the block rollout is compiled for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Level {
@@ -128,32 +130,42 @@ impl Level {
     /// vector registers, which hides the latency of each instruction behind the others'.
     pub fn lanes(self) -> usize {
         match self {
-            Level::Baseline => BASELINE_LANES,
-            Level::Avx2 => AVX2_LANES,
-            Level::Avx512 => AVX512_LANES,
+            Level::Baseline => <BaselineLanes as Real>::LANES,
+            #[cfg(target_arch = "x86_64")]
+            Level::Avx2 => <Avx2Lanes as Real>::LANES,
+            #[cfg(target_arch = "x86_64")]
+            Level::Avx512 => <Avx512Lanes as Real>::LANES,
+            #[cfg(not(target_arch = "x86_64"))]
+            _ => 1,
         }
     }
 }
 
-pub(crate) const BASELINE_LANES: usize = 8;
-pub(crate) const AVX2_LANES: usize = 16;
-pub(crate) const AVX512_LANES: usize = 16;
+/// The lane type of each level: 8 cases in 4 SSE2 registers, 16 in 4 AVX2 registers, 32 in 4
+/// AVX-512 registers (elsewhere, the portable `Lanes<8>`).
+#[cfg(target_arch = "x86_64")]
+pub(crate) type BaselineLanes = crate::lanes::x86::Sse2<4>;
+#[cfg(not(target_arch = "x86_64"))]
+pub(crate) type BaselineLanes = crate::lanes::Lanes<8>;
+#[cfg(target_arch = "x86_64")]
+pub(crate) type Avx2Lanes = crate::lanes::x86::Avx2<4>;
+#[cfg(target_arch = "x86_64")]
+pub(crate) type Avx512Lanes = crate::lanes::x86::Avx512<4>;
 
 /// The laws compiled for one level: out-of-line trampolines, generic over the axis count only,
 /// that the level's block rollouts call once per control period (see
 /// [`LawCalls`](crate::rollout::LawCalls)).
 macro_rules! level_laws {
-    ($name:ident, $lanes:expr $(, $features:literal)?) => {
+    ($name:ident, $lanes:ty $(, $features:literal)?) => {
         pub(crate) struct $name;
 
         const _: () = {
             use nalgebra::SVector;
 
             use crate::control::{AnyLaw, AnyMemory, LawInput};
-            use crate::lanes::Lanes;
             use crate::rollout::LawCalls;
 
-            type L = Lanes<{ $lanes }>;
+            type L = $lanes;
 
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
@@ -225,12 +237,12 @@ macro_rules! level_laws {
     };
 }
 
-level_laws!(BaselineLaws, BASELINE_LANES);
+level_laws!(BaselineLaws, BaselineLanes);
 #[cfg(target_arch = "x86_64")]
-level_laws!(Avx2Laws, AVX2_LANES, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
+level_laws!(Avx2Laws, Avx2Lanes, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
 #[cfg(target_arch = "x86_64")]
 level_laws!(
     Avx512Laws,
-    AVX512_LANES,
+    Avx512Lanes,
     "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
 );

@@ -2,7 +2,7 @@
 
 use nalgebra::SVector;
 
-use crate::lanes::{Real, abs, norm, scale, select_vector};
+use crate::lanes::{Real, abs, add, mul, norm, scale, scale_by, select_vector, sub};
 
 /// First crossing of the landing surface (altitude from positive to non-positive),
 /// interpolated linearly within the integrator step.
@@ -97,7 +97,7 @@ impl HighPass {
     #[inline(always)]
     fn steady<const D: usize, R: Real>(&self, x: &SVector<R, D>) -> [SVector<R, D>; 2] {
         let z2 = scale(x, self.b[2]);
-        [scale(x, self.b[1]) + z2, z2]
+        [add(&scale(x, self.b[1]), &z2), z2]
     }
 
     /// One sample: the output and the next state.
@@ -107,9 +107,9 @@ impl HighPass {
         z: &[SVector<R, D>; 2],
         x: &SVector<R, D>,
     ) -> (SVector<R, D>, [SVector<R, D>; 2]) {
-        let y = scale(x, self.b[0]) + z[0];
-        let z0 = scale(x, self.b[1]) - scale(&y, self.a[0]) + z[1];
-        let z1 = scale(x, self.b[2]) - scale(&y, self.a[1]);
+        let y = add(&scale(x, self.b[0]), &z[0]);
+        let z0 = add(&sub(&scale(x, self.b[1]), &scale(&y, self.a[0])), &z[1]);
+        let z1 = sub(&scale(x, self.b[2]), &scale(&y, self.a[1]));
         (y, [z0, z1])
     }
 
@@ -182,11 +182,11 @@ impl<const D: usize, R: Real> CommandStats<D, R> {
         self.peak = R::select(live, self.peak.max(n), self.peak);
         self.peak_axis = select_vector(live, &peak_axis, &self.peak_axis);
         self.effort = R::select(live, self.effort + n * dtl, self.effort);
-        self.iae = select_vector(live, &(self.iae + abs(e) * dtl), &self.iae);
+        self.iae = select_vector(live, &add(&self.iae, &scale_by(&abs(e), dtl)), &self.iae);
         self.time = R::select(live, self.time + dtl, self.time);
         if self.started {
-            let dv = abs(&(u - self.last));
-            self.variation = select_vector(live, &(self.variation + dv), &self.variation);
+            let dv = abs(&sub(u, &self.last));
+            self.variation = select_vector(live, &add(&self.variation, &dv), &self.variation);
         } else {
             self.z = self.filter.steady(u);
             self.started = true;
@@ -196,8 +196,8 @@ impl<const D: usize, R: Real> CommandStats<D, R> {
             select_vector(live, &z[0], &self.z[0]),
             select_vector(live, &z[1], &self.z[1]),
         ];
-        self.high = select_vector(live, &(self.high + y.component_mul(&y)), &self.high);
-        self.energy = select_vector(live, &(self.energy + u.component_mul(u)), &self.energy);
+        self.high = select_vector(live, &add(&self.high, &mul(&y, &y)), &self.high);
+        self.energy = select_vector(live, &add(&self.energy, &mul(u, u)), &self.energy);
         self.last = select_vector(live, u, &self.last);
     }
 

@@ -3,7 +3,7 @@
 use nalgebra::SVector;
 
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Gather, Real, select_vector};
+use crate::lanes::{Gather, Real, add, scale, scale_by, select_vector};
 use crate::params::{FromParams, ParamSource};
 
 /// The reference kinds at the Python boundary.
@@ -114,9 +114,15 @@ impl<const D: usize, R: Real> Reference<D, R> {
                 // before t_end the cubic at t, after it the end point held, per lane
                 let before = R::splat(t).simd_le(t_end);
                 let tt = R::select(before, R::splat(t), t_end);
-                let position = c0 + (c1 + (c2 + c3 * tt) * tt) * tt;
-                let velocity = c1 + (c2 * R::splat(2.0) + c3 * (R::splat(3.0) * tt)) * tt;
-                let acceleration = c2 * R::splat(2.0) + c3 * (R::splat(6.0) * tt);
+                // c0 + (c1 + (c2 + c3 t) t) t
+                let position = add(&c2, &scale_by(&c3, tt));
+                let position = add(&c1, &scale_by(&position, tt));
+                let position = add(&c0, &scale_by(&position, tt));
+                let velocity = add(
+                    &c1,
+                    &scale_by(&add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(3.0) * tt)), tt),
+                );
+                let acceleration = add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(6.0) * tt));
                 let zero = SVector::zeros();
                 RefPoint {
                     position,

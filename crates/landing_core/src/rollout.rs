@@ -19,7 +19,7 @@ use crate::control::{AnyLaw, AnyMemory, LawInput};
 use crate::disturbance::{Disturbance, NoiseStreams, disturbance_stream};
 use crate::error::ParamError;
 use crate::integrator::{IntegratorKind, Stage, StageDerivative};
-use crate::lanes::{Mask, Real, all_finite, dot, norm, select_vector};
+use crate::lanes::{Mask, Real, add, all_finite, div, dot, norm, scale_by, select_vector, sub};
 use crate::metrics::{CaseMetrics, CommandStats, HighPass, Touchdown};
 use crate::plant::Plant;
 use crate::reference::Reference;
@@ -311,7 +311,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> StageDerivative<R, P::State> for H
             }
             None => self.disturbance.deterministic(time),
         };
-        let d = det + self.held;
+        let d = add(&det, self.held);
         if self.j == 0 && stage == Stage::Start {
             self.plant.derivative_with_drift(time, y, self.u, &d, self.drift)
         } else {
@@ -338,8 +338,8 @@ fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
     LawInput {
         t,
         dt,
-        e: q - r.position,
-        de: qd - r.velocity,
+        e: sub(&q, &r.position),
+        de: sub(&qd, &r.velocity),
         reference: r,
         drift: plant.modelled_acceleration(t, x),
         inertia: plant.inertia(x),
@@ -465,7 +465,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
         was_outside = (live & outside) | (!live & was_outside);
 
         let held = if disturbance.is_random() {
-            disturbance.draw(&rng, k, &u.component_div(&input.inertia))
+            disturbance.draw(&rng, k, &div(&u, &input.inertia))
         } else {
             SVector::zeros()
         };
@@ -492,8 +492,8 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
                     let (q0, v0) = plant.coordinates(&x);
                     let (q1, v1) = plant.coordinates(&next);
                     td_time = R::select(cross, w * h + tj, td_time);
-                    td_position = select_vector(cross, &(q0 + (q1 - q0) * w), &td_position);
-                    td_velocity = select_vector(cross, &(v0 + (v1 - v0) * w), &td_velocity);
+                    td_position = select_vector(cross, &add(&q0, &scale_by(&sub(&q1, &q0), w)), &td_position);
+                    td_velocity = select_vector(cross, &add(&v0, &scale_by(&sub(&v1, &v0), w)), &td_velocity);
                     touched = touched | cross;
                 }
             }

@@ -1,15 +1,12 @@
 //! The state-vector abstraction the integrators and rollouts are generic over.
 
 use nalgebra::SVector;
-use std::ops::{Add, Mul};
 
 use crate::lanes::{Real, all_finite, vector};
 
 /// A fixed-size plant state over lanes: copied by value, no heap, the arithmetic the
-/// integrators need (`x + k h`, with `h` splat over the lanes).
-pub trait State<R: Real>:
-    Copy + Send + Sync + 'static + Add<Output = Self> + Mul<R, Output = Self>
-{
+/// integrators need (`x + k h`, with `h` splat over the lanes), written component by component.
+pub trait State<R: Real>: Copy + Send + Sync + 'static {
     /// Number of components.
     const DIM: usize;
 
@@ -19,6 +16,12 @@ pub trait State<R: Real>:
 
     /// Whether every component is finite, per lane.
     fn all_finite(&self) -> R::Mask;
+
+    /// `self + k c`, component by component (the integrators' update, inlined for sure).
+    #[inline(always)]
+    fn add_scaled(&self, k: &Self, c: R) -> Self {
+        Self::from_components(|i| self.component(i) + k.component(i) * c)
+    }
 
     /// Lane-wise select: `a` where the mask is set, `b` elsewhere.
     #[inline(always)]

@@ -14,7 +14,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real};
+use crate::lanes::{Mask, Real, sub};
 use crate::params::{FromParams, ParamSource};
 use crate::math::{Switch, sgn};
 
@@ -39,7 +39,7 @@ impl<const D: usize, R: Real> TerminalSurface<D, R> {
     #[inline(always)]
     pub fn evaluate(&self, input: &LawInput<D, R>) -> (SVector<R, D>, SVector<R, D>) {
         let mut s = SVector::zeros();
-        let mut eq = input.reference.acceleration - input.drift;
+        let mut eq = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let e = input.e[i];
             let r = self.p[i] / self.q[i];

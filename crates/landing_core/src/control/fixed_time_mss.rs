@@ -20,7 +20,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real, vector};
+use crate::lanes::{Mask, Real, sub, vector};
 use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -137,7 +137,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
 
     #[inline(always)]
     fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
-        let mut a = input.reference.acceleration - input.drift;
+        let mut a = sub(&input.reference.acceleration, &input.drift);
         let zero = R::zero();
         for i in 0..D {
             let (b1, b2, q1, q2) = (self.beta1[i], self.beta2[i], self.q1[i], self.q2[i]);

@@ -38,7 +38,7 @@ use nalgebra::{SMatrix, SVector};
 use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real, vector};
+use crate::lanes::{Mask, Real, sub, vector};
 use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
 
@@ -200,7 +200,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
 
     #[inline(always)]
     fn command(&self, weights: &Self::Memory, input: &LawInput<D, R>) -> SVector<R, D> {
-        let mut a = input.reference.acceleration - input.drift;
+        let mut a = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let ax = self.axis(i, input);
             let k3 = self.k3[i];

@@ -22,7 +22,7 @@ use super::integral_reaching::IntegralSurface;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
 use crate::fuzzy::Mamdani;
-use crate::lanes::Real;
+use crate::lanes::{Real, add, sub};
 use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -62,7 +62,7 @@ impl<const D: usize, R: Real> FuzzyVariableRate<D, R> {
     ) -> (SVector<R, D>, SVector<R, D>, SVector<R, D>) {
         let s = self.surface.s(&m.integral, input);
         let ds = if m.started {
-            let mut ds = s - m.previous_s;
+            let mut ds = sub(&s, &m.previous_s);
             for i in 0..D {
                 ds[i] = ds[i] / input.dt;
             }
@@ -96,7 +96,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyVariableRate<D, R> {
     #[inline(always)]
     fn command(&self, m: &VariableRateMemory<D, R>, input: &LawInput<D, R>) -> SVector<R, D> {
         let (s, _, fuzzy) = self.terms(m, input);
-        self.surface.smooth_part(&s, input) + fuzzy
+        add(&self.surface.smooth_part(&s, input), &fuzzy)
     }
 
     #[inline(always)]

@@ -17,7 +17,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
-use crate::lanes::{Real, scale};
+use crate::lanes::{Real, add, mul, neg, scale, sub};
 use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
 
@@ -35,25 +35,24 @@ crate::gather_struct!(IntegralSurface<const D: usize, R> { lanes: [c1, c2, k], s
 impl<const D: usize, R: Real> IntegralSurface<D, R> {
     #[inline(always)]
     pub fn s(&self, integral: &SVector<R, D>, input: &LawInput<D, R>) -> SVector<R, D> {
-        -input.de - integral
+        sub(&neg(&input.de), integral)
     }
 
     /// The command without its switching term.
     #[inline(always)]
     pub fn smooth_part(&self, s: &SVector<R, D>, input: &LawInput<D, R>) -> SVector<R, D> {
-        input.reference.acceleration
-            - input.drift
-            - self.c1.component_mul(&input.e)
-            - self.c2.component_mul(&input.de)
-            + self.k.component_mul(s)
+        let a = sub(&input.reference.acceleration, &input.drift);
+        let a = sub(&a, &mul(&self.c1, &input.e));
+        let a = sub(&a, &mul(&self.c2, &input.de));
+        add(&a, &mul(&self.k, s))
     }
 
     #[inline(always)]
     pub fn advance(&self, integral: &mut SVector<R, D>, input: &LawInput<D, R>) {
-        *integral += scale(
-            &(self.c1.component_mul(&input.e) + self.c2.component_mul(&input.de)),
+        *integral = add(integral, &scale(
+            &add(&mul(&self.c1, &input.e), &mul(&self.c2, &input.de)),
             input.dt,
-        );
+        ));
     }
 }
 

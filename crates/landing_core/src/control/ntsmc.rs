@@ -23,7 +23,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Real, vector};
+use crate::lanes::{Real, sub, vector};
 use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
 
@@ -65,7 +65,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for Ntsmc<D, R> {
 
     #[inline(always)]
     fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
-        let mut a = input.reference.acceleration - input.drift;
+        let mut a = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let r = self.gamma[i] / self.alpha[i];
             let (s, sig2r) = self.axis(i, input.e[i], input.de[i]);

@@ -5,7 +5,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
-use crate::lanes::Real;
+use crate::lanes::{Real, add, mul, sub};
 use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
 
@@ -21,7 +21,7 @@ crate::gather_struct!(PdSlidingMode<const D: usize, R> { lanes: [lambda, k, swit
 impl<const D: usize, R: Real> PdSlidingMode<D, R> {
     #[inline(always)]
     pub fn surface(&self, input: &LawInput<D, R>) -> SVector<R, D> {
-        input.de + self.lambda.component_mul(&input.e)
+        add(&input.de, &mul(&self.lambda, &input.e))
     }
 }
 
@@ -36,7 +36,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for PdSlidingMode<D, R> {
         let s = self.surface(input);
         // s' = e'' + lambda e' = 0 with e'' = drift + a - q_ref''
         let equivalent =
-            input.reference.acceleration - input.drift - self.lambda.component_mul(&input.de);
+            sub(&sub(&input.reference.acceleration, &input.drift), &mul(&self.lambda, &input.de));
         let mut a = equivalent;
         for i in 0..D {
             a[i] = equivalent[i] - self.k[i] * self.switch.apply(s[i]);

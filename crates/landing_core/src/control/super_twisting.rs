@@ -21,7 +21,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::Real;
+use crate::lanes::{Real, add, mul, sub};
 use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
 
@@ -66,7 +66,7 @@ impl<const D: usize, R: Real> SuperTwisting<D, R> {
     pub fn sigma(&self, input: &LawInput<D, R>) -> SVector<R, D> {
         match self.variant {
             SuperTwistingVariant::Printed => input.e,
-            SuperTwistingVariant::Standard => input.de + self.c.component_mul(&input.e),
+            SuperTwistingVariant::Standard => add(&input.de, &mul(&self.c, &input.e)),
         }
     }
 }
@@ -82,7 +82,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for SuperTwisting<D, R> {
 
     #[inline(always)]
     fn command(&self, w: &SVector<R, D>, input: &LawInput<D, R>) -> SVector<R, D> {
-        let mut a = input.reference.acceleration - input.drift;
+        let mut a = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let s = input.e[i];
             let ds = input.de[i];

@@ -4,7 +4,7 @@ use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Real, dot};
+use crate::lanes::{Real, add, dot, scale_by, sub};
 use crate::params::{FromParams, ParamSource};
 
 /// `U = (mu/r) [1 + (R0/r)^2 (C20 (3 z^2/r^2 - 1)/2 + 3 C22 (x^2 - y^2)/r^2)]`.
@@ -69,7 +69,12 @@ impl<R: Real> GravityField<R> for Harmonic2<R> {
             self.c20 * 2.0 * r[2],
         );
         let k = self.mu * self.r0 * self.r0;
-        r * (-self.mu * inv2 * inv) + (grad_p * inv5 - r * (R::splat(5.0) * self.form(r) * inv5 * inv2)) * k
+        let monopole = scale_by(r, -self.mu * inv2 * inv);
+        let quadrupole = sub(
+            &scale_by(&grad_p, inv5),
+            &scale_by(r, R::splat(5.0) * self.form(r) * inv5 * inv2),
+        );
+        add(&monopole, &scale_by(&quadrupole, k))
     }
 
     #[inline(always)]

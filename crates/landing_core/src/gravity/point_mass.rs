@@ -2,7 +2,7 @@ use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Real, dot};
+use crate::lanes::{Real, dot, scale_by};
 use crate::params::{FromParams, ParamSource};
 
 /// A point mass, `U = mu / r`.
@@ -24,7 +24,7 @@ impl<R: Real> GravityField<R> for PointMass<R> {
     #[inline(always)]
     fn acceleration(&self, r: &Vector3<R>) -> Vector3<R> {
         let r2 = dot(r, r);
-        r * (-self.mu / (r2 * r2.sqrt()))
+        scale_by(r, -self.mu / (r2 * r2.sqrt()))
     }
 
     #[inline(always)]

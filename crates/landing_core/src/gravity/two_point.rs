@@ -4,7 +4,7 @@ use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Real, dot};
+use crate::lanes::{Real, dot, scale_by, sub};
 use crate::params::{FromParams, ParamSource};
 
 /// Newton's constant, m^3 / (kg s^2) (CODATA 2018).
@@ -67,9 +67,9 @@ impl<R: Real> GravityField<R> for TwoPointMass<R> {
     fn acceleration(&self, r: &Vector3<R>) -> Vector3<R> {
         let mut g = Vector3::zeros();
         for (mu, p) in self.mu.iter().zip(&self.positions) {
-            let d = r - p;
+            let d = sub(r, p);
             let d2 = dot(&d, &d);
-            g -= d * (*mu / (d2 * d2.sqrt()));
+            g = sub(&g, &scale_by(&d, *mu / (d2 * d2.sqrt())));
         }
         g
     }

@@ -20,6 +20,8 @@ mod exp_log;
 pub mod gather;
 pub mod math;
 mod trig;
+#[cfg(target_arch = "x86_64")]
+pub mod x86;
 
 pub use gather::Gather;
 
@@ -623,6 +625,64 @@ pub fn scale<R: Real, const N: usize>(v: &SVector<R, N>, c: f64) -> SVector<R, N
     let mut out = *v;
     for i in 0..N {
         out[i] = v[i] * c;
+    }
+    out
+}
+
+/// `a + b`, `a - b`, `-a`, `a_i b_i`, `a_i / b_i` and `v r` for vectors of lanes: nalgebra's
+/// operators are not always inlined into the kernel (they call the lane operations, which
+/// need the kernel's target features), and a call left out of line runs at the baseline level.
+/// The hot code uses these instead.
+#[inline(always)]
+pub fn add<R: Real, const N: usize>(a: &SVector<R, N>, b: &SVector<R, N>) -> SVector<R, N> {
+    let mut out = *a;
+    for i in 0..N {
+        out[i] = a[i] + b[i];
+    }
+    out
+}
+
+#[inline(always)]
+pub fn sub<R: Real, const N: usize>(a: &SVector<R, N>, b: &SVector<R, N>) -> SVector<R, N> {
+    let mut out = *a;
+    for i in 0..N {
+        out[i] = a[i] - b[i];
+    }
+    out
+}
+
+#[inline(always)]
+pub fn neg<R: Real, const N: usize>(a: &SVector<R, N>) -> SVector<R, N> {
+    let mut out = *a;
+    for i in 0..N {
+        out[i] = -a[i];
+    }
+    out
+}
+
+#[inline(always)]
+pub fn mul<R: Real, const N: usize>(a: &SVector<R, N>, b: &SVector<R, N>) -> SVector<R, N> {
+    let mut out = *a;
+    for i in 0..N {
+        out[i] = a[i] * b[i];
+    }
+    out
+}
+
+#[inline(always)]
+pub fn div<R: Real, const N: usize>(a: &SVector<R, N>, b: &SVector<R, N>) -> SVector<R, N> {
+    let mut out = *a;
+    for i in 0..N {
+        out[i] = a[i] / b[i];
+    }
+    out
+}
+
+#[inline(always)]
+pub fn scale_by<R: Real, const N: usize>(v: &SVector<R, N>, r: R) -> SVector<R, N> {
+    let mut out = *v;
+    for i in 0..N {
+        out[i] = v[i] * r;
     }
     out
 }

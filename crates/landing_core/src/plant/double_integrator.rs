@@ -6,7 +6,7 @@ use nalgebra::SVector;
 
 use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate};
-use crate::lanes::Real;
+use crate::lanes::{Real, add};
 use crate::params::{FromParams, ParamSource};
 
 pub type DoubleIntegratorState<R = f64> = SVector<R, 6>;
@@ -66,7 +66,7 @@ impl<R: Real> Plant<R, 3> for DoubleIntegrator<R> {
         u: &SVector<R, 3>,
         d: &SVector<R, 3>,
     ) -> Self::State {
-        let a = u + d;
+        let a = add(u, d);
         DoubleIntegratorState::from([x[3], x[4], x[5], a[0], a[1], a[2]])
     }
 }

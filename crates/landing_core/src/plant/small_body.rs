@@ -16,7 +16,7 @@ use nalgebra::{SVector, Vector3};
 use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate, require};
 use crate::gravity::{GravityField, GravityModel};
-use crate::lanes::{Gather, Real};
+use crate::lanes::{Gather, Real, add};
 use crate::params::{FromParams, ParamSource};
 
 pub type SmallBodyState<R = f64> = SVector<R, 6>;
@@ -91,7 +91,7 @@ impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
     #[inline(always)]
     fn modelled_acceleration(&self, _t: f64, x: &SmallBodyState<R>) -> Vector3<R> {
         let (r, v) = split(x);
-        self.frame_acceleration(&r, &v) + self.gravity.acceleration(&r)
+        add(&self.frame_acceleration(&r, &v), &self.gravity.acceleration(&r))
     }
 
     #[inline(always)]
@@ -129,7 +129,7 @@ impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
         d: &Vector3<R>,
         drift: &Vector3<R>,
     ) -> SmallBodyState<R> {
-        let a = drift + u + d;
+        let a = add(&add(drift, u), d);
         SmallBodyState::from([x[3], x[4], x[5], a[0], a[1], a[2]])
     }
 }

@@ -35,7 +35,7 @@ use nalgebra::{SVector, Vector2};
 use super::names::{MAX_NODES, NAMES};
 use super::{TetherBody, rigid_tension};
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Gather, Real};
+use crate::lanes::{Gather, Real, add, neg, scale_by, sub};
 use crate::params::{FromParams, ParamSource};
 use crate::plant::{Plant, PlantModel};
 
@@ -155,14 +155,17 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         p1: &Vector2<R>,
         v1: &Vector2<R>,
     ) -> (R, Vector2<R>) {
-        let d = p1 - p0;
+        let d = sub(p1, p0);
         let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
         let h = self.segment_length();
         let taut = l.simd_gt(h);
-        let u = d / l;
-        let strain = (l - h) / h;
-        let dv = v1 - v0;
-        let rate = (u[0] * dv[0] + u[1] * dv[1]) / h;
+        let inv_l = R::one() / l;
+        let u = scale_by(&d, inv_l);
+        // 1/h depends on the parameters only: computed once per block, not per segment
+        let inv_h = R::one() / h;
+        let strain = (l - h) * inv_h;
+        let dv = sub(v1, v0);
+        let rate = (u[0] * dv[0] + u[1] * dv[1]) * inv_h;
         let t = self.axial_stiffness * strain + self.axial_damping * rate;
         let zero = R::zero();
         (
@@ -205,7 +208,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         for j in 0..=N {
             let (p1, v1) = self.point(x, j + 1);
             let (t, dir) = self.pull(&p0, &v0, &p1, &v1);
-            let f = dir * t;
+            let f = scale_by(&dir, t);
             if j >= 1 {
                 let i = 6 + 4 * (j - 1);
                 dx[i + 2] += f[0] * inv_node;
@@ -216,7 +219,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
                 dx[i + 2] -= f[0] * inv_node;
                 dx[i + 3] -= f[1] * inv_node;
             } else {
-                pull_on_attachment = -f;
+                pull_on_attachment = neg(&f);
             }
             p0 = p1;
             v0 = v1;
@@ -225,7 +228,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
         let along = Vector2::new(-x[1], x[0]) / rho;
         let m = self.end_mass();
-        let force = pull_on_attachment + along * (u[0] + m * rho * d[0]);
+        let force = add(&pull_on_attachment, &scale_by(&along, u[0] + m * rho * d[0]));
         let (ax, ay) = field(x[0], x[3], x[4]);
         let half = R::splat(0.5) * b.side;
         let (s, c) = x[2].sin_cos();
@@ -234,9 +237,11 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         dx[0] = x[3];
         dx[1] = x[4];
         dx[2] = x[5];
-        dx[3] = ax + force[0] / m;
-        dx[4] = ay + force[1] / m;
-        dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) / j_s + d[1];
+        // reciprocals of parameters: computed once per block
+        let inv_m = R::one() / m;
+        dx[3] = ax + force[0] * inv_m;
+        dx[4] = ay + force[1] * inv_m;
+        dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) * (R::one() / j_s) + d[1];
         dx
     }
 }
