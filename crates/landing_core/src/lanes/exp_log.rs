@@ -1,6 +1,6 @@
 //! `exp`, `ln`, `pow` and `tanh` over [`Real`] lanes, branch-free (see [`super::math`]).
 
-use super::Real;
+use super::{Mask, Real};
 use super::math::{estrin10, estrin11};
 
 /// ln 2 split for Cody-Waite reduction (fdlibm `e_exp.c`): `LN2_HI` has 32 significant bits,
@@ -58,6 +58,12 @@ fn exp_kernel<R: Real>(x: R) -> (R, R, R) {
 /// (below -745.13...), `exp(-inf) = 0`, `exp(+inf) = +inf`, `exp(NaN) = NaN`.
 #[inline(always)]
 pub fn exp<R: Real>(x: R) -> R {
+    // Fast path: with every lane in [-700, 700], the clamps below change nothing and 2^k is a
+    // normal number by which p scales exactly, so one factor gives the same bits as two.
+    if (x.simd_ge(R::splat(-700.0)) & x.simd_le(R::splat(700.0))).all() {
+        let (k, p, _) = exp_kernel(x);
+        return p * k.pow2i();
+    }
     // constant first: max/min return their second operand for a NaN, so NaN goes through
     let xc = R::splat(EXP_CLAMP_HI).min(R::splat(EXP_CLAMP_LO).max(x));
     let (k, p, _) = exp_kernel(xc);
@@ -92,10 +98,26 @@ const LOG_L: [f64; 7] = [
 /// keeps the leading term `f` exact and the rounding in small corrections.
 #[inline(always)]
 pub fn ln<R: Real>(x: R) -> R {
+    // Fast path: with every lane positive, normal and finite, the subnormal scaling and the
+    // special cases below change nothing: the same bits with fewer operations.
+    if (x.simd_ge(R::splat(f64::MIN_POSITIVE)) & x.simd_le(R::splat(f64::MAX))).all() {
+        let (e, m) = x.split_exponent();
+        return ln_core(e, m);
+    }
     let tiny = x.simd_lt(R::splat(f64::MIN_POSITIVE));
     let xs = x * R::select(tiny, R::splat(TWO_54), R::one());
     let (e, m) = xs.split_exponent();
     let e = e - R::select(tiny, R::splat(54.0), R::zero());
+    let y = ln_core(e, m);
+    let y = R::select(x.simd_eq(R::splat(f64::INFINITY)), x, y);
+    let y = R::select(x.simd_eq(R::zero()), R::splat(f64::NEG_INFINITY), y);
+    // negative and NaN lanes
+    R::select(x.simd_ge(R::zero()), y, R::splat(f64::NAN))
+}
+
+/// `ln(2^e m)` for `1 <= m < 2`: the fdlibm kernel.
+#[inline(always)]
+fn ln_core<R: Real>(e: R, m: R) -> R {
     let big = m.simd_gt(R::splat(SQRT_2));
     let m = R::select(big, m * 0.5, m);
     let e = R::select(big, e + 1.0, e);
@@ -109,11 +131,7 @@ pub fn ln<R: Real>(x: R) -> R {
     let t1 = w * (w * (w * LOG_L[5] + LOG_L[3]) + LOG_L[1]);
     let t2 = z * (w * (w * (w * LOG_L[6] + LOG_L[4]) + LOG_L[2]) + LOG_L[0]);
     let rz = t1 + t2;
-    let y = e * LN2_HI + (f - (hfsq - (s * (hfsq + rz) + e * LN2_LO)));
-    let y = R::select(x.simd_eq(R::splat(f64::INFINITY)), x, y);
-    let y = R::select(x.simd_eq(R::zero()), R::splat(f64::NEG_INFINITY), y);
-    // negative and NaN lanes
-    R::select(x.simd_ge(R::zero()), y, R::splat(f64::NAN))
+    e * LN2_HI + (f - (hfsq - (s * (hfsq + rz) + e * LN2_LO)))
 }
 
 /// `x^y` for `x >= 0`, as `exp(y ln x)`.
