@@ -2,7 +2,7 @@
 
 use nalgebra::SVector;
 
-use crate::lanes::{Real, abs, add, mul, norm, scale, scale_by, select_vector, sub};
+use crate::lanes::{Mask, Real, abs, add, mul, norm, scale, scale_by, select_vector, sub};
 
 /// First crossing of the landing surface (altitude from positive to non-positive),
 /// interpolated linearly within the integrator step.
@@ -131,11 +131,23 @@ impl HighPass {
 }
 
 /// Accumulates the command and tracking-error statistics over the applied commands, per lane.
-/// A lane stops accumulating when its case stops (the `live` mask of [`CommandStats::add`]).
+///
+/// Every lane accumulates at every period; when cases stop, [`CommandStats::freeze`] keeps a
+/// copy of their statistics at that instant, which is what they report. (Masking each
+/// accumulation instead would cost a select per statistic and period, for an event that
+/// happens to few cases, if any.)
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct CommandStats<const D: usize, R: Real> {
     filter: HighPass,
     started: bool,
+    now: Sums<D, R>,
+    /// The sums of the stopped lanes, from the instant they stopped.
+    frozen: Sums<D, R>,
+    stopped: R::Mask,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Sums<const D: usize, R: Real> {
     z: [SVector<R, D>; 2],
     last: SVector<R, D>,
     peak: R,
@@ -148,12 +160,31 @@ pub(crate) struct CommandStats<const D: usize, R: Real> {
     time: R,
 }
 
+impl<const D: usize, R: Real> Sums<D, R> {
+    #[inline(always)]
+    fn select(mask: R::Mask, a: &Self, b: &Self) -> Self {
+        Self {
+            z: [
+                select_vector(mask, &a.z[0], &b.z[0]),
+                select_vector(mask, &a.z[1], &b.z[1]),
+            ],
+            last: select_vector(mask, &a.last, &b.last),
+            peak: R::select(mask, a.peak, b.peak),
+            peak_axis: select_vector(mask, &a.peak_axis, &b.peak_axis),
+            effort: R::select(mask, a.effort, b.effort),
+            iae: select_vector(mask, &a.iae, &b.iae),
+            variation: select_vector(mask, &a.variation, &b.variation),
+            high: select_vector(mask, &a.high, &b.high),
+            energy: select_vector(mask, &a.energy, &b.energy),
+            time: R::select(mask, a.time, b.time),
+        }
+    }
+}
+
 impl<const D: usize, R: Real> CommandStats<D, R> {
     pub(crate) fn new(filter: HighPass) -> Self {
         let z = SVector::zeros();
-        Self {
-            filter,
-            started: false,
+        let sums = Sums {
             z: [z, z],
             last: z,
             peak: R::zero(),
@@ -164,56 +195,70 @@ impl<const D: usize, R: Real> CommandStats<D, R> {
             high: z,
             energy: z,
             time: R::zero(),
+        };
+        Self {
+            filter,
+            started: false,
+            now: sums,
+            frozen: sums,
+            stopped: R::Mask::splat(false),
         }
     }
 
-    /// The command `u` applied over a period `dt` with the tracking error `e` at its start, in
-    /// the lanes of `live`. Every case starts at the same instant, so the filter's steady-state
-    /// start is taken for all lanes at the first call.
+    /// The command `u` applied over a period `dt` with the tracking error `e` at its start.
+    /// Every case starts at the same instant, so the filter's steady-state start is taken for
+    /// all lanes at the first call.
     #[inline(always)]
-    pub(crate) fn add(&mut self, live: R::Mask, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64) {
+    pub(crate) fn add(&mut self, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64) {
+        let s = &mut self.now;
         let n = norm(u);
         let dtl = R::splat(dt);
         let abs_u = abs(u);
-        let mut peak_axis = self.peak_axis;
         for i in 0..D {
-            peak_axis[i] = peak_axis[i].max(abs_u[i]);
+            s.peak_axis[i] = s.peak_axis[i].max(abs_u[i]);
         }
-        self.peak = R::select(live, self.peak.max(n), self.peak);
-        self.peak_axis = select_vector(live, &peak_axis, &self.peak_axis);
-        self.effort = R::select(live, self.effort + n * dtl, self.effort);
-        self.iae = select_vector(live, &add(&self.iae, &scale_by(&abs(e), dtl)), &self.iae);
-        self.time = R::select(live, self.time + dtl, self.time);
+        s.peak = s.peak.max(n);
+        s.effort += n * dtl;
+        s.iae = add(&s.iae, &scale_by(&abs(e), dtl));
+        s.time += dtl;
         if self.started {
-            let dv = abs(&sub(u, &self.last));
-            self.variation = select_vector(live, &add(&self.variation, &dv), &self.variation);
+            s.variation = add(&s.variation, &abs(&sub(u, &s.last)));
         } else {
-            self.z = self.filter.steady(u);
+            s.z = self.filter.steady(u);
             self.started = true;
         }
-        let (y, z) = self.filter.step(&self.z, u);
-        self.z = [
-            select_vector(live, &z[0], &self.z[0]),
-            select_vector(live, &z[1], &self.z[1]),
-        ];
-        self.high = select_vector(live, &add(&self.high, &mul(&y, &y)), &self.high);
-        self.energy = select_vector(live, &add(&self.energy, &mul(u, u)), &self.energy);
-        self.last = select_vector(live, u, &self.last);
+        let (y, z) = self.filter.step(&s.z, u);
+        s.z = z;
+        s.high = add(&s.high, &mul(&y, &y));
+        s.energy = add(&s.energy, &mul(u, u));
+        s.last = *u;
+    }
+
+    /// Keeps the statistics of the lanes in `stopping` as they are now.
+    #[inline(always)]
+    pub(crate) fn freeze(&mut self, stopping: R::Mask) {
+        self.frozen = Sums::select(stopping, &self.now, &self.frozen);
+        self.stopped = self.stopped | stopping;
     }
 
     /// The statistics of lane `i`.
     pub(crate) fn finish_lane(&self, i: usize, m: &mut CaseMetrics<D>) {
-        m.peak_command = self.peak.lane(i);
-        m.peak_command_axis = SVector::from_fn(|k, _| self.peak_axis[k].lane(i));
-        m.control_effort = self.effort.lane(i);
-        m.iae = SVector::from_fn(|k, _| self.iae[k].lane(i));
-        let time = self.time.lane(i);
+        let s = if self.stopped.lane(i) {
+            &self.frozen
+        } else {
+            &self.now
+        };
+        m.peak_command = s.peak.lane(i);
+        m.peak_command_axis = SVector::from_fn(|k, _| s.peak_axis[k].lane(i));
+        m.control_effort = s.effort.lane(i);
+        m.iae = SVector::from_fn(|k, _| s.iae[k].lane(i));
+        let time = s.time.lane(i);
         if time > 0.0 {
-            m.command_variation = SVector::from_fn(|k, _| self.variation[k].lane(i) / time);
+            m.command_variation = SVector::from_fn(|k, _| s.variation[k].lane(i) / time);
         }
         let share = |h: f64, e: f64| if e > 0.0 { h / e } else { 0.0 };
-        let high = SVector::<f64, D>::from_fn(|k, _| self.high[k].lane(i));
-        let energy = SVector::<f64, D>::from_fn(|k, _| self.energy[k].lane(i));
+        let high = SVector::<f64, D>::from_fn(|k, _| s.high[k].lane(i));
+        let energy = SVector::<f64, D>::from_fn(|k, _| s.energy[k].lane(i));
         m.high_frequency_share = SVector::from_fn(|k, _| share(high[k], energy[k]));
         m.high_frequency_share_total = share(high.sum(), energy.sum());
     }
@@ -239,7 +284,7 @@ mod tests {
     fn share_of(signal: impl Fn(f64) -> f64, hz: f64, dt: f64, n: usize) -> f64 {
         let mut s = CommandStats::<1, f64>::new(HighPass::butterworth2(hz, dt));
         for k in 0..n {
-            s.add(true, &Vector1::new(signal(k as f64 * dt)), &Vector1::zeros(), dt);
+            s.add(&Vector1::new(signal(k as f64 * dt)), &Vector1::zeros(), dt);
         }
         let mut m = CaseMetrics::<1>::new();
         s.finish_lane(0, &mut m);
@@ -289,10 +334,11 @@ mod tests {
     fn variation_and_iae() {
         let mut s = CommandStats::<1, f64>::new(HighPass::butterworth2(5.0, 0.01));
         for (u, e) in [(0.0, 1.0), (2.0, -1.0), (1.0, 0.5), (1.0, 0.0)] {
-            s.add(true, &Vector1::new(u), &Vector1::new(e), 0.5);
+            s.add(&Vector1::new(u), &Vector1::new(e), 0.5);
         }
         // a stopped case keeps what it had
-        s.add(false, &Vector1::new(100.0), &Vector1::new(100.0), 0.5);
+        s.freeze(true);
+        s.add(&Vector1::new(100.0), &Vector1::new(100.0), 0.5);
         let mut m = CaseMetrics::<1>::new();
         s.finish_lane(0, &mut m);
         assert_eq!(m.command_variation[0], 3.0 / 2.0);

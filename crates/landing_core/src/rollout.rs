@@ -416,6 +416,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
     let m0 = plant.mass(&x);
     let mut input = law_input(plant, reference, 0.0, cfg.dt, &x);
     let mut memory = K::start(law, &input);
+    let advances = law.has_memory();
     let mut live = R::Mask::splat(true);
     let mut diverged_at = nan;
     let mut touched = R::Mask::splat(false);
@@ -446,6 +447,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
         let bad = live & !all_finite(&u);
         if bad.any() {
             diverged_at = R::select(bad, R::splat(t), diverged_at);
+            stats.freeze(bad);
             live = live & !bad;
             if !live.any() {
                 break;
@@ -456,7 +458,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
             slot += 1;
             next_record += cfg.record_every;
         }
-        stats.add(live, &u, &input.e, cfg.dt);
+        stats.add(&u, &input.e, cfg.dt);
         let outside = dot(&input.e, &input.e).simd_gt(tolerance_sq);
         last_outside = R::select(live & outside, R::splat(k as f64), last_outside);
         if let (Some(sm), Some(m)) = (settle_mass.as_mut(), plant.mass(&x)) {
@@ -469,7 +471,9 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
         } else {
             SVector::zeros()
         };
-        K::advance(law, &mut memory, &input);
+        if advances {
+            K::advance(law, &mut memory, &input);
+        }
         for j in 0..substeps {
             let tj = t + j as f64 * h;
             let f = Held {
@@ -500,6 +504,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
             let bad = live & !plant.admissible(&next);
             if bad.any() {
                 diverged_at = R::select(bad, R::splat(tj + h), diverged_at);
+                stats.freeze(bad);
                 live = live & !bad;
             }
             x = P::State::select(live, &next, &x);

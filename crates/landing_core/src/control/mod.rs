@@ -158,6 +158,16 @@ macro_rules! laws {
                 }
             }
 
+            /// Whether the law has a memory to advance (a memoryless law's `advance` does
+            /// nothing, and the rollout need not call it).
+            pub fn has_memory(&self) -> bool {
+                match self {
+                    $(Self::$variant(_) => std::mem::size_of::<
+                        <$variant<D, R> as ControlLaw<R, D>>::Memory,
+                    >() > 0,)*
+                }
+            }
+
             #[inline(always)]
             pub fn start(&self, input: &LawInput<D, R>) -> AnyMemory<D, R> {
                 match self {
