@@ -49,7 +49,14 @@ fn bench(c: &mut Criterion) {
     });
     for level in Level::supported() {
         g.bench_function(format!("W1_1_thread_{}", level.name()), |b| {
-            b.iter(|| run(black_box(&batch), &final_only, &options(Some(1), Some(level))).unwrap())
+            b.iter(|| {
+                run(
+                    black_box(&batch),
+                    &final_only,
+                    &options(Some(1), Some(level)),
+                )
+                .unwrap()
+            })
         });
     }
     g.finish();
@@ -82,7 +89,9 @@ fn bench(c: &mut Criterion) {
 }
 
 enum Workload {
-    Three(landing_core::Batch<3, landing_core::plant::SmallBody<landing_core::gravity::TwoPointMass>>),
+    Three(
+        landing_core::Batch<3, landing_core::plant::SmallBody<landing_core::gravity::TwoPointMass>>,
+    ),
     Five(landing_core::Batch<3, landing_core::plant::SmallBody<landing_core::gravity::Harmonic2>>),
     Six(landing_core::Batch<2, landing_core::plant::tether::TetheredFlexible8>),
 }

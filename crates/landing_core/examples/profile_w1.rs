@@ -13,7 +13,9 @@ use landing_core::{Level, SimConfig};
 fn main() {
     let mut args = std::env::args().skip(1);
     let cases = args.next().and_then(|a| a.parse().ok()).unwrap_or(96);
-    let level = args.next().map(|n| Level::from_name(&n).expect("a level name"));
+    let level = args
+        .next()
+        .map(|n| Level::from_name(&n).expect("a level name"));
     let batch = mars_w1(cases, 2024);
     let cfg = SimConfig::new(10.0, 1e-3, 1, 0, 0).unwrap();
     let options = RunOptions {

@@ -17,9 +17,9 @@ use rayon::prelude::*;
 
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
-use crate::kernel::{BaselineLanes, BaselineLaws, Level, LevelError};
 #[cfg(target_arch = "x86_64")]
 use crate::kernel::{Avx2Lanes, Avx2Laws, Avx512Lanes, Avx512Laws};
+use crate::kernel::{BaselineLanes, BaselineLaws, Level, LevelError};
 use crate::lanes::{Gather, Real};
 use crate::metrics::CaseMetrics;
 use crate::plant::{Plant, PlantModel};
@@ -308,8 +308,16 @@ fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result
             None => Ok(()),
         }
     }
-    same("plant", &batch.plants, <P::At<f64> as Gather<f64>>::same_shape)?;
-    same("controller", &batch.laws, <AnyLaw<D> as Gather<f64>>::same_shape)?;
+    same(
+        "plant",
+        &batch.plants,
+        <P::At<f64> as Gather<f64>>::same_shape,
+    )?;
+    same(
+        "controller",
+        &batch.laws,
+        <AnyLaw<D> as Gather<f64>>::same_shape,
+    )?;
     same(
         "reference",
         &batch.references,
@@ -349,8 +357,8 @@ fn run_here<const D: usize, P: PlantModel<D>>(
     let mut final_state = nan_filled(n * nx)?;
     let mut metrics = vec![CaseMetrics::new(); n];
 
-    let shared_disturbance = batch.disturbances.is_shared()
-        && batch.disturbances.get(0).is_time_varying();
+    let shared_disturbance =
+        batch.disturbances.is_shared() && batch.disturbances.get(0).is_time_varying();
     let table = if shared_disturbance {
         StageTable::new(batch.disturbances.get(0), cfg)
     } else {

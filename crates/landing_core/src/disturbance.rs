@@ -212,7 +212,10 @@ impl<const D: usize, R: Real> Disturbance<D, R> {
         for j in 0..self.n_sinusoids {
             let s = &self.sinusoids[j];
             if self.in_phase[j] {
-                d = add(&d, &scale_by(&s.amplitude, (s.omega[0] * t + s.phase[0]).sin()));
+                d = add(
+                    &d,
+                    &scale_by(&s.amplitude, (s.omega[0] * t + s.phase[0]).sin()),
+                );
             } else {
                 for i in 0..D {
                     d[i] += s.amplitude[i] * (s.omega[i] * t + s.phase[i]).sin();

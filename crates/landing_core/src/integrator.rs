@@ -224,9 +224,8 @@ mod tests {
     fn lanes_step_each_case_as_alone() {
         let x0 = [1.0, 0.3, -2.0, 7.0];
         let f1 = |_s: Stage, x: &SVector<f64, 2>| SVector::<f64, 2>::new(x[1], -x[0] * x[0]);
-        let f4 = |_s: Stage, x: &SVector<Lanes<4>, 2>| {
-            SVector::<Lanes<4>, 2>::new(x[1], -x[0] * x[0])
-        };
+        let f4 =
+            |_s: Stage, x: &SVector<Lanes<4>, 2>| SVector::<Lanes<4>, 2>::new(x[1], -x[0] * x[0]);
         let mut xl = SVector::<Lanes<4>, 2>::new(Lanes(x0), Lanes([0.0; 4]));
         let mut xs = x0.map(|v| SVector::<f64, 2>::new(v, 0.0));
         for _ in 0..100 {

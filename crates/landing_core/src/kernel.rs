@@ -39,11 +39,9 @@ pub enum LevelError {
 impl fmt::Display for LevelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Unknown(name) => write!(
-                f,
-                "kernel level {name:?} is not one of {:?}",
-                Level::NAMES
-            ),
+            Self::Unknown(name) => {
+                write!(f, "kernel level {name:?} is not one of {:?}", Level::NAMES)
+            }
             Self::Unsupported(level) => write!(
                 f,
                 "kernel level {:?} is not supported by this CPU (supported: {:?})",
@@ -106,7 +104,9 @@ impl Level {
 
     /// The best level this CPU supports.
     pub fn best() -> Level {
-        *Self::supported().last().expect("the baseline is always supported")
+        *Self::supported()
+            .last()
+            .expect("the baseline is always supported")
     }
 
     /// `requested` if given, else the level `LANDING_KERNEL` names, else the best; an error if

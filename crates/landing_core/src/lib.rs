@@ -30,6 +30,6 @@ pub mod workloads;
 
 pub use batch::{Batch, BatchError, BatchOutput, PerCase, RunOptions};
 pub use error::ParamError;
+pub use kernel::Level;
 pub use metrics::{CaseMetrics, Touchdown};
 pub use rollout::{SimConfig, Tolerance};
-pub use kernel::Level;

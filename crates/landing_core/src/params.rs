@@ -33,7 +33,11 @@ pub trait ParamSource {
     ) -> Result<Option<SVector<f64, D>>, Self::Error>;
 
     /// One of `names`, shared by every case: its index.
-    fn choice(&mut self, key: &'static str, names: &'static [&'static str]) -> Result<usize, Self::Error>;
+    fn choice(
+        &mut self,
+        key: &'static str,
+        names: &'static [&'static str],
+    ) -> Result<usize, Self::Error>;
 
     /// A flag, shared by every case.
     fn flag(&mut self, key: &'static str) -> Result<bool, Self::Error>;

@@ -120,7 +120,10 @@ impl<const D: usize, R: Real> Reference<D, R> {
                 let position = add(&c0, &scale_by(&position, tt));
                 let velocity = add(
                     &c1,
-                    &scale_by(&add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(3.0) * tt)), tt),
+                    &scale_by(
+                        &add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(3.0) * tt)),
+                        tt,
+                    ),
                 );
                 let acceleration = add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(6.0) * tt));
                 let zero = SVector::zeros();

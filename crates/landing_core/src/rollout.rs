@@ -267,8 +267,11 @@ impl<const D: usize> StageTable<D> {
 /// ([`crate::kernel`]), at the price of one call per period.
 pub(crate) trait LawCalls<const D: usize, R: Real> {
     fn start(law: &AnyLaw<D, R>, input: &LawInput<D, R>) -> AnyMemory<D, R>;
-    fn command(law: &AnyLaw<D, R>, memory: &AnyMemory<D, R>, input: &LawInput<D, R>)
-    -> SVector<R, D>;
+    fn command(
+        law: &AnyLaw<D, R>,
+        memory: &AnyMemory<D, R>,
+        input: &LawInput<D, R>,
+    ) -> SVector<R, D>;
     fn advance(law: &AnyLaw<D, R>, memory: &mut AnyMemory<D, R>, input: &LawInput<D, R>);
     fn diagnostics(
         law: &AnyLaw<D, R>,
@@ -313,7 +316,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> StageDerivative<R, P::State> for H
         };
         let d = add(&det, self.held);
         if self.j == 0 && stage == Stage::Start {
-            self.plant.derivative_with_drift(time, y, self.u, &d, self.drift)
+            self.plant
+                .derivative_with_drift(time, y, self.u, &d, self.drift)
         } else {
             self.plant.derivative(time, y, self.u, &d)
         }
@@ -454,7 +458,9 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
             }
         }
         if recording && k == next_record {
-            record::<D, R, _, K>(out, used, n_records, slot, live, &x, &u, law, &memory, &input);
+            record::<D, R, _, K>(
+                out, used, n_records, slot, live, &x, &u, law, &memory, &input,
+            );
             slot += 1;
             next_record += cfg.record_every;
         }
@@ -496,8 +502,10 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
                     let (q0, v0) = plant.coordinates(&x);
                     let (q1, v1) = plant.coordinates(&next);
                     td_time = R::select(cross, w * h + tj, td_time);
-                    td_position = select_vector(cross, &add(&q0, &scale_by(&sub(&q1, &q0), w)), &td_position);
-                    td_velocity = select_vector(cross, &add(&v0, &scale_by(&sub(&v1, &v0), w)), &td_velocity);
+                    td_position =
+                        select_vector(cross, &add(&q0, &scale_by(&sub(&q1, &q0), w)), &td_position);
+                    td_velocity =
+                        select_vector(cross, &add(&v0, &scale_by(&sub(&v1, &v0), w)), &td_velocity);
                     touched = touched | cross;
                 }
             }

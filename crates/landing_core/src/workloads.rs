@@ -80,10 +80,7 @@ pub fn mars_w1(cases: usize, seed: u64) -> Batch<3, MarsLander> {
 /// W3: seed-000 fuzzy FTSMC (the preset's gains, sign switching) on 433 Eros as two mass
 /// points, tracking the Table 1 cubic from `cases` starts dispersed by 10 m (1 sigma) around
 /// the reference.
-pub fn eros_w3(
-    cases: usize,
-    seed: u64,
-) -> Batch<3, SmallBody<TwoPointMass>> {
+pub fn eros_w3(cases: usize, seed: u64) -> Batch<3, SmallBody<TwoPointMass>> {
     let p0 = Vector3::new(3200.0, 1300.0, 9000.0);
     let v0 = Vector3::new(-1.2, 0.2, -1.0);
     let reference = Reference::cubic_from_boundary(

@@ -20,10 +20,7 @@ fn noisy() -> Disturbance<3> {
     mars_storm().with_noise(Vector3::repeat(0.5))
 }
 
-fn batch(
-    x0: Vec<MarsState>,
-    laws: PerCase<AnyLaw<3>>,
-) -> Batch<3, MarsLander> {
+fn batch(x0: Vec<MarsState>, laws: PerCase<AnyLaw<3>>) -> Batch<3, MarsLander> {
     Batch {
         plants: PerCase::shared(MarsLander {
             thrust_limit: Vector3::repeat(50_000.0),
@@ -71,7 +68,10 @@ fn a_case_is_the_same_alone_or_in_a_batch() {
         .collect();
     let cfg = SimConfig::new(1.0, 0.001, 1, 100, 3).unwrap();
     let all = run_with_threads(
-        &batch(x0.clone(), PerCase::from_vec(laws.iter().map(|&l| l.into()).collect())),
+        &batch(
+            x0.clone(),
+            PerCase::from_vec(laws.iter().map(|&l| l.into()).collect()),
+        ),
         &cfg,
         Some(2),
     )
@@ -104,7 +104,10 @@ fn chunks_of_a_campaign_reproduce_it() {
     let x0 = dispersed(10);
     let cfg = SimConfig::new(0.5, 0.001, 1, 0, 5).unwrap();
     let whole = run_with_threads(
-        &batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed).into())),
+        &batch(
+            x0.clone(),
+            PerCase::shared(spec_gains(MssVariant::Printed).into()),
+        ),
         &cfg,
         None,
     )
@@ -141,7 +144,10 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     // within a few steps. The others have the 50 kN limit.
     let mut x0 = dispersed(4);
     x0[2] = mars_state([1e200, 0.0, 1500.0], [0.0, 0.0, 0.0], 1905.0);
-    let mut b = batch(x0.clone(), PerCase::shared(spec_gains(MssVariant::Printed).into()));
+    let mut b = batch(
+        x0.clone(),
+        PerCase::shared(spec_gains(MssVariant::Printed).into()),
+    );
     let limited = *b.plants.get(0);
     let mut plants = vec![limited; 4];
     plants[2] = MarsLander::default();
@@ -160,7 +166,10 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     let mut clean = x0.clone();
     clean[2] = x0[0];
     let ref_out = run_with_threads(
-        &batch(clean, PerCase::shared(spec_gains(MssVariant::Printed).into())),
+        &batch(
+            clean,
+            PerCase::shared(spec_gains(MssVariant::Printed).into()),
+        ),
         &cfg,
         Some(1),
     )
@@ -277,9 +286,21 @@ fn every_level_gives_the_same_bits() {
         let out = run(&mars, &cfg, &at(level)).unwrap();
         assert_eq!(out.level, level);
         assert_eq!(fingerprint(&out), reference.0, "W1 at {level:?}");
-        assert_eq!(fingerprint(&run(&w3, &cfg3, &at(level)).unwrap()), reference.1, "W3 at {level:?}");
-        assert_eq!(fingerprint(&run(&w5, &cfg5, &at(level)).unwrap()), reference.2, "W5 at {level:?}");
-        assert_eq!(fingerprint(&run(&w6, &cfg6, &at(level)).unwrap()), reference.3, "W6 at {level:?}");
+        assert_eq!(
+            fingerprint(&run(&w3, &cfg3, &at(level)).unwrap()),
+            reference.1,
+            "W3 at {level:?}"
+        );
+        assert_eq!(
+            fingerprint(&run(&w5, &cfg5, &at(level)).unwrap()),
+            reference.2,
+            "W5 at {level:?}"
+        );
+        assert_eq!(
+            fingerprint(&run(&w6, &cfg6, &at(level)).unwrap()),
+            reference.3,
+            "W6 at {level:?}"
+        );
     }
     eprintln!("compared levels {levels:?}");
 }
@@ -344,7 +365,10 @@ fn a_case_does_not_depend_on_its_lane_or_its_block_mates() {
                 &options,
             )
             .unwrap();
-            assert_eq!(bits(&one.final_state), bits(&alone.final_state[(i - 40) * 7..(i - 39) * 7]));
+            assert_eq!(
+                bits(&one.final_state),
+                bits(&alone.final_state[(i - 40) * 7..(i - 39) * 7])
+            );
         }
     }
 }

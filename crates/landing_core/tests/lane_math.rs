@@ -716,3 +716,114 @@ fn same_bits_at_every_instruction_set_level() {
     }
     println!("instruction-set levels compared: {levels:?}");
 }
+
+/// The functions and primitives over any lane type, lane by lane as f64s, in the order
+/// `lane_type_functions` compares them.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn over<R: Real>(x: &[f64], y: &[f64]) -> Vec<Vec<f64>> {
+    let (a, b) = (R::from_fn(|i| x[i]), R::from_fn(|i| y[i]));
+    let (s, c) = math::sin_cos(a);
+    let (e, m) = a.abs().split_exponent();
+    let outputs = [
+        math::exp(a),
+        math::ln(a),
+        s,
+        c,
+        math::tanh(a),
+        math::atan2(b, a),
+        math::pow(a.abs(), b),
+        a + b,
+        a - b,
+        a * b,
+        a / b,
+        -a,
+        a.abs(),
+        a.sqrt(),
+        a.min(b),
+        a.max(b),
+        a.copysign(b),
+        a.clamp(-b.abs(), b.abs()),
+        R::select(a.simd_lt(b), a, b),
+        R::select(a.simd_le(b) & a.is_finite(), a, b),
+        R::select(a.simd_gt(b) | a.simd_eq(b), a, b),
+        R::select(!a.simd_ge(b), a, b),
+        a.signum0(),
+        (a * 0.001).round_small(),
+        e,
+        m,
+        R::splat(1.5).scale2(
+            ((a * 0.001).round_small())
+                .min(R::splat(1000.0))
+                .max(R::splat(-1000.0)),
+        ),
+    ];
+    outputs
+        .iter()
+        .map(|v| (0..R::LANES).map(|i| v.lane(i)).collect())
+        .collect()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+unsafe fn over_avx2(x: &[f64], y: &[f64]) -> Vec<Vec<f64>> {
+    over::<landing_core::lanes::x86::Avx2<4>>(x, y)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(
+    enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
+)]
+unsafe fn over_avx512(x: &[f64], y: &[f64]) -> Vec<Vec<f64>> {
+    over::<landing_core::lanes::x86::Avx512<4>>(x, y)
+}
+
+/// The kernels' own lane types (SSE2, AVX2 and AVX-512 registers driven by intrinsics) give the
+/// bits of `f64` in every lane, for every function and primitive, specials included. (The
+/// exponent split is compared on positive normal inputs only, where it is defined.)
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn lane_type_functions() {
+    use landing_core::Level;
+    let mut rng = Rng(23);
+    let levels = Level::supported();
+    for _ in 0..dense_count() / 64 {
+        let x: Vec<f64> = (0..32).map(|_| mixed(&mut rng)).collect();
+        let y: Vec<f64> = (0..32).map(|_| mixed(&mut rng)).collect();
+        let scalar: Vec<Vec<f64>> = (0..32)
+            .map(|i| {
+                over::<f64>(&x[i..], &y[i..])
+                    .into_iter()
+                    .map(|v| v[0])
+                    .collect()
+            })
+            .collect();
+        let mut results = vec![("sse2", over::<landing_core::lanes::x86::Sse2<4>>(&x, &y), 8)];
+        if levels.contains(&Level::Avx2) {
+            // SAFETY: the level is supported
+            results.push(("avx2", unsafe { over_avx2(&x, &y) }, 16));
+        }
+        if levels.contains(&Level::Avx512) {
+            // SAFETY: the level is supported
+            results.push(("avx512", unsafe { over_avx512(&x, &y) }, 32));
+        }
+        for (level, got, lanes) in &results {
+            for (k, out) in got.iter().enumerate() {
+                for i in 0..*lanes {
+                    let normal = x[i].abs() >= f64::MIN_POSITIVE && x[i].is_finite();
+                    if (k == 24 || k == 25) && !normal {
+                        continue;
+                    }
+                    assert!(
+                        same(out[i], scalar[i][k]),
+                        "{level}: output {k} differs at x = {:e}, y = {:e}: {:e} vs {:e}",
+                        x[i],
+                        y[i],
+                        out[i],
+                        scalar[i][k]
+                    );
+                }
+            }
+        }
+    }
+}

@@ -4,7 +4,9 @@
 use landing_core::SimConfig;
 use landing_core::batch::{Batch, BatchOutput, PerCase, RunOptions, run};
 use landing_core::control::rbf::{MAX_NODES, centre};
-use landing_core::control::{AnyLaw, ControlLaw, FixedTimeNtsmc, LawInput, Ntsmc, zeta, zeta_slope};
+use landing_core::control::{
+    AnyLaw, ControlLaw, FixedTimeNtsmc, LawInput, Ntsmc, zeta, zeta_slope,
+};
 use landing_core::disturbance::Disturbance;
 use landing_core::error::Validate;
 use landing_core::plant::PlantModel;

@@ -15,8 +15,8 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Mask, Real, sub};
-use crate::params::{FromParams, ParamSource};
 use crate::math::{Switch, sgn};
+use crate::params::{FromParams, ParamSource};
 
 /// The fast terminal surface and its equivalent control, shared with the fuzzy-blended law.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -39,8 +39,8 @@ use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Mask, Real, sub, vector};
-use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
+use crate::params::{FromParams, ParamSource};
 
 /// zeta of eq. 21 with exponent p and threshold sigma (one case).
 #[inline(always)]

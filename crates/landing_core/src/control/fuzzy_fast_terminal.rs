@@ -15,8 +15,8 @@ use super::fast_terminal::TerminalSurface;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Real, norm};
-use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FuzzyFastTerminalSmc<const D: usize, R = f64> {

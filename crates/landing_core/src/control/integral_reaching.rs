@@ -18,8 +18,8 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
 use crate::lanes::{Real, add, mul, neg, scale, sub};
-use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 
 /// The integral surface with gains c1, c2 and the exponential rate k, shared with the fuzzy
 /// variable-rate law.
@@ -49,10 +49,13 @@ impl<const D: usize, R: Real> IntegralSurface<D, R> {
 
     #[inline(always)]
     pub fn advance(&self, integral: &mut SVector<R, D>, input: &LawInput<D, R>) {
-        *integral = add(integral, &scale(
-            &add(&mul(&self.c1, &input.e), &mul(&self.c2, &input.de)),
-            input.dt,
-        ));
+        *integral = add(
+            integral,
+            &scale(
+                &add(&mul(&self.c1, &input.e), &mul(&self.c2, &input.de)),
+                input.dt,
+            ),
+        );
     }
 }
 

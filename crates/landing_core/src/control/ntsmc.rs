@@ -24,8 +24,8 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Real, sub, vector};
-use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
+use crate::params::{FromParams, ParamSource};
 
 /// Gains per axis with the seed's symbols (seed: alpha = 1, beta = (0.05, 0.3),
 /// gamma = (1.07, 1.1), K = 0.001).

@@ -6,8 +6,8 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
 use crate::lanes::{Real, add, mul, sub};
-use crate::params::{FromParams, ParamSource};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PdSlidingMode<const D: usize, R = f64> {
@@ -35,8 +35,10 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for PdSlidingMode<D, R> {
     fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
         let s = self.surface(input);
         // s' = e'' + lambda e' = 0 with e'' = drift + a - q_ref''
-        let equivalent =
-            sub(&sub(&input.reference.acceleration, &input.drift), &mul(&self.lambda, &input.de));
+        let equivalent = sub(
+            &sub(&input.reference.acceleration, &input.drift),
+            &mul(&self.lambda, &input.de),
+        );
         let mut a = equivalent;
         for i in 0..D {
             a[i] = equivalent[i] - self.k[i] * self.switch.apply(s[i]);

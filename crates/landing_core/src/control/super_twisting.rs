@@ -22,8 +22,8 @@ use nalgebra::SVector;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::lanes::{Real, add, mul, sub};
-use crate::params::{FromParams, ParamSource};
 use crate::math::sgn;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SuperTwistingVariant {
@@ -132,8 +132,10 @@ impl<const D: usize> FromParams for SuperTwisting<D> {
             b1: p.axes("b1")?,
             b2: p.axes("b2")?,
             c: p.axes("c")?,
-            variant: [SuperTwistingVariant::Printed, SuperTwistingVariant::Standard]
-                [p.choice("variant", &SuperTwistingVariant::NAMES)?],
+            variant: [
+                SuperTwistingVariant::Printed,
+                SuperTwistingVariant::Standard,
+            ][p.choice("variant", &SuperTwistingVariant::NAMES)?],
             s_floor: p.scalar("s_floor")?,
         })
     }

@@ -227,7 +227,11 @@ impl Mamdani {
             s1 += m * (j as f64);
         }
         let m0 = if first == 0 { aggregated(0) } else { zero };
-        let mn = if last == n - 1 { aggregated(n - 1) } else { zero };
+        let mn = if last == n - 1 {
+            aggregated(n - 1)
+        } else {
+            zero
+        };
         let h = (self.output.hi - self.output.lo) / (n - 1) as f64;
         let area = s0 - (m0 + mn) * 0.5;
         let moment = s1 - mn * (0.5 * (n - 1) as f64) + (m0 - mn) / 6.0;

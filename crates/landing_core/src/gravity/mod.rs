@@ -27,7 +27,9 @@ pub trait GravityField<R: Real>: Copy + Send + Sync {
 }
 
 /// A gravity field as configured (one case's parameters), and the same field over lanes.
-pub trait GravityModel: GravityField<f64> + Validate + Clone + PartialEq + Send + Sync + 'static {
+pub trait GravityModel:
+    GravityField<f64> + Validate + Clone + PartialEq + Send + Sync + 'static
+{
     type At<R: Real>: GravityField<R> + Gather<R, Case = Self>;
 }
 
@@ -151,7 +153,10 @@ mod tests {
             },
         ];
         let block: Harmonic2<Lanes<2>> = Gather::gather(&|i| &cases[i]);
-        let r = [Vector3::new(3200.0, 1300.0, 9000.0), Vector3::new(-900.0, 20.0, 4000.0)];
+        let r = [
+            Vector3::new(3200.0, 1300.0, 9000.0),
+            Vector3::new(-900.0, 20.0, 4000.0),
+        ];
         let rl = Vector3::from_fn(|j, _| Lanes([r[0][j], r[1][j]]));
         let g = block.acceleration(&rl);
         for i in 0..2 {

@@ -39,6 +39,8 @@ impl GravityModel for PointMass {
 
 impl FromParams for PointMass {
     fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        Ok(Self { mu: p.scalar("mu")? })
+        Ok(Self {
+            mu: p.scalar("mu")?,
+        })
     }
 }

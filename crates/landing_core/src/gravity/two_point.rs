@@ -27,10 +27,13 @@ impl TwoPointMass {
     /// halves at (+-d, 0, 0), d = a / sqrt(5) with a = 17.2 km, so that the dumbbell has the
     /// second moment M a^2 / 5 of a homogeneous ellipsoid of semi-axis a along x.
     pub fn eros() -> Self {
-        Self::from_masses([6.687e15 / 2.0; 2], [
-            Vector3::new(17_200.0 / 5f64.sqrt(), 0.0, 0.0),
-            Vector3::new(-17_200.0 / 5f64.sqrt(), 0.0, 0.0),
-        ])
+        Self::from_masses(
+            [6.687e15 / 2.0; 2],
+            [
+                Vector3::new(17_200.0 / 5f64.sqrt(), 0.0, 0.0),
+                Vector3::new(-17_200.0 / 5f64.sqrt(), 0.0, 0.0),
+            ],
+        )
     }
 
     /// The field of masses `m_i` (kg) at `positions`, with Newton's constant [`G`]:

@@ -1,7 +1,7 @@
 //! `exp`, `ln`, `pow` and `tanh` over [`Real`] lanes, branch-free (see [`super::math`]).
 
-use super::{Mask, Real};
 use super::math::{estrin10, estrin11};
+use super::{Mask, Real};
 
 /// ln 2 split for Cody-Waite reduction (fdlibm `e_exp.c`): `LN2_HI` has 32 significant bits,
 /// so `k * LN2_HI` is exact for |k| < 2^21 and `x - k * LN2_HI` is exact (Sterbenz).
@@ -62,7 +62,7 @@ pub fn exp<R: Real>(x: R) -> R {
     // normal number by which p scales exactly, so one factor gives the same bits as two.
     if (x.simd_ge(R::splat(-700.0)) & x.simd_le(R::splat(700.0))).all() {
         let (k, p, _) = exp_kernel(x);
-        return p * k.pow2i();
+        return p.scale2(k);
     }
     // constant first: max/min return their second operand for a NaN, so NaN goes through
     let xc = R::splat(EXP_CLAMP_HI).min(R::splat(EXP_CLAMP_LO).max(x));

@@ -27,8 +27,7 @@ pub use gather::Gather;
 
 use std::fmt;
 use std::ops::{
-    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Sub,
-    SubAssign,
+    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Sub, SubAssign,
 };
 
 use nalgebra::SVector;
@@ -117,8 +116,15 @@ pub trait Real:
     fn round_small(self) -> Self;
     /// `2^k` for an integral `k` in [-1022, 1023] (exact, from the exponent bits).
     fn pow2i(self) -> Self;
-    /// `(e, m)` with `x = 2^e m`, `1 <= m < 2`, for a positive normal `x`.
+    /// `(e, m)` with `x = 2^e m`, `1 <= m < 2`, for a positive normal `x` (IEEE 754's logB
+    /// and the significand; other inputs give unspecified values).
     fn split_exponent(self) -> (Self, Self);
+
+    /// `self 2^k` for an integral `k` with the result normal (IEEE 754's scaleB, exact there).
+    #[inline(always)]
+    fn scale2(self, k: Self) -> Self {
+        self * k.pow2i()
+    }
 
     // -- derived operations, written once on top of the primitives --------------------------
 

@@ -17,8 +17,7 @@
 use std::arch::x86_64::*;
 use std::fmt;
 use std::ops::{
-    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Sub,
-    SubAssign,
+    Add, AddAssign, BitAnd, BitOr, BitXor, Div, DivAssign, Mul, MulAssign, Neg, Not, Sub, SubAssign,
 };
 
 use super::{Mask, ROUNDER, Real};
@@ -34,7 +33,8 @@ macro_rules! level {
         set1_i: $set1_i:path, or_i: $or_i:path, and_i: $and_i:path,
         lt: $lt:expr, le: $le:expr, gt: $gt:expr, ge: $ge:expr, eq: $eq:expr,
         blend: $blend:expr, mand: $mand:expr, mor: $mor:expr, mxor: $mxor:expr, mnot: $mnot:expr,
-        bits: $bits:expr, mtrue: $mtrue:expr, mfalse: $mfalse:expr $(,)?
+        bits: $bits:expr, mtrue: $mtrue:expr, mfalse: $mfalse:expr,
+        split: $split:path, scale2: $scale2:path $(,)?
     ) => {
         /// N vector registers of lanes (see the module documentation).
         #[derive(Clone, Copy)]
@@ -315,20 +315,13 @@ macro_rules! level {
                 let mut e = self.0;
                 let mut m = self.0;
                 for k in 0..N {
-                    unsafe {
-                        let bits = $cast_i(self.0[k]);
-                        let biased = $cast_d($or_i(
-                            $set1_i(0x4330_0000_0000_0000u64 as i64),
-                            ($srli)(bits),
-                        ));
-                        e[k] = $sub(biased, $set1(4_503_599_627_371_519.0));
-                        m[k] = $cast_d($or_i(
-                            $and_i(bits, $set1_i(0x000F_FFFF_FFFF_FFFF)),
-                            $set1_i(0x3FF0_0000_0000_0000),
-                        ));
-                    }
+                    (e[k], m[k]) = unsafe { ($split)(self.0[k]) };
                 }
                 (Self(e), Self(m))
+            }
+            #[inline(always)]
+            fn scale2(self, k: Self) -> Self {
+                self.zip(k, |a, b| unsafe { ($scale2)(a, b) })
             }
         }
     };
@@ -377,6 +370,8 @@ level!(
     bits: |m| _mm_movemask_pd(m) as u64,
     mtrue: unsafe { _mm_castsi128_pd(_mm_set1_epi64x(-1)) },
     mfalse: unsafe { _mm_setzero_pd() },
+    split: sse2_ops::split,
+    scale2: sse2_ops::scale2,
 );
 
 level!(
@@ -400,6 +395,8 @@ level!(
     bits: |m| _mm256_movemask_pd(m) as u64,
     mtrue: unsafe { _mm256_castsi256_pd(_mm256_set1_epi64x(-1)) },
     mfalse: unsafe { _mm256_setzero_pd() },
+    split: avx2_ops::split,
+    scale2: avx2_ops::scale2,
 );
 
 level!(
@@ -423,4 +420,88 @@ level!(
     bits: |m: __mmask8| m as u64,
     mtrue: 0xFFu8,
     mfalse: 0u8,
+    // IEEE 754 logB and the significand, and scaleB: exact, the same values as the bit
+    // manipulations of the other levels where those are defined (positive normal inputs,
+    // normal results)
+    split: avx512_ops::split,
+    scale2: avx512_ops::scale2,
 );
+
+/// SSE2's logB/significand and scaleB, as functions: a closure this large is not always
+/// inlined, and out of line it would run without the level's instructions.
+mod sse2_ops {
+    use std::arch::x86_64::*;
+
+    #[inline(always)]
+    pub(super) unsafe fn split(x: __m128d) -> (__m128d, __m128d) {
+        let bits = _mm_castpd_si128(x);
+        let biased = _mm_castsi128_pd(_mm_or_si128(
+            _mm_set1_epi64x(0x4330_0000_0000_0000u64 as i64),
+            _mm_srli_epi64::<52>(bits),
+        ));
+        let e = _mm_sub_pd(biased, _mm_set1_pd(4_503_599_627_371_519.0));
+        let m = _mm_castsi128_pd(_mm_or_si128(
+            _mm_and_si128(bits, _mm_set1_epi64x(0x000F_FFFF_FFFF_FFFF)),
+            _mm_set1_epi64x(0x3FF0_0000_0000_0000),
+        ));
+        (e, m)
+    }
+
+    #[inline(always)]
+    pub(super) unsafe fn scale2(a: __m128d, k: __m128d) -> __m128d {
+        let two_k = _mm_castsi128_pd(_mm_slli_epi64::<52>(_mm_castpd_si128(_mm_add_pd(
+            k,
+            _mm_set1_pd(4_503_599_627_371_519.0),
+        ))));
+        _mm_mul_pd(a, two_k)
+    }
+}
+
+/// AVX2's logB/significand and scaleB, as functions: a closure this large is not always
+/// inlined, and out of line it would run without the level's instructions.
+mod avx2_ops {
+    use std::arch::x86_64::*;
+
+    #[inline(always)]
+    pub(super) unsafe fn split(x: __m256d) -> (__m256d, __m256d) {
+        let bits = _mm256_castpd_si256(x);
+        let biased = _mm256_castsi256_pd(_mm256_or_si256(
+            _mm256_set1_epi64x(0x4330_0000_0000_0000u64 as i64),
+            _mm256_srli_epi64::<52>(bits),
+        ));
+        let e = _mm256_sub_pd(biased, _mm256_set1_pd(4_503_599_627_371_519.0));
+        let m = _mm256_castsi256_pd(_mm256_or_si256(
+            _mm256_and_si256(bits, _mm256_set1_epi64x(0x000F_FFFF_FFFF_FFFF)),
+            _mm256_set1_epi64x(0x3FF0_0000_0000_0000),
+        ));
+        (e, m)
+    }
+
+    #[inline(always)]
+    pub(super) unsafe fn scale2(a: __m256d, k: __m256d) -> __m256d {
+        let two_k = _mm256_castsi256_pd(_mm256_slli_epi64::<52>(_mm256_castpd_si256(
+            _mm256_add_pd(k, _mm256_set1_pd(4_503_599_627_371_519.0)),
+        )));
+        _mm256_mul_pd(a, two_k)
+    }
+}
+
+/// AVX-512's own exact instructions for IEEE 754 logB and the significand (getexp, getmant)
+/// and scaleB (scalef): where the other levels' bit manipulations are defined (positive normal
+/// inputs, normal results) they give the same values.
+mod avx512_ops {
+    use std::arch::x86_64::*;
+
+    #[inline(always)]
+    pub(super) unsafe fn split(x: __m512d) -> (__m512d, __m512d) {
+        (
+            _mm512_getexp_pd(x),
+            _mm512_getmant_pd::<_MM_MANT_NORM_1_2, _MM_MANT_SIGN_SRC>(x),
+        )
+    }
+
+    #[inline(always)]
+    pub(super) unsafe fn scale2(a: __m512d, k: __m512d) -> __m512d {
+        _mm512_scalef_pd(a, k)
+    }
+}

@@ -140,13 +140,7 @@ impl<R: Real> Plant<R, 3> for MarsLander<R> {
     }
 
     #[inline(always)]
-    fn derivative(
-        &self,
-        t: f64,
-        x: &MarsState<R>,
-        u: &Vector3<R>,
-        d: &Vector3<R>,
-    ) -> MarsState<R> {
+    fn derivative(&self, t: f64, x: &MarsState<R>, u: &Vector3<R>, d: &Vector3<R>) -> MarsState<R> {
         self.derivative_with_drift(t, x, u, d, &self.modelled_acceleration(t, x))
     }
 

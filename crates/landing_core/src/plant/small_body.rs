@@ -91,7 +91,10 @@ impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
     #[inline(always)]
     fn modelled_acceleration(&self, _t: f64, x: &SmallBodyState<R>) -> Vector3<R> {
         let (r, v) = split(x);
-        add(&self.frame_acceleration(&r, &v), &self.gravity.acceleration(&r))
+        add(
+            &self.frame_acceleration(&r, &v),
+            &self.gravity.acceleration(&r),
+        )
     }
 
     #[inline(always)]
@@ -185,7 +188,12 @@ mod tests {
         }
     }
 
-    fn advance<P: Plant<f64, 3, State = SmallBodyState>>(p: &P, x: &mut SmallBodyState, steps: usize, h: f64) {
+    fn advance<P: Plant<f64, 3, State = SmallBodyState>>(
+        p: &P,
+        x: &mut SmallBodyState,
+        steps: usize,
+        h: f64,
+    ) {
         for k in 0..steps {
             let t = k as f64 * h;
             *x = IntegratorKind::Rk4.step(

@@ -5,8 +5,8 @@ use landing_core::SimConfig;
 use landing_core::batch::{Batch, BatchOutput, PerCase, RunOptions, run};
 use landing_core::control::{AnyLaw, FixedTimeMss, MssVariant};
 use landing_core::disturbance::Disturbance;
-use landing_core::integrator::IntegratorKind;
 use landing_core::error::Validate;
+use landing_core::integrator::IntegratorKind;
 use landing_core::plant::MarsLander;
 use landing_core::reference::Reference;
 use landing_core::workloads::{MARS_NOMINAL, spec_fixed_time_gains};
@@ -43,7 +43,12 @@ pub fn run_one(
         disturbances: PerCase::shared(disturbance),
         x0: vec![x0],
     };
-    run(&batch, &cfg.with_integrator(integrator), &RunOptions::default()).expect("batch runs")
+    run(
+        &batch,
+        &cfg.with_integrator(integrator),
+        &RunOptions::default(),
+    )
+    .expect("batch runs")
 }
 
 pub fn no_drag() -> MarsLander {

@@ -176,12 +176,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
 
     /// `x'` of the chain and the sub-satellite (see the module documentation).
     #[inline(always)]
-    fn chain_derivative(
-        &self,
-        x: &SVector<R, S>,
-        u: &Vector2<R>,
-        d: &Vector2<R>,
-    ) -> SVector<R, S> {
+    fn chain_derivative(&self, x: &SVector<R, S>, u: &Vector2<R>, d: &Vector2<R>) -> SVector<R, S> {
         let () = Self::LAYOUT;
         let b = &self.body;
         let n = b.orbital_rate;
@@ -228,7 +223,10 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
         let along = Vector2::new(-x[1], x[0]) / rho;
         let m = self.end_mass();
-        let force = add(&pull_on_attachment, &scale_by(&along, u[0] + m * rho * d[0]));
+        let force = add(
+            &pull_on_attachment,
+            &scale_by(&along, u[0] + m * rho * d[0]),
+        );
         let (ax, ay) = field(x[0], x[3], x[4]);
         let half = R::splat(0.5) * b.side;
         let (s, c) = x[2].sin_cos();
@@ -418,7 +416,10 @@ impl<const N: usize, const S: usize> PlantModel<2> for TetheredFlexible<N, S> {
         q: &Vector2<f64>,
         qd: &Vector2<f64>,
     ) -> Option<Result<Vec<f64>, ParamError>> {
-        Some(TetheredFlexible::state_at(self, q[0], q[1], qd[0], qd[1]).map(|x| x.as_slice().to_vec()))
+        Some(
+            TetheredFlexible::state_at(self, q[0], q[1], qd[0], qd[1])
+                .map(|x| x.as_slice().to_vec()),
+        )
     }
 
     fn check_initial(&self, x: &[f64]) -> Result<(), ParamError> {

@@ -102,8 +102,9 @@ impl<R: Real> Plant<R, 2> for TetheredSimplified<R> {
         let (s, c) = phi.sin_cos();
         let phi_dd = u[0] / (b.sub_mass * rho) - R::splat(3.0) * n * n * s * c + d[0];
         let t = self.tension(x);
-        let theta_dd =
-            (u[1] - R::splat(0.5) * b.side * t * (theta - phi).sin()) / b.moment_of_inertia() + d[1];
+        let theta_dd = (u[1] - R::splat(0.5) * b.side * t * (theta - phi).sin())
+            / b.moment_of_inertia()
+            + d[1];
         SimplifiedState::new(x[2], x[3], phi_dd, theta_dd)
     }
 }
@@ -136,7 +137,12 @@ impl Validate for TetheredSimplified {
 impl FromParams for TetheredSimplified {
     /// The shared body; the flexible model's tether parameters are known but unused here.
     fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        for key in ["nodes", "tether_density", "axial_stiffness", "axial_damping"] {
+        for key in [
+            "nodes",
+            "tether_density",
+            "axial_stiffness",
+            "axial_damping",
+        ] {
             p.skip(key);
         }
         Ok(Self {
