@@ -18,8 +18,8 @@ use rayon::prelude::*;
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
 #[cfg(target_arch = "x86_64")]
-use crate::kernel::{Avx2Lanes, Avx2Laws, Avx512Lanes, Avx512Laws};
-use crate::kernel::{BaselineLanes, BaselineLaws, Level, LevelError};
+use crate::kernel::{Avx2Laws, Avx512Laws};
+use crate::kernel::{BaselineLaws, Blocks, Level, LevelError};
 use crate::lanes::{Gather, Real};
 use crate::metrics::CaseMetrics;
 use crate::plant::{Plant, PlantModel};
@@ -242,7 +242,7 @@ fn run_block<const D: usize, P: PlantModel<D>, R: Real, K: LawCalls<D, R>>(
 fn run_block_baseline<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, BaselineLanes, BaselineLaws>(job)
+    run_block::<D, P, <P::Blocks as Blocks>::Baseline, BaselineLaws>(job)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -250,7 +250,7 @@ fn run_block_baseline<const D: usize, P: PlantModel<D>>(
 fn run_block_avx2<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, Avx2Lanes, Avx2Laws>(job)
+    run_block::<D, P, <P::Blocks as Blocks>::Avx2, Avx2Laws>(job)
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -260,7 +260,7 @@ fn run_block_avx2<const D: usize, P: PlantModel<D>>(
 fn run_block_avx512<const D: usize, P: PlantModel<D>>(
     job: BlockJob<'_, '_, D, P>,
 ) -> Result<(), Cancelled> {
-    run_block::<D, P, Avx512Lanes, Avx512Laws>(job)
+    run_block::<D, P, <P::Blocks as Blocks>::Avx512, Avx512Laws>(job)
 }
 
 /// Runs a block at `level` (which [`Level::resolve`] has checked this CPU supports).
@@ -370,7 +370,7 @@ fn run_here<const D: usize, P: PlantModel<D>>(
         table: table.as_ref(),
         cancel,
     };
-    let w = level.lanes();
+    let w = level.lanes::<P::Blocks>();
     let blocks = n.div_ceil(w);
     let jobs: Vec<_> = chunks(&mut states, w * nr * nx, blocks)
         .into_iter()

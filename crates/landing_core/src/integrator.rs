@@ -123,7 +123,7 @@ impl IntegratorKind {
         for i in 0..tab.stages {
             let k = f.at(tab.at[i], &y);
             sum = if i == 0 {
-                S::from_components(|c| k.component(c) * R::splat(tab.weight[0]))
+                k.scaled(R::splat(tab.weight[0]))
             } else {
                 sum.add_scaled(&k, R::splat(tab.weight[i]))
             };

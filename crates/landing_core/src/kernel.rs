@@ -126,56 +126,88 @@ impl Level {
         }
     }
 
-    /// Cases per block at this level: wide enough that the lanes of one operation fill several
-    /// vector registers, which hides the latency of each instruction behind the others'.
-    pub fn lanes(self) -> usize {
+    /// Cases per block at this level for blocks of width `B`.
+    pub fn lanes<B: Blocks>(self) -> usize {
         match self {
-            Level::Baseline => <BaselineLanes as Real>::LANES,
+            Level::Baseline => <B::Baseline as Real>::LANES,
             #[cfg(target_arch = "x86_64")]
-            Level::Avx2 => <Avx2Lanes as Real>::LANES,
+            Level::Avx2 => <B::Avx2 as Real>::LANES,
             #[cfg(target_arch = "x86_64")]
-            Level::Avx512 => <Avx512Lanes as Real>::LANES,
+            Level::Avx512 => <B::Avx512 as Real>::LANES,
             #[cfg(not(target_arch = "x86_64"))]
             _ => 1,
         }
     }
 }
 
-/// The lane type of each level: 8 cases in 4 SSE2 registers, 16 in 4 AVX2 registers, 32 in 4
-/// AVX-512 registers (elsewhere, the portable `Lanes<8>`).
-#[cfg(target_arch = "x86_64")]
-pub(crate) type BaselineLanes = crate::lanes::x86::Sse2<4>;
-#[cfg(not(target_arch = "x86_64"))]
-pub(crate) type BaselineLanes = crate::lanes::Lanes<8>;
-#[cfg(target_arch = "x86_64")]
-pub(crate) type Avx2Lanes = crate::lanes::x86::Avx2<4>;
-#[cfg(target_arch = "x86_64")]
-pub(crate) type Avx512Lanes = crate::lanes::x86::Avx512<4>;
+/// The lane types of a plant's blocks at each level. A block's lanes must fill several vector
+/// registers, so that each instruction's latency hides behind the others' (measured: W1 takes
+/// 53, 41 and 37 ns per case-step at 8, 16 and 32 AVX-512 lanes), but a block must also stay
+/// in the registers and the first-level cache: a plant with a large state (the flexible
+/// tether's 38 components) or a law dominated by divisions gains nothing from width and loses
+/// to the copies (W6: 262 ms at 8 lanes, 551 ms at 32). Each plant picks [`Wide`] or
+/// [`Narrow`] blocks ([`crate::plant::PlantModel::Blocks`]); a case's bits do not depend on it.
+pub trait Blocks: Send + Sync + 'static {
+    type Baseline: Real;
+    #[cfg(target_arch = "x86_64")]
+    type Avx2: Real;
+    #[cfg(target_arch = "x86_64")]
+    type Avx512: Real;
+}
 
-/// The laws compiled for one level: out-of-line trampolines, generic over the axis count only,
-/// that the level's block rollouts call once per control period (see
-/// [`LawCalls`](crate::rollout::LawCalls)).
+/// Blocks of 8 cases in SSE2 registers, 16 in AVX2, 32 in AVX-512.
+pub struct Wide;
+
+/// Blocks of 8 cases at every level.
+pub struct Narrow;
+
+#[cfg(target_arch = "x86_64")]
+impl Blocks for Wide {
+    type Baseline = crate::lanes::x86::Sse2<4>;
+    type Avx2 = crate::lanes::x86::Avx2<4>;
+    type Avx512 = crate::lanes::x86::Avx512<4>;
+}
+
+#[cfg(target_arch = "x86_64")]
+impl Blocks for Narrow {
+    type Baseline = crate::lanes::x86::Sse2<4>;
+    type Avx2 = crate::lanes::x86::Avx2<2>;
+    type Avx512 = crate::lanes::x86::Avx512<1>;
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl Blocks for Wide {
+    type Baseline = crate::lanes::Lanes<8>;
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl Blocks for Narrow {
+    type Baseline = crate::lanes::Lanes<8>;
+}
+
+/// The laws compiled for one level: out-of-line trampolines, generic over the axis count and
+/// the lane type, that the level's block rollouts call once per control period (see
+/// [`LawCalls`](crate::rollout::LawCalls)). Only the level's own lane types are given them.
 macro_rules! level_laws {
-    ($name:ident, $lanes:ty $(, $features:literal)?) => {
+    ($name:ident $(, $features:literal)?) => {
         pub(crate) struct $name;
 
         const _: () = {
             use nalgebra::SVector;
 
             use crate::control::{AnyLaw, AnyMemory, LawInput};
+            use crate::lanes::Real;
             use crate::rollout::LawCalls;
-
-            type L = $lanes;
 
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
-            unsafe fn start<const D: usize>(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
+            unsafe fn start<const D: usize, L: Real>(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
                 law.start(input)
             }
 
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
-            unsafe fn command<const D: usize>(
+            unsafe fn command<const D: usize, L: Real>(
                 law: &AnyLaw<D, L>,
                 memory: &AnyMemory<D, L>,
                 input: &LawInput<D, L>,
@@ -185,7 +217,7 @@ macro_rules! level_laws {
 
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
-            unsafe fn advance<const D: usize>(
+            unsafe fn advance<const D: usize, L: Real>(
                 law: &AnyLaw<D, L>,
                 memory: &mut AnyMemory<D, L>,
                 input: &LawInput<D, L>,
@@ -195,7 +227,7 @@ macro_rules! level_laws {
 
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
-            unsafe fn diagnostics<const D: usize>(
+            unsafe fn diagnostics<const D: usize, L: Real>(
                 law: &AnyLaw<D, L>,
                 memory: &AnyMemory<D, L>,
                 input: &LawInput<D, L>,
@@ -206,7 +238,7 @@ macro_rules! level_laws {
 
             // SAFETY (every call below): this type is used only by the block rollouts of its
             // own level, which run only once `Level::resolve` has checked the CPU has it.
-            impl<const D: usize> LawCalls<D, L> for $name {
+            impl<const D: usize, L: Real> LawCalls<D, L> for $name {
                 #[inline(always)]
                 fn start(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
                     unsafe { start(law, input) }
@@ -237,12 +269,11 @@ macro_rules! level_laws {
     };
 }
 
-level_laws!(BaselineLaws, BaselineLanes);
+level_laws!(BaselineLaws);
 #[cfg(target_arch = "x86_64")]
-level_laws!(Avx2Laws, Avx2Lanes, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
+level_laws!(Avx2Laws, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
 #[cfg(target_arch = "x86_64")]
 level_laws!(
     Avx512Laws,
-    Avx512Lanes,
     "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
 );

@@ -17,11 +17,11 @@ pub trait State<R: Real>: Copy + Send + Sync + 'static {
     /// Whether every component is finite, per lane.
     fn all_finite(&self) -> R::Mask;
 
-    /// `self + k c`, component by component (the integrators' update, inlined for sure).
-    #[inline(always)]
-    fn add_scaled(&self, k: &Self, c: R) -> Self {
-        Self::from_components(|i| self.component(i) + k.component(i) * c)
-    }
+    /// `self + k c`, component by component (the integrators' update).
+    fn add_scaled(&self, k: &Self, c: R) -> Self;
+
+    /// `k c`, component by component.
+    fn scaled(&self, c: R) -> Self;
 
     /// Lane-wise select: `a` where the mask is set, `b` elsewhere.
     #[inline(always)]
@@ -46,5 +46,34 @@ impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     #[inline(always)]
     fn all_finite(&self) -> R::Mask {
         all_finite(self)
+    }
+
+    // explicit loops, not closures: a closure this often called is not always inlined, and
+    // out of line it would run without the kernel's instructions
+    #[inline(always)]
+    fn add_scaled(&self, k: &Self, c: R) -> Self {
+        let mut out = *self;
+        for i in 0..N {
+            out[i] = self[i] + k[i] * c;
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn scaled(&self, c: R) -> Self {
+        let mut out = *self;
+        for i in 0..N {
+            out[i] = self[i] * c;
+        }
+        out
+    }
+
+    #[inline(always)]
+    fn select(mask: R::Mask, a: &Self, b: &Self) -> Self {
+        let mut out = *a;
+        for i in 0..N {
+            out[i] = R::select(mask, a[i], b[i]);
+        }
+        out
     }
 }

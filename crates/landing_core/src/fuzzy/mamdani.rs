@@ -170,6 +170,18 @@ impl Mamdani {
         self.grid.len()
     }
 
+    /// The aggregated membership at grid point `j`: the largest of the fired output sets
+    /// clipped at their firing strengths.
+    #[inline(always)]
+    fn aggregated<R: Real>(&self, fire: &[R; MAX_OUTPUT_SETS], active: &[usize], j: usize) -> R {
+        let n = self.grid.len();
+        let mut m = R::zero();
+        for &k in active {
+            m = m.max(fire[k].min(R::splat(self.table[k * n + j])));
+        }
+        m
+    }
+
     /// The crisp output for `x` (one value per input; values outside an input's universe are
     /// clipped to it), lane by lane. 0 where no rule fires.
     ///
@@ -213,22 +225,20 @@ impl Mamdani {
         if first > last {
             return zero;
         }
-        let aggregated = |j: usize| {
-            let mut m = zero;
-            for &k in &active[..n_active] {
-                m = m.max(fire[k].min(R::splat(self.table[k * n + j])));
-            }
-            m
-        };
+        let active = &active[..n_active];
         let (mut s0, mut s1) = (zero, zero);
         for j in first..=last {
-            let m = aggregated(j);
+            let m = self.aggregated(&fire, active, j);
             s0 += m;
             s1 += m * (j as f64);
         }
-        let m0 = if first == 0 { aggregated(0) } else { zero };
+        let m0 = if first == 0 {
+            self.aggregated(&fire, active, 0)
+        } else {
+            zero
+        };
         let mn = if last == n - 1 {
-            aggregated(n - 1)
+            self.aggregated(&fire, active, n - 1)
         } else {
             zero
         };

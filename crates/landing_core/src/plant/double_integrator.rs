@@ -73,6 +73,7 @@ impl<R: Real> Plant<R, 3> for DoubleIntegrator<R> {
 
 impl PlantModel<3> for DoubleIntegrator {
     type At<R: Real> = DoubleIntegrator<R>;
+    type Blocks = crate::kernel::Wide;
     const STATE_NAMES: &'static [&'static str] = &["x", "y", "z", "vx", "vy", "vz"];
     const CONTROL_NAMES: &'static [&'static str] = &["ax", "ay", "az"];
 }

@@ -184,6 +184,7 @@ impl<R: Real> Plant<R, 3> for MarsLander<R> {
 
 impl PlantModel<3> for MarsLander {
     type At<R: Real> = MarsLander<R>;
+    type Blocks = crate::kernel::Wide;
     const STATE_NAMES: &'static [&'static str] = &["rx", "ry", "rz", "vx", "vy", "vz", "m"];
     const CONTROL_NAMES: &'static [&'static str] = &["Fx", "Fy", "Fz"];
 

@@ -95,6 +95,11 @@ pub trait PlantModel<const D: usize>:
     /// The plant over lanes of cases.
     type At<R: Real>: Plant<R, D> + Gather<R, Case = Self>;
 
+    /// How wide its blocks are at each instruction-set level ([`crate::kernel::Wide`] or
+    /// [`crate::kernel::Narrow`]): a performance choice, measured; the bits do not depend on
+    /// it.
+    type Blocks: crate::kernel::Blocks;
+
     /// Number of state components.
     const STATE_DIM: usize = <<Self as Plant<f64, D>>::State as State<f64>>::DIM;
     /// Names of the state components, for tables and plots.

@@ -139,6 +139,7 @@ impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
 
 impl<G: GravityModel> PlantModel<3> for SmallBody<G> {
     type At<R: Real> = SmallBody<G::At<R>, R>;
+    type Blocks = crate::kernel::Narrow;
     const STATE_NAMES: &'static [&'static str] = &["x", "y", "z", "vx", "vy", "vz"];
     const CONTROL_NAMES: &'static [&'static str] = &["ux", "uy", "uz"];
 }

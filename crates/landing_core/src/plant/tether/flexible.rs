@@ -72,6 +72,17 @@ impl<const N: usize, const S: usize, R: Real> Gather<R> for TetheredFlexible<N, 
     }
 }
 
+/// The Clohessy-Wiltshire field on a point mass at radial offset `px` with velocity
+/// `(vx, vy)`: gravity gradient and Coriolis terms of the Hill frame (a function, not a
+/// closure, so that it is always inlined into the kernel).
+#[inline(always)]
+fn hill_field<R: Real>(n: R, n2: R, px: R, vx: R, vy: R) -> (R, R) {
+    (
+        R::splat(2.0) * n * vy + R::splat(3.0) * n2 * px,
+        -(R::splat(2.0) * n * vx),
+    )
+}
+
 /// 2D cross product (z component).
 #[inline(always)]
 fn cross<R: Real>(a: &Vector2<R>, b: &Vector2<R>) -> R {
@@ -184,17 +195,11 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let inv_node = R::one() / self.node_mass();
         let mut dx = SVector::<R, S>::zeros();
         // Hill-frame field on every point mass; spring forces are added below
-        let field = |px: R, vx: R, vy: R| {
-            (
-                R::splat(2.0) * n * vy + R::splat(3.0) * n2 * px,
-                -(R::splat(2.0) * n * vx),
-            )
-        };
         for k in 0..N {
             let i = 6 + 4 * k;
             dx[i] = x[i + 2];
             dx[i + 1] = x[i + 3];
-            let (ax, ay) = field(x[i], x[i + 2], x[i + 3]);
+            let (ax, ay) = hill_field(n, n2, x[i], x[i + 2], x[i + 3]);
             dx[i + 2] = ax;
             dx[i + 3] = ay;
         }
@@ -227,7 +232,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
             &pull_on_attachment,
             &scale_by(&along, u[0] + m * rho * d[0]),
         );
-        let (ax, ay) = field(x[0], x[3], x[4]);
+        let (ax, ay) = hill_field(n, n2, x[0], x[3], x[4]);
         let half = R::splat(0.5) * b.side;
         let (s, c) = x[2].sin_cos();
         let arm = Vector2::new(half * c, half * s);
@@ -395,6 +400,7 @@ impl<const N: usize, const S: usize, R: Real> Plant<R, 2> for TetheredFlexible<N
 
 impl<const N: usize, const S: usize> PlantModel<2> for TetheredFlexible<N, S> {
     type At<R: Real> = TetheredFlexible<N, S, R>;
+    type Blocks = crate::kernel::Narrow;
     const STATE_NAMES: &'static [&'static str] = NAMES.split_at(S).0;
     const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
 

@@ -111,6 +111,7 @@ impl<R: Real> Plant<R, 2> for TetheredSimplified<R> {
 
 impl PlantModel<2> for TetheredSimplified {
     type At<R: Real> = TetheredSimplified<R>;
+    type Blocks = crate::kernel::Wide;
     const STATE_NAMES: &'static [&'static str] = &["phi", "theta", "phi_dot", "theta_dot"];
     const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
 
