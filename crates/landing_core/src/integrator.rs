@@ -110,28 +110,50 @@ impl IntegratorKind {
         }
     }
 
-    /// One step of length `h` from `x`, with `f(stage, y)` the derivative at that stage.
+    /// One step of length `h` from `x` into `next`, with `f(stage, y)` the derivative at that
+    /// stage.
     ///
     /// Both methods run through one loop over their tableau's stages, so the derivative (the
     /// bulk of the code) is inlined once, whatever the method: the choice of method is a
-    /// number of stages and a few coefficients read at run time, not a second copy.
+    /// number of stages and a few coefficients read at run time, not a second copy. The
+    /// stage point and the weighted sum are updated in place (see [`State`]).
     #[inline(always)]
-    pub fn step<R: Real, S: State<R>>(self, f: &impl StageDerivative<R, S>, x: &S, h: f64) -> S {
+    pub fn step_into<R: Real, S: State<R>>(
+        self,
+        f: &impl StageDerivative<R, S>,
+        x: &S,
+        h: f64,
+        next: &mut S,
+    ) {
         let tab = self.tableau();
+        // `next` holds the weighted sum of the stage derivatives until the last line
+        let sum = next;
         let mut y = *x;
-        let mut sum = *x;
         for i in 0..tab.stages {
-            let k = f.at(tab.at[i], &y);
-            sum = if i == 0 {
-                k.scaled(R::splat(tab.weight[0]))
+            let k = f.at(tab.at[i], if i == 0 { x } else { &y });
+            if i == 0 {
+                sum.set_scaled(&k, R::splat(tab.weight[0]));
             } else {
-                sum.add_scaled(&k, R::splat(tab.weight[i]))
-            };
+                sum.add_scaled_assign(&k, R::splat(tab.weight[i]));
+            }
             if i + 1 < tab.stages {
-                y = x.add_scaled(&k, R::splat(tab.next[i] * h));
+                y.set_add_scaled(x, &k, R::splat(tab.next[i] * h));
             }
         }
-        x.add_scaled(&sum, R::splat(h / tab.divisor))
+        let c = R::splat(h / tab.divisor);
+        for i in 0..S::DIM {
+            // x + sum c, written over the sum
+            let v = x.component(i) + sum.component(i) * c;
+            sum.set_component(i, v);
+        }
+    }
+
+    /// One step of length `h` from `x`: [`Self::step_into`] returning the new state.
+    #[inline(always)]
+    pub fn step<R: Real, S: State<R>>(self, f: &impl StageDerivative<R, S>, x: &S, h: f64) -> S {
+        let mut next = *x;
+        self.step_into(f, x, h, &mut next);
+        next
     }
 }
 

@@ -315,12 +315,17 @@ impl<const D: usize, R: Real, P: Plant<R, D>> StageDerivative<R, P::State> for H
             None => self.disturbance.deterministic(time),
         };
         let d = add(&det, self.held);
-        if self.j == 0 && stage == Stage::Start {
-            self.plant
-                .derivative_with_drift(time, y, self.u, &d, self.drift)
+        // One call, the drift chosen before it: two calls returning the state from the
+        // branches of an `if` made the compiler copy the (kilobyte) result out of each.
+        // `derivative_with_drift` at the modelled acceleration is `derivative` by contract,
+        // and plants that ignore the drift let the unused evaluation be optimised away.
+        let drift = if self.j == 0 && stage == Stage::Start {
+            *self.drift
         } else {
-            self.plant.derivative(time, y, self.u, &d)
-        }
+            self.plant.modelled_acceleration(time, y)
+        };
+        self.plant
+            .derivative_with_drift(time, y, self.u, &d, &drift)
     }
 }
 
@@ -417,6 +422,8 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
     let mut stats = CommandStats::<D, R>::new(cfg.chatter_filter());
 
     let mut x = *x0;
+    // the step's result, kept outside the loop so that the integrator writes it in place
+    let mut next = *x0;
     let m0 = plant.mass(&x);
     let mut input = law_input(plant, reference, 0.0, cfg.dt, &x);
     let mut memory = K::start(law, &input);
@@ -494,7 +501,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
                 held: &held,
                 drift: &input.drift,
             };
-            let next = cfg.integrator.step(&f, &x, h);
+            cfg.integrator.step_into(&f, &x, h, &mut next);
             if let (Some(z0), Some(z1)) = (plant.altitude(&x), plant.altitude(&next)) {
                 let cross = live & !touched & z0.simd_gt(zero) & z1.simd_le(zero);
                 if cross.any() {
@@ -515,7 +522,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
                 stats.freeze(bad);
                 live = live & !bad;
             }
-            x = P::State::select(live, &next, &x);
+            x.select_assign(live, &next);
             if !live.any() {
                 break 'periods;
             }

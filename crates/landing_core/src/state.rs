@@ -12,22 +12,27 @@ pub trait State<R: Real>: Copy + Send + Sync + 'static {
 
     fn component(&self, i: usize) -> R;
 
+    fn set_component(&mut self, i: usize, v: R);
+
     fn from_components(f: impl FnMut(usize) -> R) -> Self;
 
     /// Whether every component is finite, per lane.
     fn all_finite(&self) -> R::Mask;
 
-    /// `self + k c`, component by component (the integrators' update).
-    fn add_scaled(&self, k: &Self, c: R) -> Self;
+    // The integrators' updates work in place: a state of the flexible tether over a block of
+    // lanes is kilobytes, and a value returned per update was a memcpy the compiler kept.
 
-    /// `k c`, component by component.
-    fn scaled(&self, c: R) -> Self;
+    /// `self = x + k c`, component by component.
+    fn set_add_scaled(&mut self, x: &Self, k: &Self, c: R);
 
-    /// Lane-wise select: `a` where the mask is set, `b` elsewhere.
-    #[inline(always)]
-    fn select(mask: R::Mask, a: &Self, b: &Self) -> Self {
-        Self::from_components(|i| R::select(mask, a.component(i), b.component(i)))
-    }
+    /// `self += k c`, component by component.
+    fn add_scaled_assign(&mut self, k: &Self, c: R);
+
+    /// `self = k c`, component by component.
+    fn set_scaled(&mut self, k: &Self, c: R);
+
+    /// Lane-wise: `a` where the mask is set, `self` elsewhere.
+    fn select_assign(&mut self, mask: R::Mask, a: &Self);
 }
 
 impl<R: Real, const N: usize> State<R> for SVector<R, N> {
@@ -36,6 +41,11 @@ impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     #[inline(always)]
     fn component(&self, i: usize) -> R {
         self[i]
+    }
+
+    #[inline(always)]
+    fn set_component(&mut self, i: usize, v: R) {
+        self[i] = v;
     }
 
     #[inline(always)]
@@ -51,29 +61,30 @@ impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     // explicit loops, not closures: a closure this often called is not always inlined, and
     // out of line it would run without the kernel's instructions
     #[inline(always)]
-    fn add_scaled(&self, k: &Self, c: R) -> Self {
-        let mut out = *self;
+    fn set_add_scaled(&mut self, x: &Self, k: &Self, c: R) {
         for i in 0..N {
-            out[i] = self[i] + k[i] * c;
+            self[i] = x[i] + k[i] * c;
         }
-        out
     }
 
     #[inline(always)]
-    fn scaled(&self, c: R) -> Self {
-        let mut out = *self;
+    fn add_scaled_assign(&mut self, k: &Self, c: R) {
         for i in 0..N {
-            out[i] = self[i] * c;
+            self[i] = self[i] + k[i] * c;
         }
-        out
     }
 
     #[inline(always)]
-    fn select(mask: R::Mask, a: &Self, b: &Self) -> Self {
-        let mut out = *a;
+    fn set_scaled(&mut self, k: &Self, c: R) {
         for i in 0..N {
-            out[i] = R::select(mask, a[i], b[i]);
+            self[i] = k[i] * c;
         }
-        out
+    }
+
+    #[inline(always)]
+    fn select_assign(&mut self, mask: R::Mask, a: &Self) {
+        for i in 0..N {
+            self[i] = R::select(mask, a[i], self[i]);
+        }
     }
 }

@@ -1,8 +1,8 @@
 //! Bindings of the core's theory (convergence bounds) and dispersion sampling. Scalar in,
 //! scalar out: `landing.theory` broadcasts them over arrays.
 
-use numpy::{PyArray1, PyArrayMethods};
 use landing_core::rng::philox4x64_10;
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -209,7 +209,10 @@ fn parse_dispersion(table: &Table) -> Result<Dispersion, InputError> {
     let d = Dispersion { components };
     d.validate().map_err(|e| {
         let j = e.axis.unwrap_or(0);
-        InputError::value(format!("{}[{j}] = {} violates {}", e.param, e.value, e.rule))
+        InputError::value(format!(
+            "{}[{j}] = {} violates {}",
+            e.param, e.value, e.rule
+        ))
     })?;
     Ok(d)
 }

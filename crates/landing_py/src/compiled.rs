@@ -53,15 +53,17 @@ pub struct ByAxes {
 /// How a model is read for D axes, for D = 3 and D = 2.
 pub trait ReadFor {
     type At<const D: usize>: Send + Sync + 'static;
-    fn read<const D: usize>(
-        p: &mut crate::table::Reader<'_>,
-    ) -> Result<Self::At<D>, InputError>;
+    fn read<const D: usize>(p: &mut crate::table::Reader<'_>) -> Result<Self::At<D>, InputError>;
 }
 
 impl ByAxes {
     /// Reads `table` for 3 and 2 axes; fails only if neither reads, with the error of the
     /// reading `prefer_two` says the table was meant for.
-    pub fn compile<M: ReadFor>(owner: &str, table: &Table, prefer_two: bool) -> Result<Self, InputError> {
+    pub fn compile<M: ReadFor>(
+        owner: &str,
+        table: &Table,
+        prefer_two: bool,
+    ) -> Result<Self, InputError> {
         fn entry<T: Send + Sync + 'static>(
             owner: &str,
             r: Result<(PerCase<T>, Cases), InputError>,

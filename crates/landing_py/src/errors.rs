@@ -98,11 +98,7 @@ fn classes(py: Python<'_>) -> Option<&Classes> {
         .as_ref()
 }
 
-fn raise(
-    which: fn(&Classes) -> &Py<PyType>,
-    fallback: fn(String) -> PyErr,
-    msg: String,
-) -> PyErr {
+fn raise(which: fn(&Classes) -> &Py<PyType>, fallback: fn(String) -> PyErr, msg: String) -> PyErr {
     Python::attach(|py| match classes(py) {
         Some(c) => PyErr::from_type(which(c).bind(py).clone(), msg),
         None => fallback(msg),
@@ -113,9 +109,7 @@ impl From<InputError> for PyErr {
     fn from(e: InputError) -> Self {
         match e {
             InputError::Value(m) => raise(|c| &c.parameter, PyValueError::new_err::<String>, m),
-            InputError::Type(m) => {
-                raise(|c| &c.parameter_type, PyTypeError::new_err::<String>, m)
-            }
+            InputError::Type(m) => raise(|c| &c.parameter_type, PyTypeError::new_err::<String>, m),
             InputError::Py(e) => e,
         }
     }
@@ -125,12 +119,16 @@ impl From<InputError> for PyErr {
 pub fn batch_error(e: BatchError) -> PyErr {
     match e {
         BatchError::Allocation { .. } => PyMemoryError::new_err(e.to_string()),
-        BatchError::Length { .. } | BatchError::Shape { .. } | BatchError::Level(_) => {
-            raise(|c| &c.parameter, PyValueError::new_err::<String>, e.to_string())
-        }
-        BatchError::ThreadPool(_) | BatchError::Cancelled => {
-            raise(|c| &c.simulation, PyRuntimeError::new_err::<String>, e.to_string())
-        }
+        BatchError::Length { .. } | BatchError::Shape { .. } | BatchError::Level(_) => raise(
+            |c| &c.parameter,
+            PyValueError::new_err::<String>,
+            e.to_string(),
+        ),
+        BatchError::ThreadPool(_) | BatchError::Cancelled => raise(
+            |c| &c.simulation,
+            PyRuntimeError::new_err::<String>,
+            e.to_string(),
+        ),
     }
 }
 

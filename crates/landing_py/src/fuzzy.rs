@@ -128,7 +128,10 @@ fn variable_table<'py>(py: Python<'py>, v: &Variable) -> PyResult<Bound<'py, PyD
 
 /// The table of the seed-002 variable-rate system, as the core defines it.
 #[pyfunction]
-pub fn variable_rate_system_table(py: Python<'_>, resolution: usize) -> PyResult<Bound<'_, PyDict>> {
+pub fn variable_rate_system_table(
+    py: Python<'_>,
+    resolution: usize,
+) -> PyResult<Bound<'_, PyDict>> {
     if resolution < 2 {
         return Err(InputError::value(format!(
             "resolution = {resolution} violates resolution >= 2"

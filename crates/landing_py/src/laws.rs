@@ -55,8 +55,18 @@ impl Law {
     /// Names and widths of the diagnostic signals for `axes` axes.
     fn diagnostic_layout(&self, axes: usize) -> PyResult<Vec<(&'static str, usize)>> {
         Ok(match axes {
-            3 => self.compiled.get::<AnyLaw<3>, 3>()?.0.get(0).diagnostic_layout(),
-            2 => self.compiled.get::<AnyLaw<2>, 2>()?.0.get(0).diagnostic_layout(),
+            3 => self
+                .compiled
+                .get::<AnyLaw<3>, 3>()?
+                .0
+                .get(0)
+                .diagnostic_layout(),
+            2 => self
+                .compiled
+                .get::<AnyLaw<2>, 2>()?
+                .0
+                .get(0)
+                .diagnostic_layout(),
             _ => {
                 return Err(
                     InputError::value(format!("axes = {axes} violates axes in (2, 3)")).into(),

@@ -37,7 +37,10 @@ pub struct Parts<const D: usize> {
     pub layout: Vec<(&'static str, usize)>,
 }
 
-pub fn to_dict<'py, const D: usize>(py: Python<'py>, parts: Parts<D>) -> PyResult<Bound<'py, PyDict>> {
+pub fn to_dict<'py, const D: usize>(
+    py: Python<'py>,
+    parts: Parts<D>,
+) -> PyResult<Bound<'py, PyDict>> {
     let out = parts.out;
     let n = out.n_cases;
     let nr = out.n_records();

@@ -91,7 +91,10 @@ impl PlantVisitor for Coordinates<'_> {
     type Output = (Vec<f64>, Vec<f64>, usize);
     fn visit<const D: usize, P: PlantModel<D>>(self, plants: &PerCase<P>) -> Self::Output {
         let nx = P::STATE_DIM;
-        let (mut q, mut qd) = (Vec::with_capacity(self.rows * D), Vec::with_capacity(self.rows * D));
+        let (mut q, mut qd) = (
+            Vec::with_capacity(self.rows * D),
+            Vec::with_capacity(self.rows * D),
+        );
         for row in self.states.chunks_exact(nx) {
             let x = <P as landing_core::plant::Plant<f64, D>>::State::from_components(|i| row[i]);
             let (a, b) = plants.get(0).coordinates(&x);
@@ -132,7 +135,9 @@ impl PlantVisitor for StatesAt<'_> {
                         "this plant's state is not determined by its coordinates",
                     ));
                 }
-                Some(x) => out.extend(x.map_err(|e| InputError::from(e).context(&format!("row {i}")))?),
+                Some(x) => {
+                    out.extend(x.map_err(|e| InputError::from(e).context(&format!("row {i}")))?)
+                }
             }
         }
         Ok(out)
@@ -143,7 +148,10 @@ impl PlantVisitor for StatesAt<'_> {
 impl Plant {
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        Ok(Self::compile(owner, &Table::from_py(table).map_err(|e| e.context(owner))?)?)
+        Ok(Self::compile(
+            owner,
+            &Table::from_py(table).map_err(|e| e.context(owner))?,
+        )?)
     }
 
     #[getter]

@@ -92,7 +92,10 @@ impl Reference {
             }
         };
         let d = PyDict::new(py);
-        for (name, v) in ["position", "velocity", "acceleration"].into_iter().zip(values) {
+        for (name, v) in ["position", "velocity", "acceleration"]
+            .into_iter()
+            .zip(values)
+        {
             d.set_item(name, output::array2(py, v, t.len(), axes)?)?;
         }
         Ok(d)
@@ -126,7 +129,12 @@ impl Disturbance {
         let t = Table::from_py(table).map_err(|e| e.context(owner))?;
         let components = match t.entry("components") {
             Some(Value::List(items)) => items.clone(),
-            _ => return Err(InputError::type_(format!("{owner}: a disturbance table has a list 'components'")).into()),
+            _ => {
+                return Err(InputError::type_(format!(
+                    "{owner}: a disturbance table has a list 'components'"
+                ))
+                .into());
+            }
         };
         Ok(Self::from_components(owner, components)?)
     }
@@ -134,7 +142,10 @@ impl Disturbance {
     /// The disturbances acting together (their components add up).
     #[staticmethod]
     fn combine(parts: Vec<PyRef<'_, Disturbance>>) -> PyResult<Self> {
-        let components = parts.iter().flat_map(|p| p.components.iter().cloned()).collect();
+        let components = parts
+            .iter()
+            .flat_map(|p| p.components.iter().cloned())
+            .collect();
         Ok(Self::from_components("disturbance", components)?)
     }
 
@@ -193,9 +204,7 @@ pub fn cubic_from_boundary(
         3 => fit::<3>(all, t_end)?,
         2 => fit::<2>(all, t_end)?,
         _ => {
-            return Err(
-                InputError::value(format!("p0 has {d} axes; 2 or 3 are supported")).into(),
-            );
+            return Err(InputError::value(format!("p0 has {d} axes; 2 or 3 are supported")).into());
         }
     })
 }

@@ -139,7 +139,9 @@ pub fn simulate_batch<'py>(
         ))
     })?;
     if substeps < 1 || substeps > u32::MAX as i64 {
-        return Err(InputError::value(format!("substeps = {substeps} violates substeps >= 1")).into());
+        return Err(
+            InputError::value(format!("substeps = {substeps} violates substeps >= 1")).into(),
+        );
     }
     if record_every < 0 {
         return Err(InputError::value(format!(

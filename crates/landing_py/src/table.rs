@@ -17,9 +17,9 @@ use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
+use landing_core::PerCase;
 use landing_core::fuzzy::Mamdani;
 use landing_core::params::ParamSource;
-use landing_core::PerCase;
 
 use crate::errors::InputError;
 
@@ -99,9 +99,9 @@ impl Table {
             let mut items = Vec::new();
             for item in v.try_iter()? {
                 let item = item?;
-                let d = item.cast::<PyDict>().map_err(|_| {
-                    InputError::type_(format!("{key} must be a list of tables"))
-                })?;
+                let d = item
+                    .cast::<PyDict>()
+                    .map_err(|_| InputError::type_(format!("{key} must be a list of tables")))?;
                 items.push(Self::from_py(d)?);
             }
             return Ok(Value::List(items));
@@ -304,7 +304,11 @@ impl<'t> Reader<'t> {
         }
     }
 
-    fn pick_axes<const D: usize>(&mut self, key: &str, a: &Array) -> Result<SVector<f64, D>, InputError> {
+    fn pick_axes<const D: usize>(
+        &mut self,
+        key: &str,
+        a: &Array,
+    ) -> Result<SVector<f64, D>, InputError> {
         let i = self.case;
         let row = |r: usize| SVector::<f64, D>::from_column_slice(&a.data[r * D..(r + 1) * D]);
         match a.shape.as_slice() {
@@ -359,12 +363,17 @@ impl ParamSource for Reader<'_> {
         }
     }
 
-    fn choice(&mut self, key: &'static str, names: &'static [&'static str]) -> Result<usize, InputError> {
+    fn choice(
+        &mut self,
+        key: &'static str,
+        names: &'static [&'static str],
+    ) -> Result<usize, InputError> {
         match self.raw(key) {
             Value::Absent => Err(Self::required(key)),
-            Value::Text(s) => names.iter().position(|n| n == s).ok_or_else(|| {
-                InputError::value(format!("{key} = {s:?} is not one of {names:?}"))
-            }),
+            Value::Text(s) => names
+                .iter()
+                .position(|n| n == s)
+                .ok_or_else(|| InputError::value(format!("{key} = {s:?} is not one of {names:?}"))),
             _ => Err(InputError::type_(format!(
                 "{key} must be a string, one of {names:?}"
             ))),
@@ -394,7 +403,9 @@ impl ParamSource for Reader<'_> {
         }
         let n = first as usize;
         if first.fract() != 0.0 || first < 0.0 || !allowed.contains(&n) {
-            return Err(InputError::value(format!("{key} = {first} violates {rule}")));
+            return Err(InputError::value(format!(
+                "{key} = {first} violates {rule}"
+            )));
         }
         Ok(n)
     }
@@ -402,9 +413,10 @@ impl ParamSource for Reader<'_> {
     fn kind(&mut self, known: &'static [&'static str]) -> Result<usize, InputError> {
         self.mark("kind");
         match self.table.get("kind") {
-            Value::Text(s) => known.iter().position(|k| k == s).ok_or_else(|| {
-                InputError::value(format!("unknown kind {s:?}; known: {known:?}"))
-            }),
+            Value::Text(s) => known
+                .iter()
+                .position(|k| k == s)
+                .ok_or_else(|| InputError::value(format!("unknown kind {s:?}; known: {known:?}"))),
             _ => Err(InputError::type_("the table has no 'kind'")),
         }
     }

@@ -55,6 +55,8 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
     /// `x'` at a control instant, where the law has just evaluated `drift`, the modelled
     /// acceleration at the same `(t, x)`: plants whose derivative contains it reuse it (the
     /// Mars lander's drag exponential is then computed once for the law and the first stage).
+    /// With `drift = modelled_acceleration(t, x)` it must give `derivative`'s bits: the rollout
+    /// calls it at every stage.
     #[inline(always)]
     fn derivative_with_drift(
         &self,

@@ -83,6 +83,30 @@ fn hill_field<R: Real>(n: R, n2: R, px: R, vx: R, vy: R) -> (R, R) {
     )
 }
 
+/// Adds the pull `f` of segment j to the accelerations: it pulls node j (if j >= 1) outwards
+/// and node j + 1 inwards, or, for the last segment, the sub-satellite (`on_attachment`).
+#[inline(always)]
+fn apply_pull<const N: usize, const S: usize, R: Real>(
+    dx: &mut SVector<R, S>,
+    on_attachment: &mut Vector2<R>,
+    inv_node: R,
+    j: usize,
+    f: &Vector2<R>,
+) {
+    if j >= 1 {
+        let i = 6 + 4 * (j - 1);
+        dx[i + 2] += f[0] * inv_node;
+        dx[i + 3] += f[1] * inv_node;
+    }
+    if j < N {
+        let i = 6 + 4 * j;
+        dx[i + 2] -= f[0] * inv_node;
+        dx[i + 3] -= f[1] * inv_node;
+    } else {
+        *on_attachment = neg(f);
+    }
+}
+
 /// 2D cross product (z component).
 #[inline(always)]
 fn cross<R: Real>(a: &Vector2<R>, b: &Vector2<R>) -> R {
@@ -132,17 +156,30 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
     /// Position and velocity of the tether's attachment point on the sub-satellite.
     #[inline(always)]
     pub fn attachment(&self, x: &SVector<R, S>) -> (Vector2<R>, Vector2<R>) {
-        let half = R::splat(0.5) * self.body.side;
         let (s, c) = x[2].sin_cos();
+        self.attachment_at(x, s, c)
+    }
+
+    /// [`Self::attachment`] given the sine and cosine of the cube's attitude (computed once
+    /// per derivative: the sine's rare slow path is a call, which the compiler would not
+    /// merge with a second evaluation).
+    #[inline(always)]
+    fn attachment_at(&self, x: &SVector<R, S>, s: R, c: R) -> (Vector2<R>, Vector2<R>) {
+        let half = R::splat(0.5) * self.body.side;
         (
             Vector2::new(x[0] + half * c, x[1] + half * s),
             Vector2::new(x[3] - half * x[5] * s, x[4] + half * x[5] * c),
         )
     }
 
-    /// Point j of the chain: 0 is the main satellite, 1..=N the nodes, N + 1 the attachment.
+    /// Point j of the chain: 0 is the main satellite, 1..=N the nodes, N + 1 the attachment
+    /// (given).
     #[inline(always)]
-    fn point(&self, x: &SVector<R, S>, j: usize) -> (Vector2<R>, Vector2<R>) {
+    fn point(
+        x: &SVector<R, S>,
+        j: usize,
+        attachment: &(Vector2<R>, Vector2<R>),
+    ) -> (Vector2<R>, Vector2<R>) {
         if j == 0 {
             (Vector2::zeros(), Vector2::zeros())
         } else if j <= N {
@@ -152,30 +189,35 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
                 Vector2::new(x[k + 2], x[k + 3]),
             )
         } else {
-            self.attachment(x)
+            *attachment
         }
     }
 
-    /// Tension of a segment from point (p0, v0) to (p1, v1), and the unit vector from 0 to 1;
-    /// zero (and a zero vector) where the segment is slack.
+    /// Segment j (from point j to point j + 1): the vector `d` along it, the rate `dv` at which
+    /// its ends separate, and its length.
     #[inline(always)]
-    fn pull(
-        &self,
-        p0: &Vector2<R>,
-        v0: &Vector2<R>,
-        p1: &Vector2<R>,
-        v1: &Vector2<R>,
-    ) -> (R, Vector2<R>) {
-        let d = sub(p1, p0);
-        let l = (d[0] * d[0] + d[1] * d[1]).sqrt();
+    fn segment(
+        x: &SVector<R, S>,
+        j: usize,
+        attachment: &(Vector2<R>, Vector2<R>),
+    ) -> (Vector2<R>, Vector2<R>, R) {
+        let (p0, v0) = Self::point(x, j, attachment);
+        let (p1, v1) = Self::point(x, j + 1, attachment);
+        let d = sub(&p1, &p0);
+        (d, sub(&v1, &v0), (d[0] * d[0] + d[1] * d[1]).sqrt())
+    }
+
+    /// Tension of a segment `d` of length `l` (`inv_l = 1/l` where it is taut) whose ends
+    /// separate at `dv`, `T = EA (l - h)/h + c_A l'/h`, and the unit vector `d / l`; zero
+    /// (and a zero vector) where the segment is slack, and `T >= 0` always.
+    #[inline(always)]
+    fn pull(&self, d: &Vector2<R>, dv: &Vector2<R>, l: R, inv_l: R) -> (R, Vector2<R>) {
         let h = self.segment_length();
         let taut = l.simd_gt(h);
-        let inv_l = R::one() / l;
-        let u = scale_by(&d, inv_l);
+        let u = scale_by(d, inv_l);
         // 1/h depends on the parameters only: computed once per block, not per segment
         let inv_h = R::one() / h;
         let strain = (l - h) * inv_h;
-        let dv = sub(v1, v0);
         let rate = (u[0] * dv[0] + u[1] * dv[1]) * inv_h;
         let t = self.axial_stiffness * strain + self.axial_damping * rate;
         let zero = R::zero();
@@ -193,6 +235,9 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let n = b.orbital_rate;
         let n2 = n * n;
         let inv_node = R::one() / self.node_mass();
+        let h = self.segment_length();
+        let (s, c) = x[2].sin_cos();
+        let attachment = self.attachment_at(x, s, c);
         let mut dx = SVector::<R, S>::zeros();
         // Hill-frame field on every point mass; spring forces are added below
         for k in 0..N {
@@ -204,25 +249,46 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
             dx[i + 3] = ay;
         }
         let mut pull_on_attachment = Vector2::zeros();
-        let (mut p0, mut v0) = self.point(x, 0);
-        for j in 0..=N {
-            let (p1, v1) = self.point(x, j + 1);
-            let (t, dir) = self.pull(&p0, &v0, &p1, &v1);
-            let f = scale_by(&dir, t);
-            if j >= 1 {
-                let i = 6 + 4 * (j - 1);
-                dx[i + 2] += f[0] * inv_node;
-                dx[i + 3] += f[1] * inv_node;
-            }
-            if j < N {
-                let i = 6 + 4 * j;
-                dx[i + 2] -= f[0] * inv_node;
-                dx[i + 3] -= f[1] * inv_node;
-            } else {
-                pull_on_attachment = neg(&f);
-            }
-            p0 = p1;
-            v0 = v1;
+        // Segments two at a time, their lengths' reciprocals from one division,
+        // `1/a = b / (a b)`: the divider, shared with the square roots, bounds the step. A
+        // slack segment needs no reciprocal; 1 in its place keeps the product in range (a
+        // taut length is at least the rest length).
+        let one = R::one();
+        let mut j = 0;
+        while j < N {
+            let (d0, dv0, l0) = Self::segment(x, j, &attachment);
+            let (d1, dv1, l1) = Self::segment(x, j + 1, &attachment);
+            let a0 = R::select(l0.simd_gt(h), l0, one);
+            let a1 = R::select(l1.simd_gt(h), l1, one);
+            let inv = one / (a0 * a1);
+            let (t0, u0) = self.pull(&d0, &dv0, l0, inv * a1);
+            let (t1, u1) = self.pull(&d1, &dv1, l1, inv * a0);
+            apply_pull::<N, S, R>(
+                &mut dx,
+                &mut pull_on_attachment,
+                inv_node,
+                j,
+                &scale_by(&u0, t0),
+            );
+            apply_pull::<N, S, R>(
+                &mut dx,
+                &mut pull_on_attachment,
+                inv_node,
+                j + 1,
+                &scale_by(&u1, t1),
+            );
+            j += 2;
+        }
+        if j == N {
+            let (d0, dv0, l0) = Self::segment(x, j, &attachment);
+            let (t0, u0) = self.pull(&d0, &dv0, l0, one / l0);
+            apply_pull::<N, S, R>(
+                &mut dx,
+                &mut pull_on_attachment,
+                inv_node,
+                j,
+                &scale_by(&u0, t0),
+            );
         }
         // the sub-satellite: thrust perpendicular to the main-to-centre line, through the centre
         let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
@@ -234,7 +300,6 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         );
         let (ax, ay) = hill_field(n, n2, x[0], x[3], x[4]);
         let half = R::splat(0.5) * b.side;
-        let (s, c) = x[2].sin_cos();
         let arm = Vector2::new(half * c, half * s);
         let j_s = b.moment_of_inertia();
         dx[0] = x[3];
@@ -253,9 +318,8 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
     /// Tension of segment j (0 at the main satellite, N at the sub-satellite), N.
     pub fn tension(&self, x: &SVector<f64, S>, j: usize) -> f64 {
         assert!(j <= N, "segment {j} of {}", N + 1);
-        let (p0, v0) = self.point(x, j);
-        let (p1, v1) = self.point(x, j + 1);
-        self.pull(&p0, &v0, &p1, &v1).0
+        let (d, dv, l) = Self::segment(x, j, &self.attachment(x));
+        self.pull(&d, &dv, l, 1.0 / l).0
     }
 
     /// The Jacobi integral of the Hill frame, the energy-like constant of the motion without
@@ -275,7 +339,7 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
         }
         let h = self.segment_length();
         for j in 0..=N {
-            let l = (self.point(x, j + 1).0 - self.point(x, j).0).norm();
+            let l = Self::segment(x, j, &self.attachment(x)).2;
             if l > h {
                 c += 0.5 * self.axial_stiffness * (l - h) * (l - h) / h;
             }
