@@ -186,7 +186,7 @@ impl<const D: usize, R: Real> Disturbance<D, R> {
 
     /// The random draws for control period `period`, lane i from the streams of its case
     /// (`rng[i]`), with `command` the commanded acceleration applied over the period.
-    #[inline]
+    #[inline(always)]
     pub fn draw(
         &self,
         rng: &[NoiseStreams],

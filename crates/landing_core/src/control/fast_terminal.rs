@@ -87,6 +87,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FastTerminalSmc<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
@@ -99,6 +100,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FastTerminalSmc<D, R> {
         a
     }
 
+    #[inline(always)]
     fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.surface.evaluate(input).0.as_slice());
     }

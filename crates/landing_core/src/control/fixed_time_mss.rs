@@ -20,7 +20,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real, sub, vector};
+use crate::lanes::{Mask, Real, sub};
 use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -112,8 +112,15 @@ impl<const D: usize, R: Real> FixedTimeMss<D, R> {
     }
 
     /// Second sliding variable (eq. 21).
+    #[inline(always)]
     pub fn s2(&self, input: &LawInput<D, R>) -> SVector<R, D> {
-        vector(|i| self.s2_axis(i, &self.powers(i, input.e[i]), input.de[i]))
+        // A loop, not `vector(|i| ..)`: the closure is too large to be inlined reliably, and
+        // out of line it would run without the kernel's instruction set.
+        let mut s2 = SVector::<R, D>::from_element(R::zero());
+        for i in 0..D {
+            s2[i] = self.s2_axis(i, &self.powers(i, input.e[i]), input.de[i]);
+        }
+        s2
     }
 
     /// `|s1|^e` for an exponent e that may be negative: `shared` (computed from the shared
@@ -133,6 +140,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s1", "s2"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
@@ -176,6 +184,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
         a
     }
 
+    #[inline(always)]
     fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(input.e.as_slice());
         out[D..2 * D].copy_from_slice(self.s2(input).as_slice());

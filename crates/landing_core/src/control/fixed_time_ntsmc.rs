@@ -162,6 +162,7 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
     }
 
     /// The sliding variable s per axis (eq. 20).
+    #[inline(always)]
     pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
         vector(|i| self.axis(i, input).s)
     }
@@ -194,6 +195,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
     type Memory = SMatrix<R, MAX_NODES, D>;
     const DIAGNOSTICS: &'static [&'static str] = &["s", "rbf"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> Self::Memory {
         SMatrix::zeros()
     }
@@ -234,6 +236,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
         }
     }
 
+    #[inline(always)]
     fn diagnostics(&self, weights: &Self::Memory, input: &LawInput<D, R>, out: &mut [R]) {
         for i in 0..D {
             let ax = self.axis(i, input);

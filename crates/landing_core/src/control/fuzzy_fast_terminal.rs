@@ -56,6 +56,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyFastTerminalSmc<D, R> {
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
     const SCALAR_DIAGNOSTICS: &'static [&'static str] = &["a", "b", "distance"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
@@ -69,6 +70,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyFastTerminalSmc<D, R> {
         u
     }
 
+    #[inline(always)]
     fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         let (s, _) = self.surface.evaluate(input);
         let (a, b, dist) = self.blend(&s);

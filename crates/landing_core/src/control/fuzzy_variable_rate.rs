@@ -85,6 +85,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyVariableRate<D, R> {
     type Memory = VariableRateMemory<D, R>;
     const DIAGNOSTICS: &'static [&'static str] = &["s", "s_dot", "epsilon"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> VariableRateMemory<D, R> {
         VariableRateMemory {
             integral: SVector::zeros(),
@@ -106,6 +107,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyVariableRate<D, R> {
         self.surface.advance(&mut m.integral, input);
     }
 
+    #[inline(always)]
     fn diagnostics(&self, m: &VariableRateMemory<D, R>, input: &LawInput<D, R>, out: &mut [R]) {
         let (s, ds, fuzzy) = self.terms(m, input);
         out[..D].copy_from_slice(s.as_slice());

@@ -84,6 +84,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for IntegralExponentialReaching<D
     type Memory = SVector<R, D>;
     const DIAGNOSTICS: &'static [&'static str] = &["s", "integral"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> SVector<R, D> {
         SVector::zeros()
     }
@@ -104,6 +105,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for IntegralExponentialReaching<D
         self.surface.advance(integral, input);
     }
 
+    #[inline(always)]
     fn diagnostics(&self, integral: &SVector<R, D>, input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.surface.s(integral, input).as_slice());
         out[D..2 * D].copy_from_slice(integral.as_slice());

@@ -83,6 +83,7 @@ pub trait ControlLaw<R: Real, const D: usize>: Send + Sync {
 
     /// Write `DIAGNOSTICS.len() * D + SCALAR_DIAGNOSTICS.len()` values into `out`, signal by
     /// signal.
+    #[inline(always)]
     fn diagnostics(&self, _memory: &Self::Memory, _input: &LawInput<D, R>, _out: &mut [R]) {}
 }
 
@@ -192,6 +193,7 @@ macro_rules! laws {
                 }
             }
 
+            #[inline(always)]
             pub fn diagnostics(&self, memory: &AnyMemory<D, R>, input: &LawInput<D, R>, out: &mut [R]) {
                 match (self, memory) {
                     $((Self::$variant(l), AnyMemory::$variant(m)) => l.diagnostics(m, input, out),)*

@@ -23,7 +23,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Real, sub, vector};
+use crate::lanes::{Real, sub};
 use crate::math::sgn;
 use crate::params::{FromParams, ParamSource};
 
@@ -52,8 +52,14 @@ impl<const D: usize, R: Real> Ntsmc<D, R> {
     }
 
     /// The sliding variable s per axis.
+    #[inline(always)]
     pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
-        vector(|i| self.axis(i, input.e[i], input.de[i]).0)
+        // A loop, not `vector(|i| ..)`: see `FixedTimeMss::s2`.
+        let mut s = SVector::<R, D>::from_element(R::zero());
+        for i in 0..D {
+            s[i] = self.axis(i, input.e[i], input.de[i]).0;
+        }
+        s
     }
 }
 
@@ -61,6 +67,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for Ntsmc<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
@@ -74,6 +81,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for Ntsmc<D, R> {
         a
     }
 
+    #[inline(always)]
     fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.s(input).as_slice());
     }

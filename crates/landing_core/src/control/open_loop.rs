@@ -18,6 +18,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for OpenLoop<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &[];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]

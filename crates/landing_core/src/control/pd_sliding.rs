@@ -29,6 +29,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for PdSlidingMode<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
@@ -46,6 +47,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for PdSlidingMode<D, R> {
         a
     }
 
+    #[inline(always)]
     fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.surface(input).as_slice());
     }

@@ -76,6 +76,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for SuperTwisting<D, R> {
     type Memory = SVector<R, D>;
     const DIAGNOSTICS: &'static [&'static str] = &["sigma", "w"];
 
+    #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> SVector<R, D> {
         SVector::zeros()
     }
@@ -111,6 +112,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for SuperTwisting<D, R> {
         }
     }
 
+    #[inline(always)]
     fn diagnostics(&self, w: &SVector<R, D>, input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.sigma(input).as_slice());
         out[D..2 * D].copy_from_slice(w.as_slice());
