@@ -66,6 +66,8 @@ class Disturbance:
 
 class Gravity:
     def __init__(self, owner: str, table: Table) -> None: ...
+    @property
+    def kind(self) -> str: ...
     def evaluate(self, positions: Array, potential: bool) -> Array:
         """Acceleration (N, 3) or potential (N,) at positions (N, 3)."""
 

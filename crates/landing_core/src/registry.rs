@@ -185,6 +185,13 @@ macro_rules! gravities {
                 Ok(field)
             }
 
+            /// The field's kind at the Python boundary.
+            pub fn kind(&self) -> &'static str {
+                match self {
+                    $(Self::$variant(_) => $kind,)*
+                }
+            }
+
             /// Field at `r`, m/s^2.
             pub fn acceleration(&self, r: &Vector3<f64>) -> Vector3<f64> {
                 match self {

@@ -30,6 +30,12 @@ impl Gravity {
         })
     }
 
+    /// The field's kind (one of GRAVITY_KINDS).
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.fields[0].kind()
+    }
+
     /// Acceleration (N, 3) or potential (N,) at positions (N, 3).
     fn evaluate<'py>(
         &self,

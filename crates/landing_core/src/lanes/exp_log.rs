@@ -56,21 +56,27 @@ fn exp_kernel<R: Real>(x: R) -> (R, R, R) {
 ///
 /// Overflows to +inf for x > 709.78..., underflows gradually through the subnormals to 0
 /// (below -745.13...), `exp(-inf) = 0`, `exp(+inf) = +inf`, `exp(NaN) = NaN`.
+///
+/// One kernel per call, whatever the lanes hold: only the last scaling depends on the range,
+/// and the branch between its two forms is the only one. (A fast path and a general path
+/// each with its kernel made every call site twice as large, which doubled the kernels'
+/// compile time; a general path out of line cost W1 14 %, the calls' register spills.)
 #[inline(always)]
 pub fn exp<R: Real>(x: R) -> R {
-    // Fast path: with every lane in [-700, 700], the clamps below change nothing and 2^k is a
-    // normal number by which p scales exactly, so one factor gives the same bits as two.
-    if (x.simd_ge(R::splat(-700.0)) & x.simd_le(R::splat(700.0))).all() {
-        let (k, p, _) = exp_kernel(x);
-        return p.scale2(k);
-    }
-    // constant first: max/min return their second operand for a NaN, so NaN goes through
+    // constant first: max/min return their second operand for a NaN, so NaN goes through.
+    // Inside [-700, 700] the clamp changes nothing.
     let xc = R::splat(EXP_CLAMP_HI).min(R::splat(EXP_CLAMP_LO).max(x));
     let (k, p, _) = exp_kernel(xc);
-    // 2^k in two factors: `p 2^k1` is exact and normal, and the multiply by 2^k2 rounds once,
-    // into the subnormals or to infinity when the result leaves the normal range.
-    let k1 = k.max(R::splat(-1000.0)).min(R::splat(1000.0));
-    (p * k1.pow2i()) * (k - k1).pow2i()
+    if (x.simd_ge(R::splat(-700.0)) & x.simd_le(R::splat(700.0))).all() {
+        // 2^k is a normal number by which p scales exactly: one factor gives the same bits
+        // as the two below
+        p.scale2(k)
+    } else {
+        // 2^k in two factors: `p 2^k1` is exact and normal, and the multiply by 2^k2 rounds
+        // once, into the subnormals or to infinity when the result leaves the normal range.
+        let k1 = k.max(R::splat(-1000.0)).min(R::splat(1000.0));
+        (p * k1.pow2i()) * (k - k1).pow2i()
+    }
 }
 
 /// 2^54, to bring a subnormal into the normal range before its exponent is read.
@@ -98,17 +104,21 @@ const LOG_L: [f64; 7] = [
 /// keeps the leading term `f` exact and the rounding in small corrections.
 #[inline(always)]
 pub fn ln<R: Real>(x: R) -> R {
-    // Fast path: with every lane positive, normal and finite, the subnormal scaling and the
-    // special cases below change nothing: the same bits with fewer operations.
-    if (x.simd_ge(R::splat(f64::MIN_POSITIVE)) & x.simd_le(R::splat(f64::MAX))).all() {
-        let (e, m) = x.split_exponent();
-        return ln_core(e, m);
-    }
-    let tiny = x.simd_lt(R::splat(f64::MIN_POSITIVE));
-    let xs = x * R::select(tiny, R::splat(TWO_54), R::one());
-    let (e, m) = xs.split_exponent();
-    let e = e - R::select(tiny, R::splat(54.0), R::zero());
+    // One kernel per call (see `exp`): with every lane positive, normal and finite, the
+    // subnormal scaling and the special cases change nothing and are skipped.
+    let normal = (x.simd_ge(R::splat(f64::MIN_POSITIVE)) & x.simd_le(R::splat(f64::MAX))).all();
+    let (e, m) = if normal {
+        x.split_exponent()
+    } else {
+        let tiny = x.simd_lt(R::splat(f64::MIN_POSITIVE));
+        let xs = x * R::select(tiny, R::splat(TWO_54), R::one());
+        let (e, m) = xs.split_exponent();
+        (e - R::select(tiny, R::splat(54.0), R::zero()), m)
+    };
     let y = ln_core(e, m);
+    if normal {
+        return y;
+    }
     let y = R::select(x.simd_eq(R::splat(f64::INFINITY)), x, y);
     let y = R::select(x.simd_eq(R::zero()), R::splat(f64::NEG_INFINITY), y);
     // negative and NaN lanes

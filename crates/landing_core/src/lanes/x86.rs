@@ -34,7 +34,8 @@ macro_rules! level {
         lt: $lt:expr, le: $le:expr, gt: $gt:expr, ge: $ge:expr, eq: $eq:expr,
         blend: $blend:expr, mand: $mand:expr, mor: $mor:expr, mxor: $mxor:expr, mnot: $mnot:expr,
         bits: $bits:expr, mtrue: $mtrue:expr, mfalse: $mfalse:expr,
-        split: $split:path, scale2: $scale2:path $(,)?
+        split: $split:path, scale2: $scale2:path,
+        features: [$($features:literal)?] $(,)?
     ) => {
         /// N vector registers of lanes (see the module documentation).
         #[derive(Clone, Copy)]
@@ -74,6 +75,29 @@ macro_rules! level {
                     out[k] = f(self.0[k], o.0[k]);
                 }
                 $mask(out)
+            }
+        }
+
+        // sin_cos, tanh and atan2 compiled once per lane type, out of line, with the level's
+        // target features: inlined at every call site, each would carry its own copy, several
+        // hundred instructions per register, and the kernels' compile time and size would grow
+        // with every law. (exp and ln stay inline: independent calls of one step interleave,
+        // and W1 calls them twenty times a step.)
+        impl<const N: usize> $ty<N> {
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn sin_cos_outlined(x: Self) -> (Self, Self) {
+                super::math::sin_cos(x)
+            }
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn tanh_outlined(x: Self) -> Self {
+                super::math::tanh(x)
+            }
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn atan2_outlined(y: Self, x: Self) -> Self {
+                super::math::atan2(y, x)
             }
         }
 
@@ -323,6 +347,29 @@ macro_rules! level {
             fn scale2(self, k: Self) -> Self {
                 self.zip(k, |a, b| unsafe { ($scale2)(a, b) })
             }
+
+            // SAFETY (the six below): as for the intrinsics, this type is used only inside
+            // the kernels of its level, which run only on CPUs that have its features.
+            #[inline(always)]
+            fn sin(self) -> Self {
+                self.sin_cos().0
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                self.sin_cos().1
+            }
+            #[inline(always)]
+            fn sin_cos(self) -> (Self, Self) {
+                unsafe { Self::sin_cos_outlined(self) }
+            }
+            #[inline(always)]
+            fn tanh(self) -> Self {
+                unsafe { Self::tanh_outlined(self) }
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                unsafe { Self::atan2_outlined(self, x) }
+            }
         }
     };
 
@@ -372,6 +419,7 @@ level!(
     mfalse: unsafe { _mm_setzero_pd() },
     split: sse2_ops::split,
     scale2: sse2_ops::scale2,
+    features: [],
 );
 
 level!(
@@ -397,6 +445,7 @@ level!(
     mfalse: unsafe { _mm256_setzero_pd() },
     split: avx2_ops::split,
     scale2: avx2_ops::scale2,
+    features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt"],
 );
 
 level!(
@@ -425,6 +474,7 @@ level!(
     // normal results)
     split: avx512_ops::split,
     scale2: avx512_ops::scale2,
+    features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"],
 );
 
 /// SSE2's logB/significand and scaleB, as functions: a closure this large is not always
