@@ -1,5 +1,7 @@
 """Every entry point refuses bad input with an error naming the argument and the rule."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -120,11 +122,21 @@ def test_simulate_takes_one_state():
         landing.simulate(plants.MarsLander(), controllers.OpenLoop(), NOMINAL[None, :], t_final=1.0, dt=0.1)
 
 
-def test_bad_parameters_changed_after_construction_are_still_caught():
+def test_configurations_are_compiled_once_and_frozen():
     law = controllers.FixedTimeMSS(**SPEC_GAINS)
-    law.q2 = 0.5
-    with pytest.raises(ValueError, match=r"controller \(fixed_time_mss\): q2 = 0.5 violates q2 > 1"):
-        run(controller=law)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        law.q2 = 0.5
+    # a change is a new object, validated like one
+    with pytest.raises(ValueError, match=r"FixedTimeMSS: q2 = 0.5 violates q2 > 1"):
+        law.replace(q2=0.5)
+    assert law.replace(alpha1=0.7).alpha1 == 0.7
+    # an array handed in is copied and read-only: changing the caller's array afterwards cannot
+    # make the object disagree with what the core compiled
+    alpha1 = np.array([0.9, 0.8, 0.7])
+    law = controllers.FixedTimeMSS(**{**SPEC_GAINS, "alpha1": alpha1})
+    alpha1[0] = -1.0
+    assert law.alpha1[0] == 0.9 and not law.alpha1.flags.writeable
+    assert not run(controller=law).metrics["diverged"].any()
 
 
 def test_recording_too_large_is_a_memory_error_not_a_crash():

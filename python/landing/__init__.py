@@ -10,6 +10,7 @@ laws, references and disturbances, runs batches and reads the results.
 >>> res = landing.simulate(plant, law, x0, t_final=10.0, dt=0.01)
 """
 
+from landing import _core
 from landing._core import __version__
 from landing import controllers, dispersions, disturbances, errors, fuzzy, gravity, plants, reference
 from landing.errors import (
@@ -20,6 +21,13 @@ from landing.errors import (
     SimulationError,
 )
 from landing.simulation import Metrics, SimulationResult, simulate, simulate_batch
+
+
+def kernel_levels() -> list[str]:
+    """The instruction-set levels of the compiled kernel this CPU runs, lowest first (every
+    level gives the same bits; ``simulate_batch(..., kernel=...)`` forces one)."""
+    return list(_core.kernel_levels())
+
 from landing import plots, scenarios, theory
 from landing.montecarlo import MonteCarloResult, monte_carlo
 
@@ -40,6 +48,7 @@ __all__ = [
     "MonteCarloResult",
     "simulate",
     "simulate_batch",
+    "kernel_levels",
     "Metrics",
     "SimulationResult",
     "LandingError",

@@ -1,6 +1,7 @@
 # Hand-written stubs of the Rust extension module (crates/landing_py). The public API is the
-# Python package; these functions take the parameter tables its classes build.
-from typing import Any, Optional
+# Python package; its configuration classes compile their parameter tables into these handles
+# once, and batches take the handles.
+from typing import Any, Optional, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -9,20 +10,90 @@ __version__: str
 INTEGRATORS: list[str]
 PLANT_KINDS: list[str]
 CONTROLLER_KINDS: list[str]
+GRAVITY_KINDS: list[str]
+KERNEL_LEVELS: list[str]
+GRAVITATIONAL_CONSTANT: float
 
 Table = dict[str, Any]
+Array = npt.NDArray[np.float64]
+
+class Plant:
+    """A compiled plant table (one case, or one per case)."""
+
+    def __init__(self, owner: str, table: Table) -> None: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def axes(self) -> int: ...
+    @property
+    def cases(self) -> int: ...
+    def info(self) -> dict[str, Any]:
+        """state_names, control_names, axes, max_step (the largest stable RK4 step over the
+        cases, s) and the model's derived figures: for the tethered satellite inertia,
+        orbital_rate, thrust_limit, torque_limit, and for the flexible model nodes and
+        segment_length (of the first case)."""
+    def coordinates(self, states: Array) -> tuple[Array, Array]:
+        """Generalized coordinates q and rates q' (each (M, axes)) of states (M, state dim)."""
+    def state_at(self, rows: Array) -> Array:
+        """States (M, state dim) from rows (q, q') of 2 axes values, for plants whose state
+        they determine (the tethered satellite)."""
+
+class Law:
+    """A compiled controller table, read for 3 and for 2 axes."""
+
+    def __init__(self, owner: str, table: Table) -> None: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def axes(self) -> list[int]:
+        """The axis counts the law's parameters fit."""
+    def diagnostic_layout(self, axes: int) -> list[tuple[str, int]]:
+        """Names and widths of the law's recorded diagnostics for that many axes."""
+
+class Reference:
+    def __init__(self, owner: str, table: Table) -> None: ...
+    def evaluate(self, axes: int, t: list[float]) -> dict[str, Array]:
+        """position, velocity and acceleration at times t, each (len(t), axes)."""
+
+class Disturbance:
+    def __init__(self, owner: str, table: Table) -> None:
+        """From a table {"components": [component tables...]}."""
+    @staticmethod
+    def combine(parts: Sequence["Disturbance"]) -> "Disturbance":
+        """The parts acting together (their components add up)."""
+    def bound(self, axes: int) -> list[float]:
+        """Per-axis bound on |d_i(t)|."""
+
+class Gravity:
+    def __init__(self, owner: str, table: Table) -> None: ...
+    @property
+    def kind(self) -> str: ...
+    def evaluate(self, positions: Array, potential: bool) -> Array:
+        """Acceleration (N, 3) or potential (N,) at positions (N, 3)."""
+
+class FuzzySystem:
+    def __init__(self, table: Table) -> None: ...
+    def evaluate(self, inputs: Array) -> Array:
+        """Crisp outputs (N,) for inputs (N, number of inputs)."""
+
+class DispersionHandle:
+    def __init__(self, table: Table) -> None: ...
+    @property
+    def dim(self) -> int: ...
+    def sample(self, seed: int, first_case: int, n: int) -> Array:
+        """Cases first_case .. first_case + n, shape (n, components)."""
 
 def simulate_batch(
-    plant: Table,
-    controller: Table,
-    x0: npt.NDArray[np.float64],
+    plant: Plant,
+    controller: Law,
+    x0: Array,
     *,
     t_final: float,
     dt: float,
     integrator: str,
     substeps: int,
-    reference: Optional[Table],
-    disturbance: Optional[Table],
+    reference: Optional[Reference],
+    disturbance: Optional[Disturbance],
     record_every: int,
     seed: int,
     first_case: int,
@@ -30,40 +101,24 @@ def simulate_batch(
     settle_relative: bool,
     chatter_cutoff: Optional[float],
     threads: Optional[int],
+    kernel: Optional[str] = None,
 ) -> dict[str, Any]:
     """Run a batch. Returns t, states, controls, diagnostics, final_state, metrics (a dict of
-    arrays), state_names, control_names, diagnostic_names and axes."""
+    arrays), state_names, control_names, diagnostic_layout, axes and kernel (the level used)."""
 
-def check_plant(owner: str, table: Table) -> int:
-    """Validate a plant table; returns its number of axes."""
+def kernel_levels() -> list[str]:
+    """The instruction-set levels this CPU supports, lowest first."""
 
-def check_controller(owner: str, table: Table) -> None:
-    """Validate a controller table."""
-
-def check_signal(owner: str, what: str, table: Table) -> None:
-    """Validate a reference (what="reference") or disturbance (what="disturbance") table."""
-
-def evaluate_reference(table: Table, axes: int, t: list[float]) -> dict[str, npt.NDArray[np.float64]]:
-    """Position, velocity and acceleration of a reference at times t, each (len(t), axes)."""
+def default_kernel() -> str:
+    """The level a batch runs at unless told otherwise."""
 
 def cubic_from_boundary(
     p0: list[float], v0: list[float], pt: list[float], vt: list[float], t_end: float
 ) -> list[list[float]]:
     """Coefficients c0..c3 (each a list over axes) of the cubic through the boundary states."""
 
-def plant_info(kind: str, table: Optional[Table] = None) -> dict[str, Any]:
-    """state_names, control_names and axes of a plant kind; with its table (required for a
-    tethered_satellite, whose layout depends on its node count) also, for the tethered
-    satellite, inertia, orbital_rate, thrust_limit, torque_limit, max_step and, for the flexible
-    model, nodes and segment_length."""
-
-def plant_coordinates(
-    table: Table, states: npt.NDArray[np.float64]
-) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-    """Generalized coordinates q and rates q' (each (M, axes)) of states (M, state dim)."""
-
-def tether_initial_state(table: Table, angles: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-    """States (M, state dim) of a tethered satellite from rows (phi, theta, phi_dot, theta_dot)."""
+def variable_rate_system_table(resolution: int) -> Table:
+    """The seed-002 variable-rate system as a Mamdani table."""
 
 def philox4x64(counter: tuple[int, int, int, int], key: tuple[int, int]) -> list[int]:
     """One Philox4x64-10 block (the generator behind every random draw)."""
@@ -91,32 +146,6 @@ def min_final_time(r0: float, v0: float, a_max: float, g: float) -> tuple[float,
 def min_time_to_rest(r0: float, v0: float, a_max: float, g: float) -> float:
     """Shortest time to rest at 0 on one axis (time-optimal bang-bang)."""
 
-def sample_dispersion(table: Table, seed: int, first_case: int, n: int) -> npt.NDArray[np.float64]:
-    """Cases first_case .. first_case + n of a dispersion, shape (n, components)."""
-
-def check_dispersion(table: Table) -> int:
-    """Validate a dispersion table; returns its number of components."""
-
-def disturbance_bound(table: Table, axes: int) -> list[float]:
-    """Per-axis bound on |d_i(t)| of a disturbance table."""
-
-GRAVITATIONAL_CONSTANT: float
-GRAVITY_KINDS: list[str]
-
-def evaluate_gravity(table: Table, positions: npt.NDArray[np.float64], potential: bool) -> npt.NDArray[np.float64]:
-    """Acceleration (N, 3) or potential (N,) of a gravity table at positions (N, 3)."""
-
-def check_gravity(owner: str, table: Table) -> None:
-    """Validate a gravity table."""
-
-def evaluate_fuzzy(table: Table, inputs: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-    """Crisp outputs (N,) of a Mamdani table for inputs (N, number of inputs)."""
-
-def check_fuzzy(table: Table) -> None:
-    """Validate a Mamdani table."""
-
-def variable_rate_system_table(resolution: int) -> Table:
-    """The seed-002 variable-rate system as a Mamdani table."""
 def fntsmc_ts_printed(c_v: float, alpha_s: float, beta_s: float) -> float:
     """Seed 003 eq. 42 as printed, as a function of Lemma 2's constant c_v."""
 

@@ -1,15 +1,17 @@
-"""Configuration objects to parameter tables for the core.
+"""Configuration objects, compiled once by the core.
 
-Plants, controllers, references and disturbances are dataclasses. Each turns itself into a
-table (a dict of float64 arrays, flags and names) that the Rust core reads, validates and
-broadcasts over the cases of a batch. Validation happens in the core only, both at
-construction (so a bad gain fails where it is written) and again at simulation time.
+Plants, controllers, references, disturbances, gravity fields and dispersions are frozen
+dataclasses. At construction each turns itself into a parameter table (a dict of float64
+arrays, flags, names and nested tables) that the Rust core reads, validates and broadcasts over
+the cases of a batch, once: the object keeps the compiled result (``_core``) and every batch and
+query uses it. A configuration is changed by making a new one, ``law.replace(alpha1=6.0)``,
+which is validated in turn.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, ClassVar, Sequence, Union
+from typing import Any, Callable, ClassVar, Sequence, Union
 
 import numpy as np
 
@@ -32,19 +34,50 @@ def as_float_array(owner: str, name: str, value: Any) -> np.ndarray:
 
 
 class Table:
-    """Base of the configuration dataclasses: ``kind`` names the core type."""
+    """Base of the configuration dataclasses: ``kind`` names the core type; ``_compiler`` is the
+    core's handle type that compiles the table."""
 
     kind: ClassVar[str]
+    _compiler: ClassVar[Callable[..., Any]]
 
     def _table(self) -> dict[str, Any]:
         owner = type(self).__name__
         out: dict[str, Any] = {"kind": self.kind}
         for field in dataclasses.fields(self):  # type: ignore[arg-type]
+            if not field.init:
+                continue
             value = getattr(self, field.name)
             if value is None or isinstance(value, (bool, str)):
                 out[field.name] = value
             elif isinstance(value, Table):
-                out[field.name] = value._table()
+                out[field.name] = value._nested()
             else:
                 out[field.name] = as_float_array(owner, field.name, value)
         return out
+
+    def _nested(self) -> Any:
+        """What this object is inside another's table (its own table, by default)."""
+        return self._table()
+
+    def _freeze_arrays(self) -> None:
+        """Keeps read-only copies of array and list parameters, so that changing the caller's
+        array afterwards cannot make the object disagree with what the core compiled."""
+        for field in dataclasses.fields(self):  # type: ignore[arg-type]
+            value = getattr(self, field.name)
+            if isinstance(value, (list, np.ndarray)):
+                arr = as_float_array(type(self).__name__, field.name, value).copy()
+                arr.setflags(write=False)
+                object.__setattr__(self, field.name, arr)
+
+    def _compile(self) -> None:
+        """Compiles the table once; the handle is what batches and queries use."""
+        self._freeze_arrays()
+        object.__setattr__(self, "_core", type(self)._compiler(type(self).__name__, self._table()))
+
+    def __post_init__(self) -> None:
+        self._compile()
+
+    def replace(self, **changes: Any) -> Any:
+        """A copy with some parameters changed, validated like a new object:
+        ``law.replace(alpha1=6.0)``."""
+        return dataclasses.replace(self, **changes)  # type: ignore[type-var]

@@ -33,11 +33,10 @@ __all__ = [
 class Controller(Table):
     """Base class of the control laws."""
 
-    def __post_init__(self) -> None:
-        _core.check_controller(type(self).__name__, self._table())
+    _compiler = _core.Law
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class FixedTimeMSS(Controller):
     """Fixed-time multiple-sliding-surface guidance (seed 001 eq. 15-25).
 
@@ -72,7 +71,7 @@ class FixedTimeMSS(Controller):
     kind = "fixed_time_mss"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class SuperTwisting(Controller):
     """Super-twisting guidance, the seed-001 baseline (eq. 46).
 
@@ -97,7 +96,7 @@ class SuperTwisting(Controller):
     kind = "super_twisting"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class OpenLoop(Controller):
     """A constant commanded acceleration (free flight, ballistic baselines, closed-form checks).
 
@@ -109,7 +108,7 @@ class OpenLoop(Controller):
     kind = "open_loop"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class PDSlidingMode(Controller):
     """PD sliding mode, the seed-000 baseline (SPEC 5 law 1): ``s = e' + lambda e``,
     ``u = u_eq - k switch(s)``, the equivalent control from s' = 0 with the plant's model.
@@ -134,7 +133,7 @@ class PDSlidingMode(Controller):
         return table
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class FastTerminalSMC(Controller):
     """Fast terminal sliding mode (seed 000 eq. 6, 14, 19; SPEC 5 law 2):
     ``s = e' + alpha e + beta sig^(p/q)(e)``, ``u = u_eq - k switch(s)``.
@@ -160,7 +159,7 @@ class FastTerminalSMC(Controller):
     kind = "fast_terminal_smc"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class FuzzyFastTerminalSMC(Controller):
     """Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22; SPEC 5 law 3):
     ``u = a(D) u_eq + b(D) u_s`` with ``a = exp(-n D)``, ``b = 1 - exp(-m D)`` and D the
@@ -184,7 +183,7 @@ class FuzzyFastTerminalSMC(Controller):
     kind = "fuzzy_fast_terminal_smc"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class IntegralExponentialReaching(Controller):
     """Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12; SPEC 5
     law 4) in the stable form ``s = -sigma' - int(c1 sigma + c2 sigma')``:
@@ -203,7 +202,7 @@ class IntegralExponentialReaching(Controller):
     kind = "integral_exponential_reaching"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class FuzzyVariableRate(Controller):
     """Fuzzy variable-rate reaching law (seed 002 sec. 2.3; SPEC 5 law 5): the surface of
     :class:`IntegralExponentialReaching`, with ``epsilon sgn(s)`` replaced by
@@ -233,11 +232,11 @@ class FuzzyVariableRate(Controller):
         if self.system is None:
             from landing.fuzzy import variable_rate_system
 
-            self.system = variable_rate_system()
+            object.__setattr__(self, "system", variable_rate_system())
         super().__post_init__()
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class NTSMC(Controller):
     """Conventional nonsingular terminal sliding mode, the seed-003 baseline (its eq. 47/48).
 
@@ -259,7 +258,7 @@ class NTSMC(Controller):
     kind = "ntsmc"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class FixedTimeNTSMC(Controller):
     """Fixed-time nonsingular terminal sliding mode with RBF compensation (seed 003 eq. 19-24).
 

@@ -21,20 +21,21 @@ __all__ = ["Dispersion", "Normal", "Uniform"]
 class Dispersion(Table):
     """Independent distributions of the state components."""
 
-    def __post_init__(self) -> None:
-        _core.check_dispersion(self._table())
+    @staticmethod
+    def _compiler(owner: str, table: dict) -> "_core.DispersionHandle":
+        return _core.DispersionHandle(table)
 
     @property
     def dim(self) -> int:
         """Number of state components."""
-        return int(_core.check_dispersion(self._table()))
+        return int(self._core.dim)  # type: ignore[attr-defined]
 
     def sample(self, n: int, seed: int = 0, first_case: int = 0) -> np.ndarray:
         """Cases ``first_case .. first_case + n``, shape ``(n, dim)``."""
-        return _core.sample_dispersion(self._table(), int(seed), int(first_case), int(n))
+        return self._core.sample(int(seed), int(first_case), int(n))  # type: ignore[attr-defined]
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Normal(Dispersion):
     """Normal per component (seed 001 Table II). A zero standard deviation fixes the value."""
 
@@ -44,7 +45,7 @@ class Normal(Dispersion):
     kind: ClassVar[str] = "normal"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Uniform(Dispersion):
     """Uniform on ``[low, high]`` per component (seed 001 Table III). ``low == high`` fixes
     the value."""

@@ -14,14 +14,15 @@ from typing import Any, ClassVar, Iterable, Sequence, Union
 from landing import _core
 from landing._table import ArrayLike, Table
 
-__all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "CommandNoise", "Sum", "as_table"]
+__all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "CommandNoise", "Sum", "compiled"]
 
 
 class Disturbance(Table):
     """Base class of the disturbance components."""
 
-    def __post_init__(self) -> None:
-        _core.check_signal(type(self).__name__, "disturbance", {"components": [self._table()]})
+    @staticmethod
+    def _compiler(owner: str, table: dict) -> "_core.Disturbance":
+        return _core.Disturbance(owner, {"components": [table]})
 
     def __add__(self, other: "Disturbance") -> "Sum":
         return Sum([self]) + other
@@ -30,7 +31,7 @@ class Disturbance(Table):
         return [self]
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Constant(Disturbance):
     """A constant acceleration per axis."""
 
@@ -39,7 +40,7 @@ class Constant(Disturbance):
     kind: ClassVar[str] = "constant"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Sinusoid(Disturbance):
     """``amplitude sin(omega t + phase)`` per axis (seed 001 eq. 47: 20 sin t on every axis)."""
 
@@ -50,7 +51,7 @@ class Sinusoid(Disturbance):
     kind: ClassVar[str] = "sinusoid"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class UniformNoise(Disturbance):
     """Uniform on ``[-bound, bound]`` per axis, drawn once per control period and held."""
 
@@ -59,7 +60,7 @@ class UniformNoise(Disturbance):
     kind: ClassVar[str] = "uniform_noise"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class CommandNoise(Disturbance):
     """Uniform on ``[-fraction, fraction]`` times the commanded acceleration, per axis, drawn
     once per control period (seed 002: a model uncertainty of up to 1 % of the command,
@@ -77,7 +78,14 @@ class Sum(Disturbance):
     def __init__(self, parts: Iterable[Disturbance]):
         self.parts: list[Disturbance] = []
         for p in parts:
+            if not isinstance(p, Disturbance):
+                from landing.errors import ParameterTypeError
+
+                raise ParameterTypeError(
+                    f"disturbance must be a landing.disturbances component or a list of them, got {p!r}"
+                )
             self.parts.extend(p.components())
+        self._core = _core.Disturbance.combine([p._core for p in self.parts])
 
     def components(self) -> list[Disturbance]:
         return list(self.parts)
@@ -92,18 +100,16 @@ class Sum(Disturbance):
 DisturbanceLike = Union[Disturbance, Sequence[Disturbance], None]
 
 
-def as_table(disturbance: DisturbanceLike) -> Union[dict[str, Any], None]:
-    """The core table of a disturbance, a list of them, or None."""
+def compiled(disturbance: DisturbanceLike) -> Union["_core.Disturbance", None]:
+    """The core's compiled disturbance for a component, a sum, a list of them, or None."""
     from landing.errors import ParameterTypeError
 
     if disturbance is None:
         return None
-    items = [disturbance] if isinstance(disturbance, Disturbance) else list(disturbance)
-    parts: list[Disturbance] = []
-    for item in items:
-        if not isinstance(item, Disturbance):
-            raise ParameterTypeError(
-                f"disturbance must be a landing.disturbances component or a list of them, got {item!r}"
-            )
-        parts.extend(item.components())
-    return {"components": [p._table() for p in parts]}
+    if isinstance(disturbance, Disturbance):
+        return disturbance._core  # type: ignore[attr-defined]
+    if isinstance(disturbance, (str, bytes)) or not hasattr(disturbance, "__iter__"):
+        raise ParameterTypeError(
+            f"disturbance must be a landing.disturbances component or a list of them, got {disturbance!r}"
+        )
+    return Sum(list(disturbance))._core

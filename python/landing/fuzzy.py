@@ -69,7 +69,11 @@ class Mamdani(Table):
                 raise ParameterError(
                     f"Mamdani: a rule names {len(antecedent)} input sets for {len(self.inputs)} inputs"
                 )
-        _core.check_fuzzy(self._table())
+        self._core = _core.FuzzySystem(self._table())
+
+    def _nested(self) -> "_core.FuzzySystem":
+        """Inside a law's table the system is its compiled handle."""
+        return self._core
 
     def _table(self) -> dict[str, Any]:
         rules = [[v.index(a) for v, a in zip(self.inputs, antecedent)] + [self.output.index(c)]
@@ -88,7 +92,7 @@ class Mamdani(Table):
             x = x[:, None]
         if x.ndim != 2:
             raise ParameterError(f"Mamdani: inputs has shape {x.shape}; it takes (N, {len(self.inputs)})")
-        return _core.evaluate_fuzzy(self._table(), np.ascontiguousarray(x))
+        return self._core.evaluate(np.ascontiguousarray(x))
 
     def __repr__(self) -> str:
         return (f"Mamdani({len(self.inputs)} inputs, {len(self.output.sets)} output sets, "

@@ -28,14 +28,13 @@ _EROS_D = 17_200.0 / np.sqrt(5.0)
 class Gravity(Table):
     """Base class of the gravity fields."""
 
-    def __post_init__(self) -> None:
-        _core.check_gravity(type(self).__name__, self._table())
+    _compiler = _core.Gravity
 
     def _evaluate(self, r: ArrayLike, potential: bool) -> np.ndarray:
         x = as_float_array(type(self).__name__, "r", r)
         if x.shape[-1:] != (3,) or x.ndim > 2:
             raise ParameterError(f"{type(self).__name__}: r has shape {x.shape}; it takes (3,) or (N, 3)")
-        out = _core.evaluate_gravity(self._table(), np.ascontiguousarray(x.reshape(-1, 3)), potential)
+        out = self._core.evaluate(np.ascontiguousarray(x.reshape(-1, 3)), potential)  # type: ignore[attr-defined]
         return out[0] if x.ndim == 1 else out
 
     def acceleration(self, r: ArrayLike) -> np.ndarray:
@@ -47,7 +46,7 @@ class Gravity(Table):
         return self._evaluate(r, potential=True)
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class PointMass(Gravity):
     """U = mu / r."""
 
@@ -56,7 +55,7 @@ class PointMass(Gravity):
     kind: ClassVar[str] = "point_mass"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class TwoPointMass(Gravity):
     """Two mass points, U = sum_i G M_i / |r - r_i| (seed 000 eq. 2, sign fixed).
 
@@ -74,7 +73,7 @@ class TwoPointMass(Gravity):
     kind: ClassVar[str] = "two_point_mass"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Harmonic2(Gravity):
     """Second-degree harmonics (seed 002):
     U = (mu/r) [1 + (R0/r)^2 (C20 (3 z^2/r^2 - 1)/2 + 3 C22 (x^2 - y^2)/r^2)].

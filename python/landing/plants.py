@@ -14,7 +14,7 @@ import numpy as np
 
 from landing import _core
 from landing._table import ArrayLike, Table
-from landing.errors import ParameterError
+from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
 
 __all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSatellite"]
@@ -23,11 +23,10 @@ __all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSate
 class Plant(Table):
     """Base class of the plants."""
 
-    def __post_init__(self) -> None:
-        _core.check_plant(type(self).__name__, self._table())
+    _compiler = _core.Plant
 
     def _info(self) -> dict[str, Any]:
-        return _core.plant_info(self.kind)
+        return self._core.info()  # type: ignore[attr-defined]
 
     @property
     def state_names(self) -> tuple[str, ...]:
@@ -52,7 +51,7 @@ class Plant(Table):
         x = np.ascontiguousarray(np.asarray(states, dtype=np.float64))
         if x.ndim == 0 or x.shape[-1] != self.state_dim:
             raise ParameterError(f"states have shape {x.shape}; this plant's have {self.state_dim} components")
-        q, qd = _core.plant_coordinates(self._table(), x.reshape(-1, x.shape[-1]))
+        q, qd = self._core.coordinates(x.reshape(-1, x.shape[-1]))  # type: ignore[attr-defined]
         lead = x.shape[:-1]
         return q.reshape(lead + (q.shape[-1],)), qd.reshape(lead + (qd.shape[-1],))
 
@@ -62,7 +61,7 @@ class Plant(Table):
         return draws
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class MarsLander(Plant):
     """Mars powered descent (seed 001, SPEC 3.1).
 
@@ -109,7 +108,7 @@ class MarsLander(Plant):
         )
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class DoubleIntegrator(Plant):
     """``q'' = u + d`` on three axes: no drift, unit inertia.
 
@@ -123,7 +122,7 @@ class DoubleIntegrator(Plant):
     kind: ClassVar[str] = "double_integrator"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class SmallBody(Plant):
     """A probe near a small body, in the body's frame rotating at ``omega`` about z (seeds 000
     and 002, SPEC 3.2). State ``[x, y, z, vx, vy, vz]``; the command is a control acceleration
@@ -140,8 +139,15 @@ class SmallBody(Plant):
 
     kind: ClassVar[str] = "small_body"
 
+    def __post_init__(self) -> None:
+        if not isinstance(self.gravity, Gravity):
+            raise ParameterTypeError(
+                f"SmallBody: gravity must be a landing.gravity field, got {self.gravity!r}"
+            )
+        super().__post_init__()
 
-@dataclass(eq=False)
+
+@dataclass(frozen=True, eq=False)
 class TetheredSatellite(Plant):
     """The space-tethered satellite in its orbital plane (seed 003, SPEC 3.3).
 
@@ -199,9 +205,6 @@ class TetheredSatellite(Plant):
 
     kind: ClassVar[str] = "tethered_satellite"
 
-    def _info(self) -> dict[str, Any]:
-        return _core.plant_info(self.kind, self._table())
-
     @property
     def inertia(self) -> np.ndarray:
         """The controller's M = (mu L0, m_s a^2 / 6) (of the first case)."""
@@ -231,7 +234,7 @@ class TetheredSatellite(Plant):
         a = np.broadcast_arrays(*[np.asarray(v, dtype=np.float64) for v in (phi, theta, phi_dot, theta_dot)])
         shape = a[0].shape
         rows = np.ascontiguousarray(np.stack([v.reshape(-1) for v in a], axis=1))
-        x = _core.tether_initial_state(self._table(), rows)
+        x = self._core.state_at(rows)  # type: ignore[attr-defined]
         return x.reshape(shape + (x.shape[-1],))
 
     def states_from_draws(self, draws: np.ndarray) -> np.ndarray:

@@ -16,21 +16,20 @@ __all__ = ["Reference", "Constant", "Cubic"]
 class Reference(Table):
     """Base class of the references."""
 
-    def __post_init__(self) -> None:
-        _core.check_signal(type(self).__name__, "reference", self._table())
+    _compiler = _core.Reference
 
     def evaluate(self, t: ArrayLike, axes: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity and acceleration at times ``t``, each ``(len(t), axes)``
         (``(axes,)`` for a scalar t), computed by the core."""
         tt = as_float_array(type(self).__name__, "t", t)
-        out = _core.evaluate_reference(self._table(), axes, tt.ravel().tolist())
+        out = self._core.evaluate(axes, tt.ravel().tolist())  # type: ignore[attr-defined]
         res = tuple(out[k] for k in ("position", "velocity", "acceleration"))
         if tt.ndim == 0:
             return tuple(a[0] for a in res)  # type: ignore[return-value]
         return res  # type: ignore[return-value]
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Constant(Reference):
     """A fixed target state: position (default the origin) and velocity (default zero)."""
 
@@ -40,7 +39,7 @@ class Constant(Reference):
     kind: ClassVar[str] = "constant"
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Cubic(Reference):
     """``p(t) = c0 + c1 t + c2 t^2 + c3 t^3`` per axis on ``[0, t_end]``, then the end point held.
 

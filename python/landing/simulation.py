@@ -11,7 +11,7 @@ import numpy as np
 
 from landing import _core
 from landing.controllers import Controller
-from landing.disturbances import DisturbanceLike, as_table
+from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
 from landing.plants import Plant
 from landing.reference import Reference
@@ -130,6 +130,8 @@ class SimulationResult:
     metrics: Metrics
     state_names: tuple[str, ...]
     control_names: tuple[str, ...]
+    #: The instruction-set level the batch ran at (the same bits at every level).
+    kernel: str = ""
 
     @property
     def n_cases(self) -> int:
@@ -154,6 +156,7 @@ class SimulationResult:
             metrics=Metrics({k: v[case] for k, v in self.metrics.items()}),
             state_names=self.state_names,
             control_names=self.control_names,
+            kernel=self.kernel,
         )
 
     def state(self, name: str) -> np.ndarray:
@@ -193,6 +196,7 @@ def simulate_batch(
     settle_tolerance: Optional[float] = None,
     chatter_cutoff: Optional[float] = None,
     threads: Optional[int] = None,
+    kernel: Optional[str] = None,
 ) -> SimulationResult:
     """Simulate N cases of ``plant`` under ``controller`` in parallel (SPEC section 2 semantics).
 
@@ -221,6 +225,10 @@ def simulate_batch(
         ``metrics["chattering_hf_share"]``; None for a tenth of the Nyquist frequency,
         1 / (20 dt).
     threads : worker threads (default: all cores).
+    kernel : the instruction-set level of the compiled kernel, one of
+        ``landing.kernel_levels()`` (``"baseline"``, ``"avx2"``, ``"avx512"`` on x86-64); the
+        default is the ``LANDING_KERNEL`` environment variable, else the best this CPU has. Every
+        level gives the same bits; forcing one is for testing and benchmarking.
 
     Returns
     -------
@@ -251,16 +259,18 @@ def simulate_batch(
     first = _int("first_case", first_case)
     if not 0 <= first < 2**63:
         raise ParameterError(f"first_case = {first} violates 0 <= first_case < 2**63")
+    if kernel is not None and kernel not in _core.KERNEL_LEVELS:
+        raise ParameterError(f"kernel = {kernel!r} is not one of {tuple(_core.KERNEL_LEVELS)}")
     out = _core.simulate_batch(
-        plant._table(),
-        controller._table(),
+        plant._core,  # type: ignore[attr-defined]
+        controller._core,  # type: ignore[attr-defined]
         x,
         t_final=_real("t_final", t_final),
         dt=_real("dt", dt),
         integrator=integrator,
         substeps=_int("substeps", substeps),
-        reference=None if reference is None else reference._table(),
-        disturbance=as_table(disturbance),
+        reference=None if reference is None else reference._core,  # type: ignore[attr-defined]
+        disturbance=compiled(disturbance),
         record_every=_int("record_every", record_every),
         seed=seed_i,
         first_case=first,
@@ -268,6 +278,7 @@ def simulate_batch(
         settle_relative=settle_tolerance is None,
         chatter_cutoff=None if chatter_cutoff is None else _real("chatter_cutoff", chatter_cutoff),
         threads=_int("threads", threads, optional=True),
+        kernel=kernel,
     )
     diag = out["diagnostics"]
     diagnostics = {}
@@ -295,6 +306,7 @@ def simulate_batch(
         metrics=metrics,
         state_names=tuple(out["state_names"]),
         control_names=tuple(out["control_names"]),
+        kernel=str(out["kernel"]),
     )
 
 

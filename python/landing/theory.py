@@ -32,7 +32,7 @@ import numpy as np
 
 from landing import _core
 from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
-from landing.disturbances import DisturbanceLike, Sinusoid, as_table
+from landing.disturbances import DisturbanceLike, Sinusoid, compiled
 from landing.errors import ParameterError
 from landing.plants import DoubleIntegrator
 from landing.simulation import SimulationResult, simulate_batch
@@ -146,10 +146,10 @@ def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2
 
 def disturbance_bound(disturbance: DisturbanceLike, axes: int = 3) -> np.ndarray:
     """Per-axis bound on |d_i(t)|: |constant| + sum of |amplitudes| + noise bound."""
-    table = as_table(disturbance)
-    if table is None:
+    handle = compiled(disturbance)
+    if handle is None:
         return np.zeros(axes)
-    return np.asarray(_core.disturbance_bound(table, axes))
+    return np.asarray(handle.bound(axes))
 
 
 def min_final_time(r0, v0, a_max, g=0.0) -> tuple[np.ndarray, np.ndarray]:

@@ -1,28 +1,35 @@
 //! W1 on one thread, for profilers:
 //! `cargo build --release -p landing_core --example profile_w1` then
 //! `perf record ./target/release/examples/profile_w1`, or, counting instructions (repeatable
-//! on a loaded machine), `valgrind --tool=callgrind ./target/release/examples/profile_w1 10`.
+//! on a loaded machine), `valgrind --tool=callgrind ./target/release/examples/profile_w1 16`.
+//! A second argument forces the instruction-set level (`baseline`, `avx2`, `avx512`).
 
 use std::time::Instant;
 
-use landing_core::SimConfig;
-use landing_core::batch::run_with_threads;
-use landing_core::integrator::Rk4;
+use landing_core::batch::{RunOptions, run};
 use landing_core::workloads::mars_w1;
+use landing_core::{Level, SimConfig};
 
 fn main() {
-    let cases = std::env::args()
-        .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(100);
+    let mut args = std::env::args().skip(1);
+    let cases = args.next().and_then(|a| a.parse().ok()).unwrap_or(96);
+    let level = args
+        .next()
+        .map(|n| Level::from_name(&n).expect("a level name"));
     let batch = mars_w1(cases, 2024);
     let cfg = SimConfig::new(10.0, 1e-3, 1, 0, 0).unwrap();
+    let options = RunOptions {
+        threads: Some(1),
+        level,
+        cancel: None,
+    };
     let start = Instant::now();
-    let out = run_with_threads(&batch, Rk4, &cfg, Some(1)).unwrap();
+    let out = run(&batch, &cfg, &options).unwrap();
     let el = start.elapsed().as_secs_f64();
     let checksum: f64 = out.final_state.iter().sum();
     println!(
-        "{:.1} ns per case-step (checksum {checksum})",
-        el * 1e9 / (cases as f64 * cfg.steps as f64)
+        "{:.1} ns per case-step at {} (checksum {checksum})",
+        el * 1e9 / (cases as f64 * cfg.steps as f64),
+        out.level.name()
     );
 }

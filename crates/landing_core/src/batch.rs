@@ -1,18 +1,32 @@
-//! Many cases at once, in parallel on rayon.
+//! Many cases at once: blocks of lanes, in parallel on rayon.
 //!
-//! Cases are independent and each draws its random numbers from streams keyed by its own
-//! index, so the output is bit-identical whatever the thread count or the way rayon splits the
-//! work. Output buffers are allocated once, up front, and handed out as disjoint per-case slices.
+//! The cases are cut into blocks of as many cases as the kernel's lanes (the last block padded
+//! with copies of its last case); each block runs the rollout in lockstep, compiled for the
+//! instruction-set level chosen at run time ([`crate::kernel`]). Cases are independent and each
+//! draws its random numbers from streams keyed by its own index, and no lane's arithmetic
+//! depends on another's, so the output is bit-identical whatever the thread count, the batch
+//! size, the chunking, a case's position in its block, or the level.
+//!
+//! Output buffers are allocated once, up front, and handed out as disjoint per-block slices. A
+//! deterministic disturbance shared by every case is evaluated once per integrator stage for the
+//! whole batch ([`StageTable`]).
+
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
-use crate::control::ControlLaw;
+use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
-use crate::integrator::Integrator;
+#[cfg(target_arch = "x86_64")]
+use crate::kernel::{Avx2Laws, Avx512Laws};
+use crate::kernel::{BaselineLaws, Blocks, Level, LevelError};
+use crate::lanes::{Gather, Real};
 use crate::metrics::CaseMetrics;
-use crate::plant::Plant;
+use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
-use crate::rollout::{CaseBuffers, SimConfig, rollout};
+use crate::rollout::{
+    BlockBuffers, Cancelled, LawCalls, MAX_DIAGNOSTIC_WIDTH, SimConfig, StageTable, rollout_block,
+};
 use crate::state::State;
 
 /// A value shared by every case, or one per case.
@@ -42,18 +56,23 @@ impl<T> PerCase<T> {
         self.0.is_empty()
     }
 
+    /// Whether one value serves every case.
+    pub fn is_shared(&self) -> bool {
+        self.0.len() == 1
+    }
+
     pub fn iter(&self) -> impl Iterator<Item = &T> {
         self.0.iter()
     }
 }
 
 /// Everything that varies between the cases of a batch.
-pub struct Batch<const D: usize, P: Plant<D>, L: ControlLaw<D>> {
+pub struct Batch<const D: usize, P: PlantModel<D>> {
     pub plants: PerCase<P>,
-    pub laws: PerCase<L>,
+    pub laws: PerCase<AnyLaw<D>>,
     pub references: PerCase<Reference<D>>,
     pub disturbances: PerCase<Disturbance<D>>,
-    pub x0: Vec<P::State>,
+    pub x0: Vec<<P as Plant<f64, D>>::State>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -64,10 +83,17 @@ pub enum BatchError {
         len: usize,
         cases: usize,
     },
+    /// Cases of one batch that differ in what a block must share (a law's kind or variant, a
+    /// switching function, a reference's kind, a network's size...).
+    Shape { what: &'static str, case: usize },
     /// The recording would not fit in memory.
     Allocation { bytes: u128 },
     /// The requested thread pool could not be built.
     ThreadPool(String),
+    /// The requested instruction-set level cannot run here.
+    Level(LevelError),
+    /// The run was cancelled (its output is incomplete and dropped).
+    Cancelled,
 }
 
 impl std::fmt::Display for BatchError {
@@ -79,17 +105,30 @@ impl std::fmt::Display for BatchError {
                     "{what} has {len} entries for {cases} cases; give 1 or {cases}"
                 )
             }
+            Self::Shape { what, case } => write!(
+                f,
+                "{what} of case {case} differs from case 0 in what every case of a batch shares \
+                 (its kind, variant, switching function, network size or fuzzy system)"
+            ),
             Self::Allocation { bytes } => write!(
                 f,
                 "the recording needs {:.1} GiB; record fewer instants (record_every) or fewer cases",
                 *bytes as f64 / (1u64 << 30) as f64
             ),
             Self::ThreadPool(e) => write!(f, "could not start the thread pool: {e}"),
+            Self::Level(e) => write!(f, "{e}"),
+            Self::Cancelled => write!(f, "the batch was cancelled"),
         }
     }
 }
 
 impl std::error::Error for BatchError {}
+
+impl From<LevelError> for BatchError {
+    fn from(e: LevelError) -> Self {
+        Self::Level(e)
+    }
+}
 
 /// The recording and metrics of a batch, in flat row-major buffers.
 #[derive(Debug, Clone)]
@@ -108,6 +147,8 @@ pub struct BatchOutput<const D: usize> {
     /// n_cases x state_dim.
     pub final_state: Vec<f64>,
     pub metrics: Vec<CaseMetrics<D>>,
+    /// The instruction-set level the batch ran at.
+    pub level: Level,
 }
 
 impl<const D: usize> BatchOutput<D> {
@@ -116,17 +157,28 @@ impl<const D: usize> BatchOutput<D> {
     }
 }
 
-fn zeroed(len: usize) -> Result<Vec<f64>, BatchError> {
+/// How to run a batch (not what to run: that is the [`Batch`] and its [`SimConfig`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RunOptions<'a> {
+    /// Worker threads; `None` for rayon's global pool (all cores).
+    pub threads: Option<usize>,
+    /// Instruction-set level; `None` for `LANDING_KERNEL` or the best the CPU has.
+    pub level: Option<Level>,
+    /// Raised by another thread to stop the batch early ([`BatchError::Cancelled`]).
+    pub cancel: Option<&'a AtomicBool>,
+}
+
+fn nan_filled(len: usize) -> Result<Vec<f64>, BatchError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len)
         .map_err(|_| BatchError::Allocation {
             bytes: len as u128 * 8,
         })?;
-    v.resize(len, 0.0);
+    v.resize(len, f64::NAN);
     Ok(v)
 }
 
-/// `len`-sized disjoint chunks for `n` cases (empty slices when `len` is 0).
+/// `len`-sized disjoint chunks (empty slices when `len` is 0).
 fn chunks(buf: &mut [f64], len: usize, n: usize) -> Vec<&mut [f64]> {
     if len == 0 {
         (0..n).map(|_| -> &mut [f64] { &mut [] }).collect()
@@ -135,17 +187,101 @@ fn chunks(buf: &mut [f64], len: usize, n: usize) -> Vec<&mut [f64]> {
     }
 }
 
-/// Runs every case of the batch on the current rayon pool.
-pub fn run<const D: usize, P, L, I>(
-    batch: &Batch<D, P, L>,
-    integrator: I,
-    cfg: &SimConfig,
-) -> Result<BatchOutput<D>, BatchError>
-where
-    P: Plant<D>,
-    L: ControlLaw<D>,
-    I: Integrator,
-{
+/// Everything a block reads, shared by the blocks of a batch.
+struct Shared<'a, const D: usize, P: PlantModel<D>> {
+    batch: &'a Batch<D, P>,
+    cfg: &'a SimConfig,
+    table: Option<&'a StageTable<D>>,
+    cancel: &'a AtomicBool,
+}
+
+/// One block's cases: `first .. first + used` of the batch.
+struct BlockJob<'a, 'b, const D: usize, P: PlantModel<D>> {
+    shared: &'a Shared<'a, D, P>,
+    first: usize,
+    used: usize,
+    out: BlockBuffers<'b, D>,
+}
+
+/// Gathers the block's cases into the lanes of `R` and runs them. `#[inline(always)]`: it is
+/// compiled inside each level's trampoline, with that level's target features.
+#[inline(always)]
+fn run_block<const D: usize, P: PlantModel<D>, R: Real, K: LawCalls<D, R>>(
+    mut job: BlockJob<'_, '_, D, P>,
+) -> Result<(), Cancelled> {
+    let sh = job.shared;
+    let b = sh.batch;
+    // lane i is case first + i; the padding lanes repeat the last case
+    let case = |i: usize| job.first + i.min(job.used - 1);
+    let plant = <P::At<R> as Gather<R>>::gather(&|i| b.plants.get(case(i)));
+    let law = AnyLaw::<D, R>::gather(&|i| b.laws.get(case(i)));
+    let reference = Reference::<D, R>::gather(&|i| b.references.get(case(i)));
+    let disturbance = Disturbance::<D, R>::gather(&|i| b.disturbances.get(case(i)));
+    let x0 = <<P::At<R> as Plant<R, D>>::State as State<R>>::from_components(|c| {
+        R::from_fn(|i| b.x0[case(i)].component(c))
+    });
+    let cases: Vec<u64> = (0..R::LANES)
+        .map(|i| sh.cfg.first_case + case(i) as u64)
+        .collect();
+    rollout_block::<D, R, _, K>(
+        &plant,
+        &law,
+        &reference,
+        &disturbance,
+        sh.table,
+        &x0,
+        sh.cfg,
+        &cases,
+        job.used,
+        sh.cancel,
+        &mut job.out,
+    )
+}
+
+#[inline(never)]
+fn run_block_baseline<const D: usize, P: PlantModel<D>>(
+    job: BlockJob<'_, '_, D, P>,
+) -> Result<(), Cancelled> {
+    run_block::<D, P, <P::Blocks as Blocks>::Baseline, BaselineLaws>(job)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+fn run_block_avx2<const D: usize, P: PlantModel<D>>(
+    job: BlockJob<'_, '_, D, P>,
+) -> Result<(), Cancelled> {
+    run_block::<D, P, <P::Blocks as Blocks>::Avx2, Avx2Laws>(job)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(
+    enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
+)]
+fn run_block_avx512<const D: usize, P: PlantModel<D>>(
+    job: BlockJob<'_, '_, D, P>,
+) -> Result<(), Cancelled> {
+    run_block::<D, P, <P::Blocks as Blocks>::Avx512, Avx512Laws>(job)
+}
+
+/// Runs a block at `level` (which [`Level::resolve`] has checked this CPU supports).
+fn dispatch<const D: usize, P: PlantModel<D>>(
+    level: Level,
+    job: BlockJob<'_, '_, D, P>,
+) -> Result<(), Cancelled> {
+    match level {
+        Level::Baseline => run_block_baseline(job),
+        // SAFETY: `Level::resolve` checked the CPU has the level's features.
+        #[cfg(target_arch = "x86_64")]
+        Level::Avx2 => unsafe { run_block_avx2(job) },
+        #[cfg(target_arch = "x86_64")]
+        Level::Avx512 => unsafe { run_block_avx512(job) },
+        #[cfg(not(target_arch = "x86_64"))]
+        _ => unreachable!("only the baseline is supported off x86-64"),
+    }
+}
+
+/// Checks that the per-case tables have 1 or `n` entries and agree on what a block shares.
+fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result<(), BatchError> {
     let n = batch.x0.len();
     for (what, len) in [
         ("plant", batch.plants.len()),
@@ -161,46 +297,105 @@ where
             });
         }
     }
-    let nx = P::State::DIM;
-    let nd = crate::control::diagnostic_width::<D, L>();
+    fn same<T, F: Fn(&T, &T) -> bool>(
+        what: &'static str,
+        v: &PerCase<T>,
+        f: F,
+    ) -> Result<(), BatchError> {
+        let first = v.get(0);
+        match v.iter().position(|x| !f(first, x)) {
+            Some(case) => Err(BatchError::Shape { what, case }),
+            None => Ok(()),
+        }
+    }
+    same(
+        "plant",
+        &batch.plants,
+        <P::At<f64> as Gather<f64>>::same_shape,
+    )?;
+    same(
+        "controller",
+        &batch.laws,
+        <AnyLaw<D> as Gather<f64>>::same_shape,
+    )?;
+    same(
+        "reference",
+        &batch.references,
+        <Reference<D> as Gather<f64>>::same_shape,
+    )?;
+    same(
+        "disturbance",
+        &batch.disturbances,
+        <Disturbance<D> as Gather<f64>>::same_shape,
+    )?;
+    let width = batch.laws.get(0).diagnostic_width();
+    assert!(
+        width <= MAX_DIAGNOSTIC_WIDTH,
+        "a law records {width} diagnostics, more than {MAX_DIAGNOSTIC_WIDTH}"
+    );
+    Ok(())
+}
+
+/// Runs every case of the batch on the current rayon pool.
+fn run_here<const D: usize, P: PlantModel<D>>(
+    batch: &Batch<D, P>,
+    cfg: &SimConfig,
+    level: Level,
+    cancel: &AtomicBool,
+) -> Result<BatchOutput<D>, BatchError> {
+    let n = batch.x0.len();
+    let nx = P::STATE_DIM;
+    let nd = batch.laws.get(0).diagnostic_width();
     let nr = cfg.n_records();
     let total = (n as u128) * (nr as u128) * ((nx + D + nd) as u128) * 8;
     if total > isize::MAX as u128 {
         return Err(BatchError::Allocation { bytes: total });
     }
-    let mut states = zeroed(n * nr * nx)?;
-    let mut controls = zeroed(n * nr * D)?;
-    let mut diagnostics = zeroed(n * nr * nd)?;
-    let mut final_state = zeroed(n * nx)?;
+    let mut states = nan_filled(n * nr * nx)?;
+    let mut controls = nan_filled(n * nr * D)?;
+    let mut diagnostics = nan_filled(n * nr * nd)?;
+    let mut final_state = nan_filled(n * nx)?;
+    let mut metrics = vec![CaseMetrics::new(); n];
 
-    let jobs: Vec<_> = chunks(&mut states, nr * nx, n)
+    let shared_disturbance =
+        batch.disturbances.is_shared() && batch.disturbances.get(0).is_time_varying();
+    let table = if shared_disturbance {
+        StageTable::new(batch.disturbances.get(0), cfg)
+    } else {
+        None
+    };
+    let shared = Shared {
+        batch,
+        cfg,
+        table: table.as_ref(),
+        cancel,
+    };
+    let w = level.lanes::<P::Blocks>();
+    let blocks = n.div_ceil(w);
+    let jobs: Vec<_> = chunks(&mut states, w * nr * nx, blocks)
         .into_iter()
-        .zip(chunks(&mut controls, nr * D, n))
-        .zip(chunks(&mut diagnostics, nr * nd, n))
-        .zip(chunks(&mut final_state, nx, n))
+        .zip(chunks(&mut controls, w * nr * D, blocks))
+        .zip(chunks(&mut diagnostics, w * nr * nd, blocks))
+        .zip(chunks(&mut final_state, w * nx, blocks))
+        .zip(metrics.chunks_mut(w))
         .enumerate()
-        .collect();
-    let metrics: Vec<CaseMetrics<D>> = jobs
-        .into_par_iter()
-        .map(|(i, (((s, c), d), f))| {
-            rollout(
-                batch.plants.get(i),
-                batch.laws.get(i),
-                integrator,
-                &batch.x0[i],
-                batch.references.get(i),
-                batch.disturbances.get(i),
-                cfg,
-                cfg.first_case + i as u64,
-                CaseBuffers {
-                    states: s,
-                    controls: c,
-                    diagnostics: d,
-                    final_state: f,
-                },
-            )
+        .map(|(b, ((((s, c), d), f), m))| BlockJob {
+            shared: &shared,
+            first: b * w,
+            used: w.min(n - b * w),
+            out: BlockBuffers {
+                states: s,
+                controls: c,
+                diagnostics: d,
+                final_state: f,
+                metrics: m,
+            },
         })
         .collect();
+    jobs.into_par_iter()
+        .with_max_len(1)
+        .try_for_each(|job| dispatch(level, job))
+        .map_err(|Cancelled| BatchError::Cancelled)?;
 
     Ok(BatchOutput {
         n_cases: n,
@@ -212,27 +407,49 @@ where
         diagnostics,
         final_state,
         metrics,
+        level,
     })
 }
 
-/// [`run`] on a pool of `threads` threads, or on rayon's global pool for `None`.
-pub fn run_with_threads<const D: usize, P, L, I>(
-    batch: &Batch<D, P, L>,
-    integrator: I,
+/// Runs every case of the batch.
+pub fn run<const D: usize, P: PlantModel<D>>(
+    batch: &Batch<D, P>,
     cfg: &SimConfig,
-    threads: Option<usize>,
-) -> Result<BatchOutput<D>, BatchError>
-where
-    P: Plant<D>,
-    L: ControlLaw<D>,
-    I: Integrator,
-{
-    match threads {
-        None => run(batch, integrator, cfg),
+    options: &RunOptions<'_>,
+) -> Result<BatchOutput<D>, BatchError> {
+    check_shapes(batch)?;
+    let level = Level::resolve(options.level)?;
+    let never = AtomicBool::new(false);
+    let cancel = options.cancel.unwrap_or(&never);
+    if batch.x0.is_empty() {
+        return run_here(batch, cfg, level, cancel);
+    }
+    let result = match options.threads {
+        None => run_here(batch, cfg, level, cancel),
         Some(k) => rayon::ThreadPoolBuilder::new()
             .num_threads(k)
             .build()
             .map_err(|e| BatchError::ThreadPool(e.to_string()))?
-            .install(|| run(batch, integrator, cfg)),
+            .install(|| run_here(batch, cfg, level, cancel)),
+    };
+    if cancel.load(Ordering::Relaxed) && result.is_ok() {
+        // finished before anyone looked: the output is complete and kept
     }
+    result
+}
+
+/// [`run`] with `threads` worker threads (`None`: all cores) at the best level.
+pub fn run_with_threads<const D: usize, P: PlantModel<D>>(
+    batch: &Batch<D, P>,
+    cfg: &SimConfig,
+    threads: Option<usize>,
+) -> Result<BatchOutput<D>, BatchError> {
+    run(
+        batch,
+        cfg,
+        &RunOptions {
+            threads,
+            ..Default::default()
+        },
+    )
 }

@@ -6,39 +6,48 @@
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Gather, Real, add, mul, scale_by};
+use crate::params::{FromParams, ParamSource};
 use crate::rng::{CaseStream, streams};
+
+/// The disturbance components' kinds at the Python boundary.
+pub const COMPONENT_KINDS: [&str; 4] = ["constant", "sinusoid", "uniform_noise", "command_noise"];
 
 /// Most sinusoidal components one disturbance carries (kept fixed so the type stays `Copy`).
 pub const MAX_SINUSOIDS: usize = 4;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sinusoid<const D: usize> {
-    pub amplitude: SVector<f64, D>,
+pub struct Sinusoid<const D: usize, R = f64> {
+    pub amplitude: SVector<R, D>,
     /// Angular frequency, rad/s.
-    pub omega: SVector<f64, D>,
-    pub phase: SVector<f64, D>,
+    pub omega: SVector<R, D>,
+    pub phase: SVector<R, D>,
 }
 
-impl<const D: usize> Sinusoid<D> {
-    /// Same frequency and phase on every axis: one sine serves them all.
-    fn in_phase(&self) -> bool {
-        (1..D).all(|i| self.omega[i] == self.omega[0] && self.phase[i] == self.phase[0])
-    }
-}
+crate::gather_struct!(Sinusoid<const D: usize, R> { lanes: [amplitude, omega, phase], shared: [] });
 
 /// `d(t) = constant + sum_j A_j sin(omega_j t + phase_j) + n_k + r_k * a_k`, with `n_k` uniform
 /// on `[-bound, bound]` and `r_k` uniform on `[-relative, relative]` per axis, both drawn for
 /// control period k, and `a_k` the commanded acceleration applied over that period (the applied
 /// command over the inertia): seed 002's model uncertainty of up to 1 % of the command.
+///
+/// The deterministic part depends on time alone; a batch whose cases share it evaluates it once
+/// per integrator stage for all of them (see [`crate::batch`]), with the same operations as
+/// [`Disturbance::deterministic`], so the bits do not depend on which path ran.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Disturbance<const D: usize> {
-    pub constant: SVector<f64, D>,
-    sinusoids: [Sinusoid<D>; MAX_SINUSOIDS],
+pub struct Disturbance<const D: usize, R = f64> {
+    pub constant: SVector<R, D>,
+    sinusoids: [Sinusoid<D, R>; MAX_SINUSOIDS],
+    /// Whether sinusoid j has the same frequency and phase on every axis (of every lane): one
+    /// sine then serves all axes.
     in_phase: [bool; MAX_SINUSOIDS],
     n_sinusoids: usize,
-    pub noise_bound: SVector<f64, D>,
-    pub relative_bound: SVector<f64, D>,
+    pub noise_bound: SVector<R, D>,
+    pub relative_bound: SVector<R, D>,
+    /// Whether any lane draws additive noise, and command noise.
+    noisy: bool,
+    command_noisy: bool,
 }
 
 impl<const D: usize> Default for Disturbance<D> {
@@ -55,13 +64,38 @@ impl<const D: usize> Default for Disturbance<D> {
             n_sinusoids: 0,
             noise_bound: zero,
             relative_bound: zero,
+            noisy: false,
+            command_noisy: false,
         }
     }
 }
 
-/// Per-period state of a disturbance: the held random draw.
-#[derive(Clone, Copy, Debug)]
-pub struct HeldNoise<const D: usize>(pub SVector<f64, D>);
+impl<const D: usize, R: Real> Gather<R> for Disturbance<D, R> {
+    type Case = Disturbance<D>;
+
+    fn gather<'a>(case: &dyn Fn(usize) -> &'a Self::Case) -> Self {
+        let lanes = 0..R::LANES;
+        let n = case(0).n_sinusoids;
+        let mut in_phase = [false; MAX_SINUSOIDS];
+        for (j, p) in in_phase.iter_mut().enumerate().take(n) {
+            *p = lanes.clone().all(|i| case(i).in_phase[j]);
+        }
+        Self {
+            constant: Gather::gather(&|i| &case(i).constant),
+            sinusoids: Gather::gather(&|i| &case(i).sinusoids),
+            in_phase,
+            n_sinusoids: n,
+            noise_bound: Gather::gather(&|i| &case(i).noise_bound),
+            relative_bound: Gather::gather(&|i| &case(i).relative_bound),
+            noisy: lanes.clone().any(|i| case(i).noisy),
+            command_noisy: lanes.clone().any(|i| case(i).command_noisy),
+        }
+    }
+
+    fn same_shape(a: &Self::Case, b: &Self::Case) -> bool {
+        a.n_sinusoids == b.n_sinusoids
+    }
+}
 
 impl<const D: usize> Disturbance<D> {
     pub fn none() -> Self {
@@ -75,12 +109,14 @@ impl<const D: usize> Disturbance<D> {
 
     pub fn with_noise(mut self, bound: SVector<f64, D>) -> Self {
         self.noise_bound += bound;
+        self.noisy = self.noise_bound.iter().any(|&b| b > 0.0);
         self
     }
 
     /// Adds a random disturbance of up to `fraction` of the commanded acceleration per axis.
     pub fn with_command_noise(mut self, fraction: SVector<f64, D>) -> Self {
         self.relative_bound += fraction;
+        self.command_noisy = self.relative_bound.iter().any(|&b| b > 0.0);
         self
     }
 
@@ -94,9 +130,23 @@ impl<const D: usize> Disturbance<D> {
             ));
         }
         self.sinusoids[self.n_sinusoids] = s;
-        self.in_phase[self.n_sinusoids] = s.in_phase();
+        self.in_phase[self.n_sinusoids] =
+            (1..D).all(|i| s.omega[i] == s.omega[0] && s.phase[i] == s.phase[0]);
         self.n_sinusoids += 1;
         Ok(self)
+    }
+
+    /// Both disturbances acting together (their components add up); fails past
+    /// [`MAX_SINUSOIDS`] sinusoids.
+    pub fn add(&self, other: &Self) -> Result<Self, ParamError> {
+        let mut d = self
+            .with_constant(other.constant)
+            .with_noise(other.noise_bound)
+            .with_command_noise(other.relative_bound);
+        for s in other.sinusoids() {
+            d = d.with_sinusoid(*s)?;
+        }
+        Ok(d)
     }
 
     pub fn sinusoids(&self) -> &[Sinusoid<D>] {
@@ -104,11 +154,16 @@ impl<const D: usize> Disturbance<D> {
     }
 
     pub fn has_noise(&self) -> bool {
-        self.noise_bound.iter().any(|&b| b > 0.0)
+        self.noisy
     }
 
     pub fn has_command_noise(&self) -> bool {
-        self.relative_bound.iter().any(|&b| b > 0.0)
+        self.command_noisy
+    }
+
+    /// Whether the deterministic part varies in time (has sinusoids).
+    pub fn is_time_varying(&self) -> bool {
+        self.n_sinusoids > 0
     }
 
     /// Bound on |d_i(t)| per axis (used by the theory's practical fixed-time neighbourhoods),
@@ -120,36 +175,47 @@ impl<const D: usize> Disturbance<D> {
         }
         b
     }
+}
 
-    /// The random draws for control period `period` of a case (its streams are given), with
-    /// `command` the commanded acceleration applied over the period.
-    #[inline]
-    pub fn draw(&self, rng: &NoiseStreams, period: u64, command: &SVector<f64, D>) -> HeldNoise<D> {
+impl<const D: usize, R: Real> Disturbance<D, R> {
+    /// Whether any lane draws random numbers each control period.
+    #[inline(always)]
+    pub fn is_random(&self) -> bool {
+        self.noisy || self.command_noisy
+    }
+
+    /// The random draws for control period `period`, lane i from the streams of its case
+    /// (`rng[i]`), with `command` the commanded acceleration applied over the period.
+    #[inline(always)]
+    pub fn draw(
+        &self,
+        rng: &[NoiseStreams],
+        period: u64,
+        command: &SVector<R, D>,
+    ) -> SVector<R, D> {
         let mut held = SVector::zeros();
-        if self.has_noise() {
-            held += self
-                .noise_bound
-                .component_mul(&symmetric_uniforms(&rng.additive, period));
+        if self.noisy {
+            let u = lane_uniforms::<D, R>(rng, period, |s| &s.additive);
+            held = add(&held, &mul(&self.noise_bound, &u));
         }
-        if self.has_command_noise() {
-            let r = self
-                .relative_bound
-                .component_mul(&symmetric_uniforms(&rng.relative, period));
-            held += r.component_mul(command);
+        if self.command_noisy {
+            let u = lane_uniforms::<D, R>(rng, period, |s| &s.relative);
+            held = add(&held, &mul(&mul(&self.relative_bound, &u), command));
         }
-        HeldNoise(held)
+        held
     }
 
     /// The deterministic part at time `t`.
     #[inline(always)]
-    pub fn deterministic(&self, t: f64) -> SVector<f64, D> {
+    pub fn deterministic(&self, t: f64) -> SVector<R, D> {
         let mut d = self.constant;
-        for (s, &in_phase) in self.sinusoids[..self.n_sinusoids]
-            .iter()
-            .zip(&self.in_phase)
-        {
-            if in_phase {
-                d += s.amplitude * (s.omega[0] * t + s.phase[0]).sin();
+        for j in 0..self.n_sinusoids {
+            let s = &self.sinusoids[j];
+            if self.in_phase[j] {
+                d = add(
+                    &d,
+                    &scale_by(&s.amplitude, (s.omega[0] * t + s.phase[0]).sin()),
+                );
             } else {
                 for i in 0..D {
                     d[i] += s.amplitude[i] * (s.omega[i] * t + s.phase[i]).sin();
@@ -158,13 +224,10 @@ impl<const D: usize> Disturbance<D> {
         }
         d
     }
+}
 
-    #[inline(always)]
-    pub fn at(&self, t: f64, held: &HeldNoise<D>) -> SVector<f64, D> {
-        self.deterministic(t) + held.0
-    }
-
-    pub fn validate(&self) -> Result<(), ParamError> {
+impl<const D: usize> Validate for Disturbance<D> {
+    fn validate(&self) -> Result<(), ParamError> {
         for i in 0..D {
             require(true, "constant", self.constant[i], "finite values")
                 .map_err(|e| e.on_axis(i))?;
@@ -183,14 +246,24 @@ impl<const D: usize> Disturbance<D> {
     }
 }
 
-/// Uniforms on [-1, 1) per axis for a control period: ceil(D / 4) Philox blocks per period, so
-/// axes never share a word.
+/// Uniforms on [-1, 1) per axis for a control period, lane by lane from each case's stream:
+/// ceil(D / 4) Philox blocks per period, so axes never share a word.
 #[inline]
-fn symmetric_uniforms<const D: usize>(rng: &CaseStream, period: u64) -> SVector<f64, D> {
+fn lane_uniforms<const D: usize, R: Real>(
+    rng: &[NoiseStreams],
+    period: u64,
+    stream: impl Fn(&NoiseStreams) -> &CaseStream,
+) -> SVector<R, D> {
     let blocks = D.div_ceil(4) as u64;
-    let mut u = SVector::<f64, D>::zeros();
-    rng.fill_uniforms(period * blocks, u.as_mut_slice());
-    u * 2.0 - SVector::repeat(1.0)
+    let mut u = SVector::<R, D>::zeros();
+    let mut one = [0.0f64; D];
+    for (i, s) in rng.iter().enumerate().take(R::LANES) {
+        stream(s).fill_uniforms(period * blocks, &mut one);
+        for k in 0..D {
+            u[k].set_lane(i, one[k] * 2.0 - 1.0);
+        }
+    }
+    u
 }
 
 /// The random streams a case's disturbance draws from.
@@ -205,6 +278,30 @@ pub fn disturbance_stream(seed: u64, case: u64) -> NoiseStreams {
     NoiseStreams {
         additive: CaseStream::new(seed, streams::DISTURBANCE, case),
         relative: CaseStream::new(seed, streams::COMMAND_NOISE, case),
+    }
+}
+
+impl<const D: usize> FromParams for Disturbance<D> {
+    /// A list `components` of tables, each with a `kind`: `constant` (value), `sinusoid`
+    /// (amplitude, omega, phase), `uniform_noise` (bound) or `command_noise` (fraction); they
+    /// add up.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let mut d = Disturbance::none();
+        for j in 0..p.list_len("components")? {
+            d = p.list_item("components", j, |c| {
+                Ok(match c.kind(&COMPONENT_KINDS)? {
+                    0 => d.with_constant(c.axes("value")?),
+                    1 => d.with_sinusoid(Sinusoid {
+                        amplitude: c.axes("amplitude")?,
+                        omega: c.axes("omega")?,
+                        phase: c.axes("phase")?,
+                    })?,
+                    2 => d.with_noise(c.axes("bound")?),
+                    _ => d.with_command_noise(c.axes("fraction")?),
+                })
+            })?;
+        }
+        Ok(d)
     }
 }
 
@@ -223,7 +320,7 @@ mod tests {
                 phase: Vector3::new(0.0, 0.5, 0.0),
             })
             .unwrap();
-        let v = d.at(0.3, &HeldNoise(Vector3::zeros()));
+        let v = d.deterministic(0.3);
         assert!((v[0] - (1.0 + 20.0 * 0.3f64.sin())).abs() < 1e-14);
         assert!((v[1] - 20.0 * 0.8f64.sin()).abs() < 1e-14);
         assert_eq!(d.bound(), Vector3::new(21.0, 20.0, 21.0));
@@ -232,12 +329,12 @@ mod tests {
     #[test]
     fn noise_is_bounded_held_and_reproducible() {
         let d = Disturbance::<3>::none().with_noise(Vector3::new(0.5, 1.0, 0.0));
-        let s = disturbance_stream(11, 4);
+        let s = [disturbance_stream(11, 4)];
         let mut max = Vector3::<f64>::zeros();
         for k in 0..5000 {
             let n = d.draw(&s, k, &Vector3::zeros());
-            max = max.sup(&n.0.abs());
-            assert_eq!(n.0, d.draw(&s, k, &Vector3::zeros()).0);
+            max = max.sup(&n.abs());
+            assert_eq!(n, d.draw(&s, k, &Vector3::zeros()));
         }
         assert!(max[0] <= 0.5 && max[0] > 0.49);
         assert!(max[1] <= 1.0 && max[1] > 0.98);
@@ -247,14 +344,14 @@ mod tests {
     #[test]
     fn command_noise_scales_with_the_command() {
         let d = Disturbance::<3>::none().with_command_noise(Vector3::repeat(0.01));
-        let s = disturbance_stream(3, 1);
+        let s = [disturbance_stream(3, 1)];
         let a = Vector3::new(2.0, -0.5, 0.0);
         let mut seen: f64 = 0.0;
         for k in 0..2000 {
-            let n = d.draw(&s, k, &a).0;
+            let n = d.draw(&s, k, &a);
             assert!(n[0].abs() <= 0.02 && n[1].abs() <= 0.005 && n[2] == 0.0);
             // the same draw scales linearly with the command
-            assert!((d.draw(&s, k, &(a * 3.0)).0 - n * 3.0).norm() < 1e-15);
+            assert!((d.draw(&s, k, &(a * 3.0)) - n * 3.0).norm() < 1e-15);
             seen = seen.max(n[0].abs());
         }
         assert!(seen > 0.0195);

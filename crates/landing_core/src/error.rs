@@ -71,3 +71,10 @@ pub fn require_axes(
     }
     Ok(())
 }
+
+/// The rules a configured model (one case's `f64` parameters) must satisfy: plants, laws,
+/// gravity fields, references, disturbances. The core never panics on bad parameters; a batch
+/// validates every case before it runs.
+pub trait Validate {
+    fn validate(&self) -> Result<(), ParamError>;
+}

@@ -1,70 +1,36 @@
-//! Scalar conventions shared by every law (SPEC section 2).
+//! Scalar conventions shared by every law (SPEC section 2), over [`Real`] lanes.
+
+use crate::lanes::{Gather, Real};
+use crate::params::{FromParams, ParamSource};
 
 /// Sign with `sgn(0) = 0`.
 ///
 /// `f64::signum` returns +-1 at +-0, which would make every switching law kick at the
 /// equilibrium; the seeds (e.g. seed 001 eq. 17) define sgn(0) = 0.
 #[inline(always)]
-pub fn sgn(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
+pub fn sgn<R: Real>(x: R) -> R {
+    x.signum0()
 }
 
 /// `sig^a(x) = |x|^a sgn(x)` for a non-negative exponent (zero at zero).
 #[inline(always)]
-pub fn sig(x: f64, a: f64) -> f64 {
-    debug_assert!(
-        a >= 0.0,
-        "sig with a negative exponent needs a guard: use sig_guarded"
-    );
+pub fn sig<R: Real>(x: R, a: R) -> R {
     sgn(x) * x.abs().powf(a)
 }
 
-/// `sig^a(x)` for any exponent. A negative exponent is singular at 0; there `|x|` is floored
-/// at `floor > 0`, so the result stays finite (SPEC section 2: every guard is a named parameter).
-#[inline(always)]
-pub fn sig_guarded(x: f64, a: f64, floor: f64) -> f64 {
-    if a >= 0.0 {
-        sig(x, a)
-    } else {
-        sgn(x) * x.abs().max(floor).powf(a)
-    }
-}
-
-/// `|x|^a` for any exponent, with the same floor as [`sig_guarded`] when `a < 0`.
-#[inline(always)]
-pub fn pow_guarded(x: f64, a: f64, floor: f64) -> f64 {
-    if a >= 0.0 {
-        x.abs().powf(a)
-    } else {
-        x.abs().max(floor).powf(a)
-    }
-}
-
-/// Switching function of a sliding-mode law: `sign`, `sat(s/phi)` or `tanh(s/phi)`.
+/// Switching function of a sliding-mode law: `sign`, `sat(s/phi)` or `tanh(s/phi)`. The kind
+/// is shared by a block; the boundary-layer width phi is per lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Switch {
+pub enum Switch<R = f64> {
     Sign,
     /// Boundary layer of width `phi`: `clamp(s/phi, -1, 1)`.
-    Sat(f64),
+    Sat(R),
     /// `tanh(s/phi)`.
-    Tanh(f64),
+    Tanh(R),
 }
 
 impl Switch {
-    #[inline(always)]
-    pub fn apply(&self, s: f64) -> f64 {
-        match *self {
-            Switch::Sign => sgn(s),
-            Switch::Sat(phi) => (s / phi).clamp(-1.0, 1.0),
-            Switch::Tanh(phi) => (s / phi).tanh(),
-        }
-    }
+    pub const NAMES: [&'static str; 3] = ["sign", "sat", "tanh"];
 
     /// Boundary-layer width, if the switch has one.
     pub fn width(&self) -> Option<f64> {
@@ -72,6 +38,46 @@ impl Switch {
             Switch::Sign => None,
             Switch::Sat(phi) | Switch::Tanh(phi) => Some(phi),
         }
+    }
+}
+
+impl<R: Real> Switch<R> {
+    #[inline(always)]
+    pub fn apply(&self, s: R) -> R {
+        match *self {
+            Switch::Sign => s.signum0(),
+            Switch::Sat(phi) => (s / phi).clamp(R::splat(-1.0), R::splat(1.0)),
+            Switch::Tanh(phi) => (s / phi).tanh(),
+        }
+    }
+}
+
+impl<R: Real> Gather<R> for Switch<R> {
+    type Case = Switch;
+
+    fn gather<'a>(case: &dyn Fn(usize) -> &'a Switch) -> Self {
+        let phi = |i: usize| match case(i) {
+            Switch::Sign => 0.0,
+            Switch::Sat(p) | Switch::Tanh(p) => *p,
+        };
+        match case(0) {
+            Switch::Sign => Switch::Sign,
+            Switch::Sat(_) => Switch::Sat(R::from_fn(phi)),
+            Switch::Tanh(_) => Switch::Tanh(R::from_fn(phi)),
+        }
+    }
+
+    fn same_shape(a: &Switch, b: &Switch) -> bool {
+        std::mem::discriminant(a) == std::mem::discriminant(b)
+    }
+}
+
+impl FromParams for Switch {
+    /// `switch` ("sign", "sat" or "tanh") and its `boundary_layer` width.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let kind = p.choice("switch", &Switch::NAMES)?;
+        let phi = p.scalar("boundary_layer")?;
+        Ok([Switch::Sign, Switch::Sat(phi), Switch::Tanh(phi)][kind])
     }
 }
 
@@ -95,16 +101,6 @@ mod tests {
         // a = 0 reduces to sgn, including sgn(0) = 0
         assert_eq!(sig(0.0, 0.0), 0.0);
         assert_eq!(sig(-2.0, 0.0), -1.0);
-    }
-
-    #[test]
-    fn guarded_power_is_finite_at_zero() {
-        let v = sig_guarded(0.0, -0.5, 1e-4);
-        assert_eq!(v, 0.0);
-        let v = sig_guarded(1e-12, -0.5, 1e-4);
-        assert!((v - 100.0).abs() < 1e-9);
-        assert!((pow_guarded(0.0, -0.5, 1e-4) - 100.0).abs() < 1e-9);
-        assert!((pow_guarded(4.0, -0.5, 1e-4) - 0.5).abs() < 1e-15);
     }
 
     #[test]

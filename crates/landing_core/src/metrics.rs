@@ -2,6 +2,8 @@
 
 use nalgebra::SVector;
 
+use crate::lanes::{Mask, Real, abs, add, mul, norm, scale, scale_by, select_vector, sub};
+
 /// First crossing of the landing surface (altitude from positive to non-positive),
 /// interpolated linearly within the integrator step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,7 +52,7 @@ pub struct CaseMetrics<const D: usize> {
 }
 
 impl<const D: usize> CaseMetrics<D> {
-    pub(crate) fn new() -> Self {
+    pub fn new() -> Self {
         Self {
             final_error: SVector::repeat(f64::NAN),
             final_rate_error: SVector::repeat(f64::NAN),
@@ -92,22 +94,23 @@ impl HighPass {
     }
 
     /// Filter state for an input that has been `x` forever (zero output).
-    #[inline]
-    fn steady<const D: usize>(&self, x: &SVector<f64, D>) -> [SVector<f64, D>; 2] {
-        let z2 = x * self.b[2];
-        [x * self.b[1] + z2, z2]
+    #[inline(always)]
+    fn steady<const D: usize, R: Real>(&self, x: &SVector<R, D>) -> [SVector<R, D>; 2] {
+        let z2 = scale(x, self.b[2]);
+        [add(&scale(x, self.b[1]), &z2), z2]
     }
 
+    /// One sample: the output and the next state.
     #[inline(always)]
-    fn step<const D: usize>(
+    fn step<const D: usize, R: Real>(
         &self,
-        z: &mut [SVector<f64, D>; 2],
-        x: &SVector<f64, D>,
-    ) -> SVector<f64, D> {
-        let y = x * self.b[0] + z[0];
-        z[0] = x * self.b[1] - y * self.a[0] + z[1];
-        z[1] = x * self.b[2] - y * self.a[1];
-        y
+        z: &[SVector<R, D>; 2],
+        x: &SVector<R, D>,
+    ) -> (SVector<R, D>, [SVector<R, D>; 2]) {
+        let y = add(&scale(x, self.b[0]), &z[0]);
+        let z0 = add(&sub(&scale(x, self.b[1]), &scale(&y, self.a[0])), &z[1]);
+        let z1 = sub(&scale(x, self.b[2]), &scale(&y, self.a[1]));
+        (y, [z0, z1])
     }
 
     /// Magnitude response at `hz` (for tests and documentation).
@@ -127,72 +130,137 @@ impl HighPass {
     }
 }
 
-/// Accumulates the command and tracking-error statistics over the applied commands.
-pub(crate) struct CommandStats<const D: usize> {
+/// Accumulates the command and tracking-error statistics over the applied commands, per lane.
+///
+/// Every lane accumulates at every period; when cases stop, [`CommandStats::freeze`] keeps a
+/// copy of their statistics at that instant, which is what they report. (Masking each
+/// accumulation instead would cost a select per statistic and period, for an event that
+/// happens to few cases, if any.)
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CommandStats<const D: usize, R: Real> {
     filter: HighPass,
-    state: Option<[SVector<f64, D>; 2]>,
-    last: SVector<f64, D>,
-    peak: f64,
-    peak_axis: SVector<f64, D>,
-    effort: f64,
-    iae: SVector<f64, D>,
-    variation: SVector<f64, D>,
-    high: SVector<f64, D>,
-    energy: SVector<f64, D>,
-    time: f64,
+    started: bool,
+    now: Sums<D, R>,
+    /// The sums of the stopped lanes, from the instant they stopped.
+    frozen: Sums<D, R>,
+    stopped: R::Mask,
 }
 
-impl<const D: usize> CommandStats<D> {
+#[derive(Clone, Copy, Debug)]
+struct Sums<const D: usize, R: Real> {
+    z: [SVector<R, D>; 2],
+    last: SVector<R, D>,
+    peak: R,
+    peak_axis: SVector<R, D>,
+    effort: R,
+    iae: SVector<R, D>,
+    variation: SVector<R, D>,
+    high: SVector<R, D>,
+    energy: SVector<R, D>,
+    time: R,
+}
+
+impl<const D: usize, R: Real> Sums<D, R> {
+    #[inline(always)]
+    fn select(mask: R::Mask, a: &Self, b: &Self) -> Self {
+        Self {
+            z: [
+                select_vector(mask, &a.z[0], &b.z[0]),
+                select_vector(mask, &a.z[1], &b.z[1]),
+            ],
+            last: select_vector(mask, &a.last, &b.last),
+            peak: R::select(mask, a.peak, b.peak),
+            peak_axis: select_vector(mask, &a.peak_axis, &b.peak_axis),
+            effort: R::select(mask, a.effort, b.effort),
+            iae: select_vector(mask, &a.iae, &b.iae),
+            variation: select_vector(mask, &a.variation, &b.variation),
+            high: select_vector(mask, &a.high, &b.high),
+            energy: select_vector(mask, &a.energy, &b.energy),
+            time: R::select(mask, a.time, b.time),
+        }
+    }
+}
+
+impl<const D: usize, R: Real> CommandStats<D, R> {
     pub(crate) fn new(filter: HighPass) -> Self {
         let z = SVector::zeros();
-        Self {
-            filter,
-            state: None,
+        let sums = Sums {
+            z: [z, z],
             last: z,
-            peak: 0.0,
+            peak: R::zero(),
             peak_axis: z,
-            effort: 0.0,
+            effort: R::zero(),
             iae: z,
             variation: z,
             high: z,
             energy: z,
-            time: 0.0,
+            time: R::zero(),
+        };
+        Self {
+            filter,
+            started: false,
+            now: sums,
+            frozen: sums,
+            stopped: R::Mask::splat(false),
         }
     }
 
     /// The command `u` applied over a period `dt` with the tracking error `e` at its start.
+    /// Every case starts at the same instant, so the filter's steady-state start is taken for
+    /// all lanes at the first call.
     #[inline(always)]
-    pub(crate) fn add(&mut self, u: &SVector<f64, D>, e: &SVector<f64, D>, dt: f64) {
-        let norm = u.norm();
-        self.peak = self.peak.max(norm);
-        self.peak_axis = self.peak_axis.sup(&u.abs());
-        self.effort += norm * dt;
-        self.iae += e.abs() * dt;
-        self.time += dt;
-        let z = match &mut self.state {
-            Some(z) => {
-                self.variation += (u - self.last).abs();
-                z
-            }
-            None => self.state.insert(self.filter.steady(u)),
-        };
-        let y = self.filter.step(z, u);
-        self.high += y.component_mul(&y);
-        self.energy += u.component_mul(u);
-        self.last = *u;
+    pub(crate) fn add(&mut self, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64) {
+        let s = &mut self.now;
+        let n = norm(u);
+        let dtl = R::splat(dt);
+        let abs_u = abs(u);
+        for i in 0..D {
+            s.peak_axis[i] = s.peak_axis[i].max(abs_u[i]);
+        }
+        s.peak = s.peak.max(n);
+        s.effort += n * dtl;
+        s.iae = add(&s.iae, &scale_by(&abs(e), dtl));
+        s.time += dtl;
+        if self.started {
+            s.variation = add(&s.variation, &abs(&sub(u, &s.last)));
+        } else {
+            s.z = self.filter.steady(u);
+            self.started = true;
+        }
+        let (y, z) = self.filter.step(&s.z, u);
+        s.z = z;
+        s.high = add(&s.high, &mul(&y, &y));
+        s.energy = add(&s.energy, &mul(u, u));
+        s.last = *u;
     }
 
-    pub(crate) fn finish_into(&self, m: &mut CaseMetrics<D>) {
-        m.peak_command = self.peak;
-        m.peak_command_axis = self.peak_axis;
-        m.control_effort = self.effort;
-        m.iae = self.iae;
-        if self.time > 0.0 {
-            m.command_variation = self.variation / self.time;
+    /// Keeps the statistics of the lanes in `stopping` as they are now.
+    #[inline(always)]
+    pub(crate) fn freeze(&mut self, stopping: R::Mask) {
+        self.frozen = Sums::select(stopping, &self.now, &self.frozen);
+        self.stopped = self.stopped | stopping;
+    }
+
+    /// The statistics of lane `i`.
+    pub(crate) fn finish_lane(&self, i: usize, m: &mut CaseMetrics<D>) {
+        let s = if self.stopped.lane(i) {
+            &self.frozen
+        } else {
+            &self.now
+        };
+        m.peak_command = s.peak.lane(i);
+        m.peak_command_axis = SVector::from_fn(|k, _| s.peak_axis[k].lane(i));
+        m.control_effort = s.effort.lane(i);
+        m.iae = SVector::from_fn(|k, _| s.iae[k].lane(i));
+        let time = s.time.lane(i);
+        if time > 0.0 {
+            m.command_variation = SVector::from_fn(|k, _| s.variation[k].lane(i) / time);
         }
         let share = |h: f64, e: f64| if e > 0.0 { h / e } else { 0.0 };
-        m.high_frequency_share = SVector::from_fn(|i, _| share(self.high[i], self.energy[i]));
-        m.high_frequency_share_total = share(self.high.sum(), self.energy.sum());
+        let high = SVector::<f64, D>::from_fn(|k, _| s.high[k].lane(i));
+        let energy = SVector::<f64, D>::from_fn(|k, _| s.energy[k].lane(i));
+        m.high_frequency_share = SVector::from_fn(|k, _| share(high[k], energy[k]));
+        m.high_frequency_share_total = share(high.sum(), energy.sum());
     }
 }
 
@@ -214,12 +282,12 @@ mod tests {
     }
 
     fn share_of(signal: impl Fn(f64) -> f64, hz: f64, dt: f64, n: usize) -> f64 {
-        let mut s = CommandStats::<1>::new(HighPass::butterworth2(hz, dt));
+        let mut s = CommandStats::<1, f64>::new(HighPass::butterworth2(hz, dt));
         for k in 0..n {
             s.add(&Vector1::new(signal(k as f64 * dt)), &Vector1::zeros(), dt);
         }
         let mut m = CaseMetrics::<1>::new();
-        s.finish_into(&mut m);
+        s.finish_lane(0, &mut m);
         m.high_frequency_share[0]
     }
 
@@ -264,12 +332,15 @@ mod tests {
 
     #[test]
     fn variation_and_iae() {
-        let mut s = CommandStats::<1>::new(HighPass::butterworth2(5.0, 0.01));
+        let mut s = CommandStats::<1, f64>::new(HighPass::butterworth2(5.0, 0.01));
         for (u, e) in [(0.0, 1.0), (2.0, -1.0), (1.0, 0.5), (1.0, 0.0)] {
             s.add(&Vector1::new(u), &Vector1::new(e), 0.5);
         }
+        // a stopped case keeps what it had
+        s.freeze(true);
+        s.add(&Vector1::new(100.0), &Vector1::new(100.0), 0.5);
         let mut m = CaseMetrics::<1>::new();
-        s.finish_into(&mut m);
+        s.finish_lane(0, &mut m);
         assert_eq!(m.command_variation[0], 3.0 / 2.0);
         assert_eq!(m.iae[0], 2.5 * 0.5);
         assert_eq!(m.peak_command, 2.0);

@@ -2,32 +2,38 @@
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Gather, Real, add, scale, scale_by, select_vector};
+use crate::params::{FromParams, ParamSource};
+
+/// The reference kinds at the Python boundary.
+pub const REFERENCE_KINDS: [&str; 2] = ["constant", "cubic"];
 
 /// Reference position, velocity and acceleration at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RefPoint<const D: usize> {
-    pub position: SVector<f64, D>,
-    pub velocity: SVector<f64, D>,
-    pub acceleration: SVector<f64, D>,
+pub struct RefPoint<const D: usize, R = f64> {
+    pub position: SVector<R, D>,
+    pub velocity: SVector<R, D>,
+    pub acceleration: SVector<R, D>,
 }
 
 /// A reference is chosen once per batch and evaluated per control instant. It is a small enum
 /// rather than a generic parameter: the branch is the same at every step (perfectly predicted),
 /// and a generic would multiply the number of monomorphised rollouts by the number of kinds.
+/// The kind is shared by the lanes of a block; the coefficients are per lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Reference<const D: usize> {
+pub enum Reference<const D: usize, R = f64> {
     /// A fixed target state: the law drives q to `position` and q' to `velocity` (SPEC 4:
     /// seed 001 uses r_d = 0, v_d = 0).
     Constant {
-        position: SVector<f64, D>,
-        velocity: SVector<f64, D>,
+        position: SVector<R, D>,
+        velocity: SVector<R, D>,
     },
     /// `p(t) = c0 + c1 t + c2 t^2 + c3 t^3` per axis on `[0, t_end]`; afterwards the end point is
     /// held (zero velocity and acceleration).
     Cubic {
-        coefficients: [SVector<f64, D>; 4],
-        t_end: f64,
+        coefficients: [SVector<R, D>; 4],
+        t_end: R,
     },
 }
 
@@ -37,6 +43,38 @@ impl<const D: usize> Default for Reference<D> {
             position: SVector::zeros(),
             velocity: SVector::zeros(),
         }
+    }
+}
+
+impl<const D: usize, R: Real> Gather<R> for Reference<D, R> {
+    type Case = Reference<D>;
+
+    fn gather<'a>(case: &dyn Fn(usize) -> &'a Self::Case) -> Self {
+        let constant = |i: usize| match case(i) {
+            Reference::Constant { position, velocity } => (position, velocity),
+            Reference::Cubic { .. } => unreachable!("a block's references have one kind"),
+        };
+        let cubic = |i: usize| match case(i) {
+            Reference::Cubic {
+                coefficients,
+                t_end,
+            } => (coefficients, t_end),
+            Reference::Constant { .. } => unreachable!("a block's references have one kind"),
+        };
+        match case(0) {
+            Reference::Constant { .. } => Reference::Constant {
+                position: Gather::gather(&|i| constant(i).0),
+                velocity: Gather::gather(&|i| constant(i).1),
+            },
+            Reference::Cubic { .. } => Reference::Cubic {
+                coefficients: Gather::gather(&|i| cubic(i).0),
+                t_end: Gather::gather(&|i| cubic(i).1),
+            },
+        }
+    }
+
+    fn same_shape(a: &Self::Case, b: &Self::Case) -> bool {
+        std::mem::discriminant(a) == std::mem::discriminant(b)
     }
 }
 
@@ -58,9 +96,11 @@ impl<const D: usize> Reference<D> {
             t_end,
         })
     }
+}
 
-    #[inline]
-    pub fn at(&self, t: f64) -> RefPoint<D> {
+impl<const D: usize, R: Real> Reference<D, R> {
+    #[inline(always)]
+    pub fn at(&self, t: f64) -> RefPoint<D, R> {
         match *self {
             Self::Constant { position, velocity } => RefPoint {
                 position,
@@ -71,25 +111,34 @@ impl<const D: usize> Reference<D> {
                 coefficients: [c0, c1, c2, c3],
                 t_end,
             } => {
-                if t <= t_end {
-                    RefPoint {
-                        position: c0 + (c1 + (c2 + c3 * t) * t) * t,
-                        velocity: c1 + (c2 * 2.0 + c3 * (3.0 * t)) * t,
-                        acceleration: c2 * 2.0 + c3 * (6.0 * t),
-                    }
-                } else {
-                    let te = t_end;
-                    RefPoint {
-                        position: c0 + (c1 + (c2 + c3 * te) * te) * te,
-                        velocity: SVector::zeros(),
-                        acceleration: SVector::zeros(),
-                    }
+                // before t_end the cubic at t, after it the end point held, per lane
+                let before = R::splat(t).simd_le(t_end);
+                let tt = R::select(before, R::splat(t), t_end);
+                // c0 + (c1 + (c2 + c3 t) t) t
+                let position = add(&c2, &scale_by(&c3, tt));
+                let position = add(&c1, &scale_by(&position, tt));
+                let position = add(&c0, &scale_by(&position, tt));
+                let velocity = add(
+                    &c1,
+                    &scale_by(
+                        &add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(3.0) * tt)),
+                        tt,
+                    ),
+                );
+                let acceleration = add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(6.0) * tt));
+                let zero = SVector::zeros();
+                RefPoint {
+                    position,
+                    velocity: select_vector(before, &velocity, &zero),
+                    acceleration: select_vector(before, &acceleration, &zero),
                 }
             }
         }
     }
+}
 
-    pub fn validate(&self) -> Result<(), ParamError> {
+impl<const D: usize> Validate for Reference<D> {
+    fn validate(&self) -> Result<(), ParamError> {
         match self {
             Self::Constant { position, velocity } => {
                 for (i, v) in position.iter().enumerate() {
@@ -113,6 +162,22 @@ impl<const D: usize> Reference<D> {
             }
         }
         Ok(())
+    }
+}
+
+impl<const D: usize> FromParams for Reference<D> {
+    /// `constant` (position, optional velocity) or `cubic` (coefficients c0..c3, t_end).
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        match p.kind(&REFERENCE_KINDS)? {
+            0 => Ok(Self::Constant {
+                position: p.axes("position")?,
+                velocity: p.opt_axes("velocity")?.unwrap_or_else(SVector::zeros),
+            }),
+            _ => Ok(Self::Cubic {
+                coefficients: [p.axes("c0")?, p.axes("c1")?, p.axes("c2")?, p.axes("c3")?],
+                t_end: p.scalar("t_end")?,
+            }),
+        }
     }
 }
 

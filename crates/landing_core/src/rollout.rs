@@ -1,19 +1,25 @@
-//! One case, sampled-data (SPEC section 2).
+//! A block of cases in lockstep, sampled-data (SPEC section 2).
 //!
 //! At each control instant t_k = k dt the law reads x_k and the reference at t_k; the command
 //! is actuated (scaled, saturated) and held over [t_k, t_k + dt); the law's memory is advanced;
 //! the random part of the disturbance is drawn for period k and held; the plant is advanced by
 //! `substeps` steps of the integrator, whose stages see the deterministic disturbance at their
 //! own times. No heap allocation happens inside the step loop.
+//!
+//! The cases of a block are the lanes of one [`Real`] value: every branch of the scalar
+//! algorithm is a mask (divergence, touchdown, settling), and a stopped case keeps its last
+//! admissible state while the others go on. Nothing a lane computes depends on the other
+//! lanes, so a case gives the same bits in any block, at any position, alone or padded.
 
-use std::cell::Cell;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use nalgebra::SVector;
 
-use crate::control::{ControlLaw, LawInput};
-use crate::disturbance::{Disturbance, disturbance_stream};
+use crate::control::{AnyLaw, AnyMemory, LawInput};
+use crate::disturbance::{Disturbance, NoiseStreams, disturbance_stream};
 use crate::error::ParamError;
-use crate::integrator::Integrator;
+use crate::integrator::{IntegratorKind, Stage, StageDerivative};
+use crate::lanes::{Mask, Real, add, all_finite, div, dot, norm, scale_by, select_vector, sub};
 use crate::metrics::{CaseMetrics, CommandStats, HighPass, Touchdown};
 use crate::plant::Plant;
 use crate::reference::Reference;
@@ -56,6 +62,8 @@ pub struct SimConfig {
     pub first_case: u64,
     /// What "settled" means for the settle-time metric.
     pub settle: Tolerance,
+    /// The integrator (chosen at run time).
+    pub integrator: IntegratorKind,
     /// Cut-off frequency (Hz) of the high-pass filter behind the chattering metric; NaN for
     /// a tenth of the Nyquist frequency, 1 / (20 dt).
     pub chatter_cutoff: f64,
@@ -111,6 +119,7 @@ impl SimConfig {
             seed,
             first_case: 0,
             settle: Tolerance::Relative(0.02),
+            integrator: IntegratorKind::Rk4,
             chatter_cutoff: f64::NAN,
         })
     }
@@ -146,6 +155,12 @@ impl SimConfig {
         HighPass::butterworth2(hz, self.dt)
     }
 
+    /// The same configuration with another integrator.
+    pub fn with_integrator(mut self, integrator: IntegratorKind) -> Self {
+        self.integrator = integrator;
+        self
+    }
+
     /// The same configuration with the batch's cases numbered from `first_case`.
     pub fn with_first_case(mut self, first_case: u64) -> Self {
         self.first_case = first_case;
@@ -179,204 +194,395 @@ impl SimConfig {
     }
 }
 
-/// Where one case writes its recording; the slices are empty when nothing is recorded.
-pub struct CaseBuffers<'a> {
-    /// n_records x state dim.
+/// How often (in control periods) a running block looks at the cancellation flag.
+const CANCEL_POLL: u64 = 64;
+
+/// Most values a law's diagnostics take per instant (checked when a batch is built).
+pub const MAX_DIAGNOSTIC_WIDTH: usize = 16;
+
+/// Where the lanes of a block write their recordings: the buffers of the block's cases, case
+/// after case, pre-filled with NaN (a stopped case never writes again, so it reads NaN from its
+/// divergence on). The slices are empty when nothing is recorded.
+pub(crate) struct BlockBuffers<'a, const D: usize> {
+    /// cases x n_records x state dim.
     pub states: &'a mut [f64],
-    /// n_records x D.
+    /// cases x n_records x D.
     pub controls: &'a mut [f64],
-    /// n_records x (number of diagnostics x D).
+    /// cases x n_records x diagnostic width.
     pub diagnostics: &'a mut [f64],
-    /// state dim.
+    /// cases x state dim.
     pub final_state: &'a mut [f64],
+    /// One per case of the block (the padding lanes have none).
+    pub metrics: &'a mut [CaseMetrics<D>],
 }
+
+/// The deterministic disturbance shared by every case of a batch, evaluated once per stage of
+/// every integrator step: `values[(k * substeps + j) * stages + s]` for control period k,
+/// substep j and the integrator's stage s, with the same operations a lane would use.
+pub struct StageTable<const D: usize> {
+    values: Vec<SVector<f64, D>>,
+    substeps: usize,
+    stages: usize,
+}
+
+impl<const D: usize> StageTable<D> {
+    /// Most bytes a table may take; beyond, every block evaluates its own (same bits).
+    pub const MAX_BYTES: usize = 64 << 20;
+
+    /// The table of `disturbance` for `cfg`, or None if it would be too large.
+    pub fn new(disturbance: &Disturbance<D>, cfg: &SimConfig) -> Option<Self> {
+        let stages = cfg.integrator.stages();
+        let substeps = cfg.substeps as usize;
+        let len = (cfg.steps as u128) * (substeps as u128) * (stages.len() as u128);
+        if len * (D as u128) * 8 > Self::MAX_BYTES as u128 {
+            return None;
+        }
+        let h = cfg.dt / f64::from(cfg.substeps);
+        let mut values = Vec::with_capacity(len as usize);
+        for k in 0..cfg.steps {
+            let t = k as f64 * cfg.dt;
+            for j in 0..substeps {
+                let tj = t + j as f64 * h;
+                for s in stages {
+                    values.push(disturbance.deterministic(s.time(tj, h)));
+                }
+            }
+        }
+        Some(Self {
+            values,
+            substeps,
+            stages: stages.len(),
+        })
+    }
+
+    #[inline(always)]
+    fn get(&self, k: u64, j: usize, stage: usize) -> &SVector<f64, D> {
+        &self.values[(k as usize * self.substeps + j) * self.stages + stage]
+    }
+}
+
+/// How a block calls its law. The laws are the bulk of the code: inlined into every plant's
+/// rollout at every instruction-set level they would be compiled thirty times over; called
+/// out of line (once per control period) they are compiled once per level and axis count
+/// ([`crate::kernel`]), at the price of one call per period.
+pub(crate) trait LawCalls<const D: usize, R: Real> {
+    fn start(law: &AnyLaw<D, R>, input: &LawInput<D, R>) -> AnyMemory<D, R>;
+    fn command(
+        law: &AnyLaw<D, R>,
+        memory: &AnyMemory<D, R>,
+        input: &LawInput<D, R>,
+    ) -> SVector<R, D>;
+    fn advance(law: &AnyLaw<D, R>, memory: &mut AnyMemory<D, R>, input: &LawInput<D, R>);
+    fn diagnostics(
+        law: &AnyLaw<D, R>,
+        memory: &AnyMemory<D, R>,
+        input: &LawInput<D, R>,
+        out: &mut [R],
+    );
+}
+
+/// The plant's derivative over one step with the command held: what the integrator steps.
+struct Held<'a, const D: usize, R: Real, P> {
+    plant: &'a P,
+    disturbance: &'a Disturbance<D, R>,
+    table: Option<&'a StageTable<D>>,
+    /// Control period, substep, and the substep's start time and length.
+    k: u64,
+    j: usize,
+    tj: f64,
+    h: f64,
+    u: &'a SVector<R, D>,
+    /// The random disturbance drawn for the period.
+    held: &'a SVector<R, D>,
+    /// The modelled acceleration at the period's start (the law's input).
+    drift: &'a SVector<R, D>,
+}
+
+impl<const D: usize, R: Real, P: Plant<R, D>> StageDerivative<R, P::State> for Held<'_, D, R, P> {
+    #[inline(always)]
+    fn at(&self, stage: Stage, y: &P::State) -> P::State {
+        let time = stage.time(self.tj, self.h);
+        // the deterministic disturbance: from the batch's table, or per lane (same bits)
+        let det = match self.table {
+            Some(tab) => {
+                let v = tab.get(self.k, self.j, stage.index());
+                let mut splat = SVector::<R, D>::zeros();
+                for i in 0..D {
+                    splat[i] = R::splat(v[i]);
+                }
+                splat
+            }
+            None => self.disturbance.deterministic(time),
+        };
+        let d = add(&det, self.held);
+        // One call, the drift chosen before it: two calls returning the state from the
+        // branches of an `if` made the compiler copy the (kilobyte) result out of each.
+        // `derivative_with_drift` at the modelled acceleration is `derivative` by contract,
+        // and plants that ignore the drift let the unused evaluation be optimised away.
+        let drift = if self.j == 0 && stage == Stage::Start {
+            *self.drift
+        } else {
+            self.plant.modelled_acceleration(time, y)
+        };
+        self.plant
+            .derivative_with_drift(time, y, self.u, &d, &drift)
+    }
+}
+
+/// Why a block stopped early.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Cancelled;
 
 /// Builds what the law sees at (t, x).
 #[inline(always)]
-fn law_input<const D: usize, P: Plant<D>>(
+fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
     plant: &P,
-    reference: &Reference<D>,
+    reference: &Reference<D, R>,
     t: f64,
     dt: f64,
     x: &P::State,
-) -> LawInput<D> {
+) -> LawInput<D, R> {
     let (q, qd) = plant.coordinates(x);
     let r = reference.at(t);
     LawInput {
         t,
         dt,
-        e: q - r.position,
-        de: qd - r.velocity,
+        e: sub(&q, &r.position),
+        de: sub(&qd, &r.velocity),
         reference: r,
         drift: plant.modelled_acceleration(t, x),
         inertia: plant.inertia(x),
     }
 }
 
-/// Writes record `slot`.
+/// Writes record `slot` of the live lanes.
 #[inline(always)]
-fn record<const D: usize, S: State, L: ControlLaw<D>>(
-    out: &mut CaseBuffers<'_>,
+#[allow(clippy::too_many_arguments)]
+fn record<const D: usize, R: Real, S: State<R>, K: LawCalls<D, R>>(
+    out: &mut BlockBuffers<'_, D>,
+    used: usize,
+    n_records: usize,
     slot: usize,
+    live: R::Mask,
     x: &S,
-    u: &SVector<f64, D>,
-    law: &L,
-    memory: &L::Memory,
-    input: &LawInput<D>,
+    u: &SVector<R, D>,
+    law: &AnyLaw<D, R>,
+    memory: &AnyMemory<D, R>,
+    input: &LawInput<D, R>,
 ) {
     let nx = S::DIM;
-    let nd = crate::control::diagnostic_width::<D, L>();
-    out.states[slot * nx..(slot + 1) * nx].copy_from_slice(x.as_slice());
-    out.controls[slot * D..(slot + 1) * D].copy_from_slice(u.as_slice());
-    law.diagnostics(
-        memory,
-        input,
-        &mut out.diagnostics[slot * nd..(slot + 1) * nd],
-    );
+    let nd = law.diagnostic_width();
+    let mut diag = [R::zero(); MAX_DIAGNOSTIC_WIDTH];
+    K::diagnostics(law, memory, input, &mut diag[..nd]);
+    for i in 0..used {
+        if !live.lane(i) {
+            continue;
+        }
+        let row = i * n_records + slot;
+        for c in 0..nx {
+            out.states[row * nx + c] = x.component(c).lane(i);
+        }
+        for c in 0..D {
+            out.controls[row * D + c] = u[c].lane(i);
+        }
+        for c in 0..nd {
+            out.diagnostics[row * nd + c] = diag[c].lane(i);
+        }
+    }
 }
 
-/// Simulates one case and returns its metrics; the recording goes into `out`. `case` is the
-/// global case index that keys the random streams.
+/// Simulates the cases of one block. Lane i is case `cases[i]` (its global index, which keys
+/// its random streams); the first `used` lanes are real cases, the others padding whose results
+/// are dropped. Stops early, with nothing written that matters, when `cancel` is raised.
+#[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub fn rollout<const D: usize, P, L, I>(
+pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls<D, R>>(
     plant: &P,
-    law: &L,
-    integrator: I,
+    law: &AnyLaw<D, R>,
+    reference: &Reference<D, R>,
+    disturbance: &Disturbance<D, R>,
+    table: Option<&StageTable<D>>,
     x0: &P::State,
-    reference: &Reference<D>,
-    disturbance: &Disturbance<D>,
     cfg: &SimConfig,
-    case: u64,
-    mut out: CaseBuffers<'_>,
-) -> CaseMetrics<D>
-where
-    P: Plant<D>,
-    L: ControlLaw<D>,
-    I: Integrator,
-{
+    cases: &[u64],
+    used: usize,
+    cancel: &AtomicBool,
+    out: &mut BlockBuffers<'_, D>,
+) -> Result<(), Cancelled> {
     let recording = cfg.record_every > 0;
-    let rng = disturbance_stream(cfg.seed, case);
+    let n_records = cfg.n_records();
+    let rng: Vec<NoiseStreams> = cases
+        .iter()
+        .map(|&c| disturbance_stream(cfg.seed, c))
+        .collect();
     let h = cfg.dt / f64::from(cfg.substeps);
-    let mut metrics = CaseMetrics::new();
-    let mut stats = CommandStats::new(cfg.chatter_filter());
+    let substeps = cfg.substeps as usize;
+    let zero = R::zero();
+    let nan = R::splat(f64::NAN);
+    let mut stats = CommandStats::<D, R>::new(cfg.chatter_filter());
 
     let mut x = *x0;
+    // the step's result, kept outside the loop so that the integrator writes it in place
+    let mut next = *x0;
     let m0 = plant.mass(&x);
     let mut input = law_input(plant, reference, 0.0, cfg.dt, &x);
-    let mut memory = law.start(&input);
+    let mut memory = K::start(law, &input);
+    let advances = law.has_memory();
+    let mut live = R::Mask::splat(true);
+    let mut diverged_at = nan;
+    let mut touched = R::Mask::splat(false);
+    let mut td_time = nan;
+    let mut td_position = SVector::<R, D>::from_element(nan);
+    let mut td_velocity = SVector::<R, D>::from_element(nan);
     let mut slot = 0usize;
     let mut next_record = 0u64;
     let tolerance = match cfg.settle {
-        Tolerance::Absolute(v) => v,
-        Tolerance::Relative(f) => f * input.e.norm(),
+        Tolerance::Absolute(v) => R::splat(v),
+        Tolerance::Relative(f) => norm(&input.e) * f,
     };
     // compared squared: no square root per step
     let tolerance_sq = tolerance * tolerance;
-    // the last control instant at which |e| was outside the tolerance, and the mass at the
-    // instant after it (the settle instant, should the error stay inside from there on)
-    let mut last_outside: Option<u64> = None;
+    // per lane: the last control instant at which |e| was outside the tolerance (-1 for none),
+    // and the mass at the instant after it (the settle instant, should the error stay inside
+    // from there on)
+    let mut last_outside = R::splat(-1.0);
     let mut settle_mass = m0;
-    let mut was_outside = false;
+    let mut was_outside = R::Mask::splat(false);
 
     'periods: for k in 0..cfg.steps {
+        if k % CANCEL_POLL == 0 && cancel.load(Ordering::Relaxed) {
+            return Err(Cancelled);
+        }
         let t = k as f64 * cfg.dt;
-        let u = plant.actuate(&x, &law.command(&memory, &input));
-        if !u.iter().all(|v| v.is_finite()) {
-            metrics.diverged_at = Some(t);
-            break;
+        let u = plant.actuate(&x, &K::command(law, &memory, &input));
+        let bad = live & !all_finite(&u);
+        if bad.any() {
+            diverged_at = R::select(bad, R::splat(t), diverged_at);
+            stats.freeze(bad);
+            live = live & !bad;
+            if !live.any() {
+                break;
+            }
         }
         if recording && k == next_record {
-            record(&mut out, slot, &x, &u, law, &memory, &input);
+            record::<D, R, _, K>(
+                out, used, n_records, slot, live, &x, &u, law, &memory, &input,
+            );
             slot += 1;
             next_record += cfg.record_every;
         }
         stats.add(&u, &input.e, cfg.dt);
-        if input.e.norm_squared() > tolerance_sq {
-            last_outside = Some(k);
-            was_outside = true;
-        } else if was_outside {
-            settle_mass = plant.mass(&x);
-            was_outside = false;
+        let outside = dot(&input.e, &input.e).simd_gt(tolerance_sq);
+        last_outside = R::select(live & outside, R::splat(k as f64), last_outside);
+        if let (Some(sm), Some(m)) = (settle_mass.as_mut(), plant.mass(&x)) {
+            *sm = R::select(live & was_outside & !outside, m, *sm);
         }
+        was_outside = (live & outside) | (!live & was_outside);
 
-        let held = disturbance.draw(&rng, k, &u.component_div(&input.inertia));
-        law.advance(&mut memory, &input);
-        // RK4's two middle stages share a time: remember the last disturbance evaluated
-        // (a pure function of time, so this changes no result).
-        let last = Cell::new((f64::NAN, SVector::<f64, D>::zeros()));
-        let f = |tau: f64, y: &P::State| {
-            let (t_last, d_last) = last.get();
-            let d = if tau == t_last {
-                d_last
-            } else {
-                let d = disturbance.at(tau, &held);
-                last.set((tau, d));
-                d
-            };
-            plant.derivative(tau, y, &u, &d)
+        let held = if disturbance.is_random() {
+            disturbance.draw(&rng, k, &div(&u, &input.inertia))
+        } else {
+            SVector::zeros()
         };
-        for j in 0..cfg.substeps {
-            let tj = t + f64::from(j) * h;
-            let next = integrator.step(&f, tj, &x, h);
-            if metrics.touchdown.is_none() {
-                if let (Some(z0), Some(z1)) = (plant.altitude(&x), plant.altitude(&next)) {
-                    if z0 > 0.0 && z1 <= 0.0 {
-                        let w = z0 / (z0 - z1);
-                        let (q0, v0) = plant.coordinates(&x);
-                        let (q1, v1) = plant.coordinates(&next);
-                        metrics.touchdown = Some(Touchdown {
-                            time: tj + w * h,
-                            position: q0 + (q1 - q0) * w,
-                            velocity: v0 + (v1 - v0) * w,
-                        });
-                    }
+        if advances {
+            K::advance(law, &mut memory, &input);
+        }
+        for j in 0..substeps {
+            let tj = t + j as f64 * h;
+            let f = Held {
+                plant,
+                disturbance,
+                table,
+                k,
+                j,
+                tj,
+                h,
+                u: &u,
+                held: &held,
+                drift: &input.drift,
+            };
+            cfg.integrator.step_into(&f, &x, h, &mut next);
+            if let (Some(z0), Some(z1)) = (plant.altitude(&x), plant.altitude(&next)) {
+                let cross = live & !touched & z0.simd_gt(zero) & z1.simd_le(zero);
+                if cross.any() {
+                    let w = z0 / (z0 - z1);
+                    let (q0, v0) = plant.coordinates(&x);
+                    let (q1, v1) = plant.coordinates(&next);
+                    td_time = R::select(cross, w * h + tj, td_time);
+                    td_position =
+                        select_vector(cross, &add(&q0, &scale_by(&sub(&q1, &q0), w)), &td_position);
+                    td_velocity =
+                        select_vector(cross, &add(&v0, &scale_by(&sub(&v1, &v0), w)), &td_velocity);
+                    touched = touched | cross;
                 }
             }
-            x = next;
-            if !plant.admissible(&x) {
-                metrics.diverged_at = Some(tj + h);
+            let bad = live & !plant.admissible(&next);
+            if bad.any() {
+                diverged_at = R::select(bad, R::splat(tj + h), diverged_at);
+                stats.freeze(bad);
+                live = live & !bad;
+            }
+            x.select_assign(live, &next);
+            if !live.any() {
                 break 'periods;
             }
         }
         input = law_input(plant, reference, (k + 1) as f64 * cfg.dt, cfg.dt, &x);
     }
 
-    if metrics.diverged_at.is_none() {
-        // The command at t_final is recorded (it is what would be held next) but not applied.
-        let u = plant.actuate(&x, &law.command(&memory, &input));
-        if u.iter().all(|v| v.is_finite()) {
-            if recording {
-                record(&mut out, slot, &x, &u, law, &memory, &input);
-                slot += 1;
-            }
-            out.final_state.copy_from_slice(x.as_slice());
-            if input.e.norm_squared() <= tolerance_sq {
-                if was_outside {
-                    settle_mass = plant.mass(&x);
-                }
-                metrics.settle_time = last_outside.map_or(0.0, |k| (k + 1) as f64 * cfg.dt);
-                if let (Some(m0), Some(ms)) = (m0, settle_mass) {
-                    metrics.fuel_to_settle = m0 - ms;
-                }
-            }
-            metrics.final_error = input.e;
-            metrics.final_rate_error = input.de;
-            if let (Some(m0), Some(m)) = (m0, plant.mass(&x)) {
-                metrics.fuel_used = m0 - m;
-            }
-        } else {
-            metrics.diverged_at = Some(cfg.t_final());
+    // The command at t_final is recorded (it is what would be held next) but not applied.
+    let mut finished = live;
+    if live.any() {
+        let u = plant.actuate(&x, &K::command(law, &memory, &input));
+        let bad = live & !all_finite(&u);
+        diverged_at = R::select(bad, R::splat(cfg.t_final()), diverged_at);
+        finished = live & !bad;
+        if recording {
+            record::<D, R, _, K>(
+                out, used, n_records, slot, finished, &x, &u, law, &memory, &input,
+            );
         }
     }
-    stats.finish_into(&mut metrics);
-    if metrics.diverged_at.is_some() {
-        // A diverged case reads NaN from its divergence on, and is flagged in its metrics.
-        let nx = P::State::DIM;
-        let nd = crate::control::diagnostic_width::<D, L>();
-        out.states[slot * nx..].fill(f64::NAN);
-        out.controls[slot * D..].fill(f64::NAN);
-        out.diagnostics[slot * nd..].fill(f64::NAN);
-        out.final_state.fill(f64::NAN);
+    let inside = dot(&input.e, &input.e).simd_le(tolerance_sq);
+    if let (Some(sm), Some(m)) = (settle_mass.as_mut(), plant.mass(&x)) {
+        *sm = R::select(inside & was_outside, m, *sm);
     }
-    metrics
+    let mass = plant.mass(&x);
+    let nx = P::State::DIM;
+    for i in 0..used {
+        let m = &mut out.metrics[i];
+        *m = CaseMetrics::new();
+        stats.finish_lane(i, m);
+        if touched.lane(i) {
+            m.touchdown = Some(Touchdown {
+                time: td_time.lane(i),
+                position: SVector::from_fn(|c, _| td_position[c].lane(i)),
+                velocity: SVector::from_fn(|c, _| td_velocity[c].lane(i)),
+            });
+        }
+        if !finished.lane(i) {
+            m.diverged_at = Some(diverged_at.lane(i));
+            continue;
+        }
+        for c in 0..nx {
+            out.final_state[i * nx + c] = x.component(c).lane(i);
+        }
+        if inside.lane(i) {
+            let last = last_outside.lane(i);
+            m.settle_time = if last < 0.0 {
+                0.0
+            } else {
+                (last + 1.0) * cfg.dt
+            };
+            if let (Some(m0), Some(ms)) = (m0, settle_mass) {
+                m.fuel_to_settle = m0.lane(i) - ms.lane(i);
+            }
+        }
+        m.final_error = SVector::from_fn(|c, _| input.e[c].lane(i));
+        m.final_rate_error = SVector::from_fn(|c, _| input.de[c].lane(i));
+        if let (Some(m0), Some(mf)) = (m0, mass) {
+            m.fuel_used = m0.lane(i) - mf.lane(i);
+        }
+    }
+    Ok(())
 }

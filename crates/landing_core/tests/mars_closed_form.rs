@@ -6,7 +6,7 @@ use common::*;
 use landing_core::SimConfig;
 use landing_core::control::{ControlLaw, LawInput, MssVariant, OpenLoop};
 use landing_core::disturbance::Disturbance;
-use landing_core::integrator::{Euler, Rk4};
+use landing_core::integrator::IntegratorKind::{Euler, Rk4};
 use landing_core::math::sig;
 use landing_core::plant::{MarsLander, Plant};
 use landing_core::reference::RefPoint;

@@ -4,7 +4,7 @@
 //! each property sharp: a fast orbit (n = 0.02 rad/s) keeps the runs short, which changes no
 //! closed form (they hold for any n).
 
-use landing_core::integrator::{Integrator, Rk4};
+use landing_core::integrator::IntegratorKind;
 use landing_core::plant::Plant;
 use landing_core::plant::tether::{TetherBody, TetheredFlexible};
 use nalgebra::{SVector, Vector2};
@@ -32,12 +32,15 @@ fn integrate<const N: usize, const S: usize>(
     mut see: impl FnMut(f64, &SVector<f64, S>),
 ) -> SVector<f64, S> {
     let d = Vector2::zeros();
-    let f = |t: f64, x: &SVector<f64, S>| plant.derivative(t, x, &u, &d);
     let steps = (t_end / h).round() as usize;
     let mut x = x0;
     see(0.0, &x);
     for k in 0..steps {
-        x = Rk4.step(&f, k as f64 * h, &x, h);
+        let t = k as f64 * h;
+        let f = |s: landing_core::integrator::Stage, x: &SVector<f64, S>| {
+            plant.derivative(s.time(t, h), x, &u, &d)
+        };
+        x = IntegratorKind::Rk4.step(&f, &x, h);
         see((k + 1) as f64 * h, &x);
     }
     x

@@ -2,12 +2,14 @@
 //! and closed-loop behaviour on the tethered satellite (issue 5, item 3).
 
 use landing_core::SimConfig;
-use landing_core::batch::{Batch, BatchOutput, PerCase, run};
+use landing_core::batch::{Batch, BatchOutput, PerCase, RunOptions, run};
 use landing_core::control::rbf::{MAX_NODES, centre};
-use landing_core::control::{ControlLaw, FixedTimeNtsmc, LawInput, Ntsmc, zeta, zeta_slope};
+use landing_core::control::{
+    AnyLaw, ControlLaw, FixedTimeNtsmc, LawInput, Ntsmc, zeta, zeta_slope,
+};
 use landing_core::disturbance::Disturbance;
-use landing_core::integrator::Rk4;
-use landing_core::plant::Plant;
+use landing_core::error::Validate;
+use landing_core::plant::PlantModel;
 use landing_core::plant::tether::TetheredSimplified;
 use landing_core::reference::{RefPoint, Reference};
 use nalgebra::{SMatrix, Vector2};
@@ -225,18 +227,18 @@ fn validation_follows_the_seeds_ranges() {
     assert!(fntsmc(1.0).validate().is_ok());
 }
 
-fn run_on_simplified<L: ControlLaw<2>>(law: L, t_final: f64) -> BatchOutput<2> {
+fn run_on_simplified(law: impl Into<AnyLaw<2>>, t_final: f64) -> BatchOutput<2> {
     let plant = TetheredSimplified::default();
     let deg = std::f64::consts::PI / 180.0;
     let batch = Batch {
         plants: PerCase::shared(plant),
-        laws: PerCase::shared(law),
+        laws: PerCase::shared(law.into()),
         references: PerCase::shared(Reference::default()),
         disturbances: PerCase::shared(Disturbance::none()),
         x0: vec![nalgebra::Vector4::new(deg, deg, 0.0, 0.0)],
     };
     let cfg = SimConfig::new(t_final, 0.01, 1, 1, 0).unwrap();
-    run(&batch, Rk4, &cfg).unwrap()
+    run(&batch, &cfg, &RunOptions::default()).unwrap()
 }
 
 #[test]
@@ -267,6 +269,6 @@ fn both_laws_bring_the_simplified_plant_to_rest() {
     let s0 = out.diagnostics[0];
     assert!((s0 - (0.08 * deg.powf(1.1) + 0.08 * deg.powf(0.99))).abs() < 1e-15);
     let plant = TetheredSimplified::default();
-    assert_eq!(<TetheredSimplified as Plant<2>>::STATE_NAMES[0], "phi");
+    assert_eq!(<TetheredSimplified as PlantModel<2>>::STATE_NAMES[0], "phi");
     assert!(plant.validate().is_ok());
 }

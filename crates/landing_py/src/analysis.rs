@@ -1,6 +1,7 @@
 //! Bindings of the core's theory (convergence bounds) and dispersion sampling. Scalar in,
 //! scalar out: `landing.theory` broadcasts them over arrays.
 
+use landing_core::rng::philox4x64_10;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -8,12 +9,11 @@ use pyo3::types::PyDict;
 use landing_core::dispersion::{Component, Dispersion};
 use landing_core::{ParamError, theory};
 
-use crate::errors::{InputError, param_error, to_pyerr};
-use crate::params::Params;
-use crate::specs::kind_of;
+use crate::errors::InputError;
+use crate::table::Table;
 
-fn check<T>(py: Python<'_>, r: Result<T, ParamError>) -> PyResult<T> {
-    r.map_err(|e| to_pyerr(py, param_error(&e, None)))
+fn check<T>(_py: Python<'_>, r: Result<T, ParamError>) -> PyResult<T> {
+    Ok(r.map_err(InputError::from)?)
 }
 
 /// Seed 001 Lemma 2 (k = 1) for s' = -c1 sig^e1(s) - c2 sig^e2(s).
@@ -155,22 +155,38 @@ pub fn fntsmc_bounds<'py>(
     Ok(d)
 }
 
-fn parse_dispersion(table: &Bound<'_, PyDict>) -> Result<Dispersion, InputError> {
-    let kind = kind_of(table, "dispersion")?;
-    let mut p = Params::new(format!("dispersion ({kind})"), table.clone(), None);
+/// A compiled dispersion (`landing.dispersions.Dispersion` holds one): independent normal or
+/// uniform components, drawn by case from the counter-based generator.
+#[pyclass(frozen, module = "landing._core")]
+pub struct DispersionHandle {
+    dispersion: Dispersion,
+}
+
+fn parse_dispersion(table: &Table) -> Result<Dispersion, InputError> {
+    let kind = table.kind().unwrap_or_default().to_string();
     let (a, b) = match kind.as_str() {
         "normal" => ("mean", "std"),
         "uniform" => ("low", "high"),
         other => {
-            return Err(InputError::Value(format!(
+            return Err(InputError::value(format!(
                 "unknown dispersion kind {other:?}; known: [\"normal\", \"uniform\"]"
             )));
         }
     };
-    let first = p.scalar(a)?;
-    let second = p.scalar(b)?;
+    let numbers = |key: &str| -> Result<Vec<f64>, InputError> {
+        match table.entry(key) {
+            Some(crate::table::Value::Numbers(arr)) if arr.shape.len() <= 1 => Ok(arr.data.clone()),
+            Some(crate::table::Value::Numbers(arr)) => Err(InputError::value(format!(
+                "{key} has shape {:?}; it takes a scalar or one value per component",
+                arr.shape
+            ))),
+            _ => Err(InputError::type_(format!("missing parameter {key}"))),
+        }
+    };
+    let first = numbers(a)?;
+    let second = numbers(b)?;
     if first.len() != second.len() && first.len() != 1 && second.len() != 1 {
-        return Err(InputError::Shape(format!(
+        return Err(InputError::value(format!(
             "{a} has {} components and {b} has {}",
             first.len(),
             second.len()
@@ -193,7 +209,7 @@ fn parse_dispersion(table: &Bound<'_, PyDict>) -> Result<Dispersion, InputError>
     let d = Dispersion { components };
     d.validate().map_err(|e| {
         let j = e.axis.unwrap_or(0);
-        InputError::Value(format!(
+        InputError::value(format!(
             "{}[{j}] = {} violates {}",
             e.param, e.value, e.rule
         ))
@@ -201,56 +217,41 @@ fn parse_dispersion(table: &Bound<'_, PyDict>) -> Result<Dispersion, InputError>
     Ok(d)
 }
 
-/// Cases `first_case .. first_case + n` of a dispersion table, shape (n, components).
-#[pyfunction]
-pub fn sample_dispersion<'py>(
-    py: Python<'py>,
-    table: Bound<'py, PyDict>,
-    seed: u64,
-    first_case: u64,
-    n: usize,
-) -> PyResult<Bound<'py, PyAny>> {
-    let d = parse_dispersion(&table).map_err(|e| to_pyerr(py, e.context("dispersion")))?;
-    let dim = d.dim();
-    let data = py.detach(|| d.sample(seed, first_case, n));
-    Ok(PyArray1::from_vec(py, data).reshape([n, dim])?.into_any())
-}
-
-/// Validates a dispersion table; returns its number of components.
-#[pyfunction]
-pub fn check_dispersion(py: Python<'_>, table: Bound<'_, PyDict>) -> PyResult<usize> {
-    parse_dispersion(&table)
-        .map(|d| d.dim())
-        .map_err(|e| to_pyerr(py, e.context("dispersion")))
-}
-
-/// Per-axis bound on |d_i(t)| of a disturbance table shared by all cases: what the theory
-/// calls the disturbance's upper bound (|constant| + sum of |amplitudes| + noise bound).
-#[pyfunction]
-pub fn disturbance_bound(
-    py: Python<'_>,
-    table: Bound<'_, PyDict>,
-    axes: usize,
-) -> PyResult<Vec<f64>> {
-    fn bound<const D: usize>(table: &Bound<'_, PyDict>) -> Result<Vec<f64>, InputError> {
-        let mut p = Params::new("disturbance", table.clone(), None);
-        let d =
-            crate::specs::parse_disturbance::<D>(&mut p).map_err(|e| e.context("disturbance"))?;
-        if d.len() != 1 {
-            return Err(InputError::Shape(
-                "the bound needs a disturbance shared by all cases".into(),
-            ));
-        }
-        Ok(d.get(0).bound().as_slice().to_vec())
+#[pymethods]
+impl DispersionHandle {
+    #[new]
+    fn new(table: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let t = Table::from_py(table).map_err(|e| e.context("dispersion"))?;
+        Ok(Self {
+            dispersion: parse_dispersion(&t).map_err(|e| e.context("dispersion"))?,
+        })
     }
-    let r = match axes {
-        3 => bound::<3>(&table),
-        2 => bound::<2>(&table),
-        _ => Err(InputError::Value(format!(
-            "axes = {axes} violates axes in (2, 3)"
-        ))),
-    };
-    r.map_err(|e| to_pyerr(py, e))
+
+    /// Number of components.
+    #[getter]
+    fn dim(&self) -> usize {
+        self.dispersion.dim()
+    }
+
+    /// Cases `first_case .. first_case + n`, shape (n, components).
+    fn sample<'py>(
+        &self,
+        py: Python<'py>,
+        seed: u64,
+        first_case: u64,
+        n: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let dim = self.dispersion.dim();
+        let d = &self.dispersion;
+        let data = py.detach(|| d.sample(seed, first_case, n));
+        Ok(PyArray1::from_vec(py, data).reshape([n, dim])?.into_any())
+    }
+}
+
+/// One Philox4x64-10 block, exposed so the tests can compare with `numpy.random.Philox`.
+#[pyfunction]
+fn philox4x64(counter: [u64; 4], key: [u64; 2]) -> [u64; 4] {
+    philox4x64_10(counter, key)
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -260,11 +261,10 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(mss_bounds, m)?)?;
     m.add_function(wrap_pyfunction!(min_final_time, m)?)?;
     m.add_function(wrap_pyfunction!(min_time_to_rest, m)?)?;
-    m.add_function(wrap_pyfunction!(sample_dispersion, m)?)?;
-    m.add_function(wrap_pyfunction!(check_dispersion, m)?)?;
-    m.add_function(wrap_pyfunction!(disturbance_bound, m)?)?;
     m.add_function(wrap_pyfunction!(fntsmc_ts_printed, m)?)?;
     m.add_function(wrap_pyfunction!(fntsmc_td_printed, m)?)?;
     m.add_function(wrap_pyfunction!(fntsmc_bounds, m)?)?;
+    m.add_function(wrap_pyfunction!(philox4x64, m)?)?;
+    m.add_class::<DispersionHandle>()?;
     Ok(())
 }

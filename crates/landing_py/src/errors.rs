@@ -1,9 +1,12 @@
-//! Errors at the boundary. The exception classes live in `landing.errors` (Python), so that
-//! one base class, `LandingError`, can sit under both ValueError and TypeError; they are looked
-//! up when an error is raised.
+//! Errors at the boundary, converted in one place.
+//!
+//! The exception classes live in `landing.errors` (Python), so that one base class,
+//! `LandingError`, can sit under both ValueError and TypeError; they are looked up once and
+//! cached. Every binding function returns `Result<_, InputError>` or `PyResult` and uses `?`.
 
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyMemoryError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
 use pyo3::types::PyType;
 
 use landing_core::{BatchError, ParamError};
@@ -11,9 +14,7 @@ use landing_core::{BatchError, ParamError};
 /// An input problem found while reading arguments.
 #[derive(Debug)]
 pub enum InputError {
-    /// Wrong shape or length (ValueError).
-    Shape(String),
-    /// Value outside the rule (ValueError).
+    /// Wrong shape, length or value (ValueError).
     Value(String),
     /// Wrong type (TypeError).
     Type(String),
@@ -22,14 +23,17 @@ pub enum InputError {
 }
 
 impl InputError {
-    pub fn is_shape(&self) -> bool {
-        matches!(self, Self::Shape(_))
+    pub fn value(msg: impl Into<String>) -> Self {
+        Self::Value(msg.into())
+    }
+
+    pub fn type_(msg: impl Into<String>) -> Self {
+        Self::Type(msg.into())
     }
 
     /// Prefix the message with where the input came from.
     pub fn context(self, owner: &str) -> Self {
         match self {
-            Self::Shape(m) => Self::Shape(format!("{owner}: {m}")),
             Self::Value(m) => Self::Value(format!("{owner}: {m}")),
             Self::Type(m) => Self::Type(format!("{owner}: {m}")),
             e @ Self::Py(_) => e,
@@ -40,6 +44,12 @@ impl InputError {
 impl From<PyErr> for InputError {
     fn from(e: PyErr) -> Self {
         Self::Py(e)
+    }
+}
+
+impl From<ParamError> for InputError {
+    fn from(e: ParamError) -> Self {
+        param_error(&e, None)
     }
 }
 
@@ -63,50 +73,74 @@ pub fn param_error(e: &ParamError, case: Option<usize>) -> InputError {
     ))
 }
 
-fn landing_error<'py>(py: Python<'py>, name: &str) -> Option<Bound<'py, PyType>> {
-    let module = py.import("landing.errors").ok()?;
-    module.getattr(name).ok()?.cast_into::<PyType>().ok()
+/// The library's exception classes, looked up in `landing.errors` once.
+struct Classes {
+    parameter: Py<PyType>,
+    parameter_type: Py<PyType>,
+    simulation: Py<PyType>,
 }
 
-fn raise(py: Python<'_>, class: &str, fallback: fn(String) -> PyErr, msg: String) -> PyErr {
-    match landing_error(py, class) {
-        Some(ty) => PyErr::from_type(ty, msg),
+static CLASSES: PyOnceLock<Option<Classes>> = PyOnceLock::new();
+
+fn classes(py: Python<'_>) -> Option<&Classes> {
+    CLASSES
+        .get_or_init(py, || {
+            let m = py.import("landing.errors").ok()?;
+            let get = |name: &str| -> Option<Py<PyType>> {
+                Some(m.getattr(name).ok()?.cast_into::<PyType>().ok()?.unbind())
+            };
+            Some(Classes {
+                parameter: get("ParameterError")?,
+                parameter_type: get("ParameterTypeError")?,
+                simulation: get("SimulationError")?,
+            })
+        })
+        .as_ref()
+}
+
+fn raise(which: fn(&Classes) -> &Py<PyType>, fallback: fn(String) -> PyErr, msg: String) -> PyErr {
+    Python::attach(|py| match classes(py) {
+        Some(c) => PyErr::from_type(which(c).bind(py).clone(), msg),
         None => fallback(msg),
-    }
+    })
 }
 
-pub fn to_pyerr(py: Python<'_>, e: InputError) -> PyErr {
-    match e {
-        InputError::Shape(m) | InputError::Value(m) => {
-            raise(py, "ParameterError", PyValueError::new_err::<String>, m)
+impl From<InputError> for PyErr {
+    fn from(e: InputError) -> Self {
+        match e {
+            InputError::Value(m) => raise(|c| &c.parameter, PyValueError::new_err::<String>, m),
+            InputError::Type(m) => raise(|c| &c.parameter_type, PyTypeError::new_err::<String>, m),
+            InputError::Py(e) => e,
         }
-        InputError::Type(m) => raise(py, "ParameterTypeError", PyTypeError::new_err::<String>, m),
-        InputError::Py(e) => e,
     }
 }
 
-pub fn batch_error(py: Python<'_>, e: BatchError) -> PyErr {
+/// A batch that could not run.
+pub fn batch_error(e: BatchError) -> PyErr {
     match e {
-        BatchError::Allocation { .. } => pyo3::exceptions::PyMemoryError::new_err(e.to_string()),
-        BatchError::Length { .. } => raise(
-            py,
-            "ParameterError",
+        BatchError::Allocation { .. } => PyMemoryError::new_err(e.to_string()),
+        BatchError::Length { .. } | BatchError::Shape { .. } | BatchError::Level(_) => raise(
+            |c| &c.parameter,
             PyValueError::new_err::<String>,
             e.to_string(),
         ),
-        BatchError::ThreadPool(_) => raise(
-            py,
-            "SimulationError",
+        BatchError::ThreadPool(_) | BatchError::Cancelled => raise(
+            |c| &c.simulation,
             PyRuntimeError::new_err::<String>,
             e.to_string(),
         ),
     }
 }
 
-pub fn internal_error(py: Python<'_>, what: String) -> PyErr {
+/// A panic in the core, as an exception (never an abort).
+pub fn internal_error(panic: Box<dyn std::any::Any + Send>) -> PyErr {
+    let what = panic
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| panic.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "panic".into());
     raise(
-        py,
-        "SimulationError",
+        |c| &c.simulation,
         PyRuntimeError::new_err::<String>,
         format!("internal error in the simulation core ({what}); this is a bug, please report it"),
     )

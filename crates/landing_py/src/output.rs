@@ -29,13 +29,19 @@ fn array3<'py>(
     Ok(array1(py, v).reshape([a, b, c])?.into_any())
 }
 
+/// A batch's output and the names that go with it.
+pub struct Parts<const D: usize> {
+    pub out: BatchOutput<D>,
+    pub state_names: &'static [&'static str],
+    pub control_names: &'static [&'static str],
+    pub layout: Vec<(&'static str, usize)>,
+}
+
 pub fn to_dict<'py, const D: usize>(
     py: Python<'py>,
-    out: BatchOutput<D>,
-    state_names: &[&str],
-    control_names: &[&str],
-    diagnostic_layout: &[(&str, usize)],
+    parts: Parts<D>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let out = parts.out;
     let n = out.n_cases;
     let nr = out.n_records();
     let d = PyDict::new(py);
@@ -133,9 +139,10 @@ pub fn to_dict<'py, const D: usize>(
         array2(py, out.final_state, n, out.state_dim)?,
     )?;
     d.set_item("metrics", metrics)?;
-    d.set_item("state_names", state_names.to_vec())?;
-    d.set_item("control_names", control_names.to_vec())?;
-    d.set_item("diagnostic_layout", diagnostic_layout.to_vec())?;
+    d.set_item("state_names", parts.state_names.to_vec())?;
+    d.set_item("control_names", parts.control_names.to_vec())?;
+    d.set_item("diagnostic_layout", parts.layout)?;
     d.set_item("axes", D)?;
+    d.set_item("kernel", out.level.name())?;
     Ok(d)
 }

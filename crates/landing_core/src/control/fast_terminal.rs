@@ -13,44 +13,54 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require, require_axes};
+use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::{Mask, Real, sub};
 use crate::math::{Switch, sgn};
+use crate::params::{FromParams, ParamSource};
 
 /// The fast terminal surface and its equivalent control, shared with the fuzzy-blended law.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TerminalSurface<const D: usize> {
-    pub alpha: SVector<f64, D>,
-    pub beta: SVector<f64, D>,
-    pub p: SVector<f64, D>,
-    pub q: SVector<f64, D>,
+pub struct TerminalSurface<const D: usize, R = f64> {
+    pub alpha: SVector<R, D>,
+    pub beta: SVector<R, D>,
+    pub p: SVector<R, D>,
+    pub q: SVector<R, D>,
     /// Floor on |e| in |e|^(p/q - 1), in units of q.
-    pub e_floor: f64,
+    pub e_floor: R,
 }
 
-impl<const D: usize> TerminalSurface<D> {
+crate::gather_struct!(TerminalSurface<const D: usize, R> {
+    lanes: [alpha, beta, p, q, e_floor],
+    shared: [],
+});
+
+impl<const D: usize, R: Real> TerminalSurface<D, R> {
     /// (s, u_eq) at this instant.
     #[inline(always)]
-    pub fn evaluate(&self, input: &LawInput<D>) -> (SVector<f64, D>, SVector<f64, D>) {
+    pub fn evaluate(&self, input: &LawInput<D, R>) -> (SVector<R, D>, SVector<R, D>) {
         let mut s = SVector::zeros();
-        let mut eq = input.reference.acceleration - input.drift;
+        let mut eq = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let e = input.e[i];
             let r = self.p[i] / self.q[i];
             let abs = e.abs();
-            // |e|^r once; |e|^(r-1) = |e|^r / |e| away from the floor
-            let pow = if abs > 0.0 { abs.powf(r) } else { 0.0 };
+            // |e|^r once (0 at e = 0); |e|^(r-1) = |e|^r / |e| away from the floor
+            let pow = abs.powf(r);
             s[i] = input.de[i] + self.alpha[i] * e + self.beta[i] * sgn(e) * pow;
-            let slope = if abs >= self.e_floor {
+            let above = abs.simd_ge(self.e_floor);
+            let slope = if above.all() {
                 pow / abs
             } else {
-                self.e_floor.powf(r - 1.0)
+                R::select(above, pow / abs, self.e_floor.powf(r - 1.0))
             };
             eq[i] -= (self.alpha[i] + self.beta[i] * r * slope) * input.de[i];
         }
         (s, eq)
     }
+}
 
-    pub fn validate(&self) -> Result<(), ParamError> {
+impl<const D: usize> Validate for TerminalSurface<D> {
+    fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.alpha.as_slice(), "alpha", "alpha > 0", |v| v > 0.0)?;
         require_axes(self.beta.as_slice(), "beta", "beta > 0", |v| v > 0.0)?;
         require_axes(self.p.as_slice(), "p", "p > 0", |v| v > 0.0)?;
@@ -62,31 +72,66 @@ impl<const D: usize> TerminalSurface<D> {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FastTerminalSmc<const D: usize> {
-    pub surface: TerminalSurface<D>,
-    pub k: SVector<f64, D>,
-    pub switch: Switch,
+pub struct FastTerminalSmc<const D: usize, R = f64> {
+    pub surface: TerminalSurface<D, R>,
+    pub k: SVector<R, D>,
+    pub switch: Switch<R>,
 }
 
-impl<const D: usize> ControlLaw<D> for FastTerminalSmc<D> {
+crate::gather_struct!(FastTerminalSmc<const D: usize, R> {
+    lanes: [surface, k, switch],
+    shared: [],
+});
+
+impl<const D: usize, R: Real> ControlLaw<R, D> for FastTerminalSmc<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
 
-    fn start(&self, _input: &LawInput<D>) {}
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
+    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
         let (s, eq) = self.surface.evaluate(input);
-        SVector::from_fn(|i, _| eq[i] - self.k[i] * self.switch.apply(s[i]))
+        let mut a = eq;
+        for i in 0..D {
+            a[i] = eq[i] - self.k[i] * self.switch.apply(s[i]);
+        }
+        a
     }
 
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.surface.evaluate(input).0.as_slice());
     }
+}
 
+impl<const D: usize> Validate for FastTerminalSmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
         require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for TerminalSurface<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            alpha: p.axes("alpha")?,
+            beta: p.axes("beta")?,
+            p: p.axes("p")?,
+            q: p.axes("q")?,
+            e_floor: p.scalar("e_floor")?,
+        })
+    }
+}
+
+impl<const D: usize> FromParams for FastTerminalSmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: TerminalSurface::from_params(p)?,
+            k: p.axes("k")?,
+            switch: Switch::from_params(p)?,
+        })
     }
 }

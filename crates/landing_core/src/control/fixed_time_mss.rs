@@ -19,8 +19,9 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require, require_axes};
-use crate::math::sgn;
+use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::{Mask, Real, sub};
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MssVariant {
@@ -42,129 +43,132 @@ impl MssVariant {
 
 /// Gains per axis, with the seed's symbols (`gamma1`, `gamma2` are its exponents g1, g2).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FixedTimeMss<const D: usize> {
-    pub beta1: SVector<f64, D>,
-    pub beta2: SVector<f64, D>,
-    pub q1: SVector<f64, D>,
-    pub q2: SVector<f64, D>,
-    pub alpha1: SVector<f64, D>,
-    pub alpha2: SVector<f64, D>,
-    pub gamma1: SVector<f64, D>,
-    pub gamma2: SVector<f64, D>,
+pub struct FixedTimeMss<const D: usize, R = f64> {
+    pub beta1: SVector<R, D>,
+    pub beta2: SVector<R, D>,
+    pub q1: SVector<R, D>,
+    pub q2: SVector<R, D>,
+    pub alpha1: SVector<R, D>,
+    pub alpha2: SVector<R, D>,
+    pub gamma1: SVector<R, D>,
+    pub gamma2: SVector<R, D>,
+    /// Shared by a block.
     pub variant: MssVariant,
     /// Floor on |s1| in the negative powers (the singularity guard), in units of q.
-    pub s1_floor: f64,
+    pub s1_floor: R,
 }
+
+crate::gather_struct!(FixedTimeMss<const D: usize, R> {
+    lanes: [beta1, beta2, q1, q2, alpha1, alpha2, gamma1, gamma2, s1_floor],
+    shared: [variant],
+});
 
 /// The powers of one axis that the surfaces and the law share: with l = ln|s1|, one logarithm
 /// and two exponentials give |s1|^q1 and |s1|^q2, and every other power of |s1| the law needs
-/// is a product or quotient of those (SPEC 10: |s|^(2q-1) = (|s|^q)^2 / |s|).
+/// is a product or quotient of those (|s|^(2q-1) = (|s|^q)^2 / |s|). At s1 = 0, ln gives -inf
+/// and both powers are exactly 0.
 #[derive(Clone, Copy, Debug)]
-struct AxisPowers {
+struct AxisPowers<R> {
     /// |s1|
-    abs: f64,
+    abs: R,
     /// |s1|^q1, |s1|^q2
-    p1: f64,
-    p2: f64,
+    p1: R,
+    p2: R,
     /// sgn(s1)
-    sign: f64,
+    sign: R,
 }
 
-impl AxisPowers {
+impl<R: Real> AxisPowers<R> {
     #[inline(always)]
-    fn new(s1: f64, q1: f64, q2: f64) -> Self {
+    fn new(s1: R, q1: R, q2: R) -> Self {
         let abs = s1.abs();
-        if abs == 0.0 {
-            return Self {
-                abs,
-                p1: 0.0,
-                p2: 0.0,
-                sign: 0.0,
-            };
-        }
         let l = abs.ln();
         Self {
             abs,
             p1: (q1 * l).exp(),
             p2: (q2 * l).exp(),
-            sign: sgn(s1),
+            sign: s1.signum0(),
         }
     }
 }
 
-/// `sig^g1(s) * a1 + sig^g2(s) * a2` with one logarithm.
+/// `sig^g1(s) * a1 + sig^g2(s) * a2` with one logarithm (0 at s = 0: ln gives -inf).
 #[inline(always)]
-fn two_sig(s: f64, a1: f64, g1: f64, a2: f64, g2: f64) -> f64 {
-    let abs = s.abs();
-    if abs == 0.0 {
-        return 0.0;
-    }
-    let l = abs.ln();
-    sgn(s) * (a1 * (g1 * l).exp() + a2 * (g2 * l).exp())
+fn two_sig<R: Real>(s: R, a1: R, g1: R, a2: R, g2: R) -> R {
+    let l = s.abs().ln();
+    s.signum0() * (a1 * (g1 * l).exp() + a2 * (g2 * l).exp())
 }
 
-impl<const D: usize> FixedTimeMss<D> {
+impl<const D: usize, R: Real> FixedTimeMss<D, R> {
     #[inline(always)]
-    fn powers(&self, i: usize, s1: f64) -> AxisPowers {
+    fn powers(&self, i: usize, s1: R) -> AxisPowers<R> {
         AxisPowers::new(s1, self.q1[i], self.q2[i])
     }
 
     /// s2 on axis i (eq. 21).
     #[inline(always)]
-    fn s2_axis(&self, i: usize, p: &AxisPowers, ds1: f64) -> f64 {
+    fn s2_axis(&self, i: usize, p: &AxisPowers<R>, ds1: R) -> R {
         ds1 + p.sign * (self.beta1[i] * p.p1 + self.beta2[i] * p.p2)
     }
 
     /// Second sliding variable (eq. 21).
-    pub fn s2(&self, input: &LawInput<D>) -> SVector<f64, D> {
-        SVector::from_fn(|i, _| self.s2_axis(i, &self.powers(i, input.e[i]), input.de[i]))
+    #[inline(always)]
+    pub fn s2(&self, input: &LawInput<D, R>) -> SVector<R, D> {
+        // A loop, not `vector(|i| ..)`: the closure is too large to be inlined reliably, and
+        // out of line it would run without the kernel's instruction set.
+        let mut s2 = SVector::<R, D>::from_element(R::zero());
+        for i in 0..D {
+            s2[i] = self.s2_axis(i, &self.powers(i, input.e[i]), input.de[i]);
+        }
+        s2
     }
 
-    /// `|s1|^e` for a negative exponent e, computed from the shared powers unless the guard
-    /// applies (|s1| below the floor, where the power is taken at the floor).
+    /// `|s1|^e` for an exponent e that may be negative: `shared` (computed from the shared
+    /// powers) where `use_shared` holds, the power at the floor elsewhere (|s1| below the floor,
+    /// the singularity guard). The floor's power is computed only when some lane needs it.
     #[inline(always)]
-    fn guarded(&self, p: &AxisPowers, shared: impl Fn() -> f64, e: f64) -> f64 {
-        if p.abs >= self.s1_floor {
-            shared()
+    fn guarded(&self, use_shared: R::Mask, shared: R, e: R) -> R {
+        if use_shared.all() {
+            shared
         } else {
-            self.s1_floor.powf(e)
+            R::select(use_shared, shared, self.s1_floor.powf(e))
         }
     }
 }
 
-impl<const D: usize> ControlLaw<D> for FixedTimeMss<D> {
+impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s1", "s2"];
 
-    fn start(&self, _input: &LawInput<D>) {}
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
-        let mut a = input.reference.acceleration - input.drift;
+    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
+        let mut a = sub(&input.reference.acceleration, &input.drift);
+        let zero = R::zero();
         for i in 0..D {
             let (b1, b2, q1, q2) = (self.beta1[i], self.beta2[i], self.q1[i], self.q2[i]);
             let p = self.powers(i, input.e[i]);
             let s2 = self.s2_axis(i, &p, input.de[i]);
+            let nonzero = p.abs.simd_gt(zero);
+            let inv = R::one() / p.abs;
             let cancel = match self.variant {
                 // |s1|^(2q1-1), |s1|^(2q2-1), |s1|^(q1+q2-1); only the first can be singular
-                MssVariant::Printed if p.abs > 0.0 => {
-                    let inv = 1.0 / p.abs;
-                    let e1 = 2.0 * q1 - 1.0;
-                    let t1 = if e1 >= 0.0 {
-                        p.p1 * p.p1 * inv
-                    } else {
-                        self.guarded(&p, || p.p1 * p.p1 * inv, e1)
-                    };
-                    p.sign
+                MssVariant::Printed => {
+                    let e1 = R::splat(2.0) * q1 - 1.0;
+                    let no_guard = e1.simd_ge(zero) | p.abs.simd_ge(self.s1_floor);
+                    let t1 = self.guarded(no_guard, p.p1 * p.p1 * inv, e1);
+                    let c = p.sign
                         * (b1 * b1 * q1 * t1
                             + b2 * b2 * q2 * p.p2 * p.p2 * inv
-                            + b1 * b2 * (q1 + q2) * p.p1 * p.p2 * inv)
+                            + b1 * b2 * (q1 + q2) * p.p1 * p.p2 * inv);
+                    R::select(nonzero, c, zero)
                 }
-                MssVariant::Printed => 0.0,
                 // |s1|^(q1-1) (singular, guarded) and |s1|^(q2-1)
                 MssVariant::Exact => {
-                    let t1 = self.guarded(&p, || p.p1 / p.abs, q1 - 1.0);
-                    let t2 = if p.abs > 0.0 { p.p2 / p.abs } else { 0.0 };
+                    let t1 = self.guarded(p.abs.simd_ge(self.s1_floor), p.p1 / p.abs, q1 - 1.0);
+                    let t2 = R::select(nonzero, p.p2 / p.abs, zero);
                     -(b1 * q1 * t1 + b2 * q2 * t2) * input.de[i]
                 }
             };
@@ -180,11 +184,14 @@ impl<const D: usize> ControlLaw<D> for FixedTimeMss<D> {
         a
     }
 
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(input.e.as_slice());
         out[D..2 * D].copy_from_slice(self.s2(input).as_slice());
     }
+}
 
+impl<const D: usize> Validate for FixedTimeMss<D> {
     fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.beta1.as_slice(), "beta1", "beta1 > 0", |v| v > 0.0)?;
         require_axes(self.beta2.as_slice(), "beta2", "beta2 > 0", |v| v > 0.0)?;
@@ -204,5 +211,23 @@ impl<const D: usize> ControlLaw<D> for FixedTimeMss<D> {
             self.s1_floor,
             "s1_floor > 0",
         )
+    }
+}
+
+impl<const D: usize> FromParams for FixedTimeMss<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            beta1: p.axes("beta1")?,
+            beta2: p.axes("beta2")?,
+            q1: p.axes("q1")?,
+            q2: p.axes("q2")?,
+            alpha1: p.axes("alpha1")?,
+            alpha2: p.axes("alpha2")?,
+            gamma1: p.axes("gamma1")?,
+            gamma2: p.axes("gamma2")?,
+            variant: [MssVariant::Printed, MssVariant::Exact]
+                [p.choice("variant", &MssVariant::NAMES)?],
+            s1_floor: p.scalar("s1_floor")?,
+        })
     }
 }

@@ -37,130 +37,178 @@ use nalgebra::{SMatrix, SVector};
 
 use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require, require_axes};
-use crate::math::{sgn, sig};
+use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::{Mask, Real, sub, vector};
+use crate::math::sgn;
+use crate::params::{FromParams, ParamSource};
 
-/// zeta of eq. 21 with exponent p and threshold sigma.
+/// zeta of eq. 21 with exponent p and threshold sigma (one case).
 #[inline(always)]
 pub fn zeta(e: f64, p: f64, sigma: f64) -> f64 {
-    let a = e.abs();
-    if a > sigma {
-        sig(e, p)
-    } else {
-        let l = (2.0 - p) * sigma.powf(p - 1.0);
-        let m = (p - 1.0) * sigma.powf(p - 2.0);
-        l * e + m * e * a
-    }
+    ZetaPair::new(e, [p, p], sigma).zeta[0]
 }
 
-/// d zeta / d e1; eq. 23's zeta' is this times e2.
+/// d zeta / d e1 (one case); eq. 23's zeta' is this times e2.
 #[inline(always)]
 pub fn zeta_slope(e: f64, p: f64, sigma: f64) -> f64 {
-    let a = e.abs();
-    if a > sigma {
-        p * a.powf(p - 1.0)
-    } else {
-        let l = (2.0 - p) * sigma.powf(p - 1.0);
-        let m = (p - 1.0) * sigma.powf(p - 2.0);
-        l + 2.0 * m * a
+    ZetaPair::new(e, [p, p], sigma).slope[0]
+}
+
+/// zeta_1, zeta_2 of eq. 21 and their slopes at e1, for the exponents p1, p2 and the
+/// threshold sigma of one axis. Outside the threshold the powers of |e1| share one logarithm;
+/// inside, the quadratic's coefficients (powers of sigma) are computed only when some lane is
+/// there.
+#[derive(Clone, Copy, Debug)]
+struct ZetaPair<R> {
+    zeta: [R; 2],
+    slope: [R; 2],
+}
+
+impl<R: Real> ZetaPair<R> {
+    #[inline(always)]
+    fn new(e: R, p: [R; 2], sigma: R) -> Self {
+        let a = e.abs();
+        let l = a.ln();
+        let sign = e.signum0();
+        let outside = a.simd_gt(sigma);
+        let mut zeta = [R::zero(); 2];
+        let mut slope = [R::zero(); 2];
+        for k in 0..2 {
+            // |e|^p and p |e|^(p-1) = p |e|^p / |e|
+            let pw = (p[k] * l).exp();
+            zeta[k] = sign * pw;
+            slope[k] = p[k] * pw / a;
+        }
+        if !outside.all() {
+            let ls = sigma.ln();
+            for k in 0..2 {
+                // l_k = (2 - p) sigma^(p - 1), m_k = (p - 1) sigma^(p - 2)
+                let s1 = ((p[k] - 1.0) * ls).exp();
+                let lk = (R::splat(2.0) - p[k]) * s1;
+                let mk = (p[k] - 1.0) * (s1 / sigma);
+                zeta[k] = R::select(outside, zeta[k], lk * e + mk * e * a);
+                slope[k] = R::select(outside, slope[k], lk + R::splat(2.0) * mk * a);
+            }
+        }
+        Self { zeta, slope }
     }
 }
 
 /// Gains per axis with the seed's symbols; `gamma` is Gamma's diagonal value.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FixedTimeNtsmc<const D: usize> {
-    pub k1: SVector<f64, D>,
-    pub k2: SVector<f64, D>,
-    pub k3: SVector<f64, D>,
+pub struct FixedTimeNtsmc<const D: usize, R = f64> {
+    pub k1: SVector<R, D>,
+    pub k2: SVector<R, D>,
+    pub k3: SVector<R, D>,
     /// Bound of the network's approximation error, in actuator units (N, N m).
-    pub eps_max: SVector<f64, D>,
-    pub p1: SVector<f64, D>,
-    pub p2: SVector<f64, D>,
-    pub alpha_s: SVector<f64, D>,
-    pub beta_s: SVector<f64, D>,
-    pub sigma_phi: SVector<f64, D>,
+    pub eps_max: SVector<R, D>,
+    pub p1: SVector<R, D>,
+    pub p2: SVector<R, D>,
+    pub alpha_s: SVector<R, D>,
+    pub beta_s: SVector<R, D>,
+    pub sigma_phi: SVector<R, D>,
     /// Adaptation gain Gamma = gamma I; 0 switches the network off.
-    pub gamma: SVector<f64, D>,
-    /// Centres per input of each axis's network (rbf_nodes^2 nodes), 1..=7.
+    pub gamma: SVector<R, D>,
+    /// Centres per input of each axis's network (rbf_nodes^2 nodes), 1..=7. Shared by a block.
     pub rbf_nodes: usize,
     /// e1 and e2 at the edge of the centre grid: the inputs are e1 / rbf_scale_e1 and
     /// e2 / rbf_scale_e2.
-    pub rbf_scale_e1: SVector<f64, D>,
-    pub rbf_scale_e2: SVector<f64, D>,
+    pub rbf_scale_e1: SVector<R, D>,
+    pub rbf_scale_e2: SVector<R, D>,
     /// Gaussian width b on the normalised inputs.
-    pub rbf_width: SVector<f64, D>,
+    pub rbf_width: SVector<R, D>,
 }
+
+crate::gather_struct!(FixedTimeNtsmc<const D: usize, R> {
+    lanes: [
+        k1, k2, k3, eps_max, p1, p2, alpha_s, beta_s, sigma_phi, gamma, rbf_scale_e1,
+        rbf_scale_e2, rbf_width,
+    ],
+    shared: [rbf_nodes],
+});
 
 /// What the law computes on one axis at one instant.
 #[derive(Clone, Copy, Debug)]
-struct Axis {
-    s: f64,
+struct Axis<R> {
+    s: R,
+    /// ln |s|, shared by the powers of s in the reaching law and the adaptation
+    ln_abs_s: R,
     /// K1 zeta1' + K2 zeta2'
-    surface_rate: f64,
-    phi: [f64; MAX_NODES],
+    surface_rate: R,
+    phi: [R; MAX_NODES],
 }
 
-impl<const D: usize> FixedTimeNtsmc<D> {
+/// `sig^a(s)` from ln|s| (0 at s = 0, where ln|s| = -inf, for a > 0).
+#[inline(always)]
+fn sig_from_ln<R: Real>(s: R, ln_abs: R, a: R) -> R {
+    sgn(s) * (a * ln_abs).exp()
+}
+
+impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
     #[inline(always)]
-    fn axis(&self, i: usize, input: &LawInput<D>) -> Axis {
+    fn axis(&self, i: usize, input: &LawInput<D, R>) -> Axis<R> {
         let (e1, e2) = (input.e[i], input.de[i]);
-        let (k1, k2, sg) = (self.k1[i], self.k2[i], self.sigma_phi[i]);
-        let (p1, p2) = (self.p1[i], self.p2[i]);
-        let s = e2 + k1 * zeta(e1, p1, sg) + k2 * zeta(e1, p2, sg);
-        let surface_rate = (k1 * zeta_slope(e1, p1, sg) + k2 * zeta_slope(e1, p2, sg)) * e2;
-        let z = [e1 / self.rbf_scale_e1[i], e2 / self.rbf_scale_e2[i]];
+        let (k1, k2) = (self.k1[i], self.k2[i]);
+        let z = ZetaPair::new(e1, [self.p1[i], self.p2[i]], self.sigma_phi[i]);
+        let s = e2 + k1 * z.zeta[0] + k2 * z.zeta[1];
+        let surface_rate = (k1 * z.slope[0] + k2 * z.slope[1]) * e2;
+        let zn = [e1 / self.rbf_scale_e1[i], e2 / self.rbf_scale_e2[i]];
         Axis {
             s,
+            ln_abs_s: s.abs().ln(),
             surface_rate,
-            phi: rbf::basis(self.rbf_nodes, z, self.rbf_width[i]),
+            phi: rbf::basis(self.rbf_nodes, zn, self.rbf_width[i]),
         }
     }
 
     /// The sliding variable s per axis (eq. 20).
-    pub fn s(&self, input: &LawInput<D>) -> SVector<f64, D> {
-        SVector::from_fn(|i, _| self.axis(i, input).s)
+    #[inline(always)]
+    pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
+        vector(|i| self.axis(i, input).s)
     }
 
     /// The network's estimate W^T Phi of the unknown terms per axis, in actuator units.
     pub fn estimate(
         &self,
-        weights: &SMatrix<f64, MAX_NODES, D>,
-        input: &LawInput<D>,
-    ) -> SVector<f64, D> {
-        SVector::from_fn(|i, _| {
+        weights: &SMatrix<R, MAX_NODES, D>,
+        input: &LawInput<D, R>,
+    ) -> SVector<R, D> {
+        vector(|i| {
             let phi = self.axis(i, input).phi;
             self.output(weights, i, &phi)
         })
     }
 
     #[inline(always)]
-    fn output(
-        &self,
-        weights: &SMatrix<f64, MAX_NODES, D>,
-        i: usize,
-        phi: &[f64; MAX_NODES],
-    ) -> f64 {
+    fn output(&self, weights: &SMatrix<R, MAX_NODES, D>, i: usize, phi: &[R; MAX_NODES]) -> R {
         let n = self.rbf_nodes * self.rbf_nodes;
-        (0..n).map(|j| weights[(j, i)] * phi[j]).sum()
+        let mut sum = R::zero();
+        for j in 0..n {
+            sum += weights[(j, i)] * phi[j];
+        }
+        sum
     }
 }
 
-impl<const D: usize> ControlLaw<D> for FixedTimeNtsmc<D> {
+impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
     /// The network weights, one column per axis (rows past rbf_nodes^2 stay zero).
-    type Memory = SMatrix<f64, MAX_NODES, D>;
+    type Memory = SMatrix<R, MAX_NODES, D>;
     const DIAGNOSTICS: &'static [&'static str] = &["s", "rbf"];
 
-    fn start(&self, _input: &LawInput<D>) -> Self::Memory {
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) -> Self::Memory {
         SMatrix::zeros()
     }
 
     #[inline(always)]
-    fn command(&self, weights: &Self::Memory, input: &LawInput<D>) -> SVector<f64, D> {
-        let mut a = input.reference.acceleration - input.drift;
+    fn command(&self, weights: &Self::Memory, input: &LawInput<D, R>) -> SVector<R, D> {
+        let mut a = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let ax = self.axis(i, input);
             let k3 = self.k3[i];
-            let reach = k3 * (sig(ax.s, self.alpha_s[i]) + sig(ax.s, self.beta_s[i]));
+            let reach = k3
+                * (sig_from_ln(ax.s, ax.ln_abs_s, self.alpha_s[i])
+                    + sig_from_ln(ax.s, ax.ln_abs_s, self.beta_s[i]));
             let compensation = self.output(weights, i, &ax.phi) + self.eps_max[i] * sgn(ax.s);
             a[i] -= ax.surface_rate + reach + compensation / input.inertia[i];
         }
@@ -168,32 +216,37 @@ impl<const D: usize> ControlLaw<D> for FixedTimeNtsmc<D> {
     }
 
     #[inline(always)]
-    fn advance(&self, weights: &mut Self::Memory, input: &LawInput<D>) {
+    fn advance(&self, weights: &mut Self::Memory, input: &LawInput<D, R>) {
         let n = self.rbf_nodes * self.rbf_nodes;
         for i in 0..D {
-            if self.gamma[i] == 0.0 {
+            // Gamma = 0 leaves the weights where they are (w + 0 phi = w): skip the work
+            if self.gamma[i].simd_eq(R::zero()).all() {
                 continue;
             }
             let ax = self.axis(i, input);
             // 2 as - 1 > 0 and 2 bs - 1 > 1: both powers are finite at s = 0
             let big_n = self.k3[i]
-                * (sig(ax.s, 2.0 * self.alpha_s[i] - 1.0) + sig(ax.s, 2.0 * self.beta_s[i] - 1.0))
+                * (sig_from_ln(ax.s, ax.ln_abs_s, R::splat(2.0) * self.alpha_s[i] - 1.0)
+                    + sig_from_ln(ax.s, ax.ln_abs_s, R::splat(2.0) * self.beta_s[i] - 1.0))
                 / input.inertia[i];
-            let step = input.dt * self.gamma[i] * big_n;
+            let step = R::splat(input.dt) * self.gamma[i] * big_n;
             for j in 0..n {
                 weights[(j, i)] += step * ax.phi[j];
             }
         }
     }
 
-    fn diagnostics(&self, weights: &Self::Memory, input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, weights: &Self::Memory, input: &LawInput<D, R>, out: &mut [R]) {
         for i in 0..D {
             let ax = self.axis(i, input);
             out[i] = ax.s;
             out[D + i] = self.output(weights, i, &ax.phi);
         }
     }
+}
 
+impl<const D: usize> Validate for FixedTimeNtsmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.k1.as_slice(), "k1", "k1 > 0", |v| v > 0.0)?;
         require_axes(self.k2.as_slice(), "k2", "k2 > 0", |v| v > 0.0)?;
@@ -243,5 +296,26 @@ impl<const D: usize> ControlLaw<D> for FixedTimeNtsmc<D> {
             "rbf_width > 0",
             |v| v > 0.0,
         )
+    }
+}
+
+impl<const D: usize> FromParams for FixedTimeNtsmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            k1: p.axes("k1")?,
+            k2: p.axes("k2")?,
+            k3: p.axes("k3")?,
+            eps_max: p.axes("eps_max")?,
+            p1: p.axes("p1")?,
+            p2: p.axes("p2")?,
+            alpha_s: p.axes("alpha_s")?,
+            beta_s: p.axes("beta_s")?,
+            sigma_phi: p.axes("sigma_phi")?,
+            gamma: p.axes("gamma")?,
+            rbf_nodes: p.count("rbf_nodes", &[1, 2, 3, 4, 5, 6, 7], "rbf_nodes in 1..=7")?,
+            rbf_scale_e1: p.axes("rbf_scale_e1")?,
+            rbf_scale_e2: p.axes("rbf_scale_e2")?,
+            rbf_width: p.axes("rbf_width")?,
+        })
     }
 }

@@ -13,58 +13,90 @@ use nalgebra::SVector;
 
 use super::fast_terminal::TerminalSurface;
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require, require_axes};
+use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::{Real, norm};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FuzzyFastTerminalSmc<const D: usize> {
-    pub surface: TerminalSurface<D>,
-    pub k: SVector<f64, D>,
-    pub switch: Switch,
+pub struct FuzzyFastTerminalSmc<const D: usize, R = f64> {
+    pub surface: TerminalSurface<D, R>,
+    pub k: SVector<R, D>,
+    pub switch: Switch<R>,
     /// N of eq. 22: how fast a(D) falls with the distance to the surface.
-    pub n: f64,
+    pub n: R,
     /// M of eq. 22: how fast b(D) rises.
-    pub m: f64,
+    pub m: R,
 }
 
-impl<const D: usize> FuzzyFastTerminalSmc<D> {
+crate::gather_struct!(FuzzyFastTerminalSmc<const D: usize, R> {
+    lanes: [surface, k, switch, n, m],
+    shared: [],
+});
+
+impl<const D: usize, R: Real> FuzzyFastTerminalSmc<D, R> {
     /// (a, b, D) at this distance vector.
     #[inline(always)]
-    pub fn blend(&self, s: &SVector<f64, D>) -> (f64, f64, f64) {
-        let dist = SVector::<f64, D>::from_fn(|i, _| {
-            s[i] / (1.0 + self.surface.alpha[i] * self.surface.alpha[i]).sqrt()
-        })
-        .norm();
-        ((-self.n * dist).exp(), 1.0 - (-self.m * dist).exp(), dist)
+    pub fn blend(&self, s: &SVector<R, D>) -> (R, R, R) {
+        let mut scaled = *s;
+        for i in 0..D {
+            scaled[i] = s[i] / (R::one() + self.surface.alpha[i] * self.surface.alpha[i]).sqrt();
+        }
+        let dist = norm(&scaled);
+        (
+            (-self.n * dist).exp(),
+            R::one() - (-self.m * dist).exp(),
+            dist,
+        )
     }
 }
 
-impl<const D: usize> ControlLaw<D> for FuzzyFastTerminalSmc<D> {
+impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyFastTerminalSmc<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
     const SCALAR_DIAGNOSTICS: &'static [&'static str] = &["a", "b", "distance"];
 
-    fn start(&self, _input: &LawInput<D>) {}
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
+    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
         let (s, eq) = self.surface.evaluate(input);
         let (a, b, _) = self.blend(&s);
-        SVector::from_fn(|i, _| a * eq[i] - b * self.k[i] * self.switch.apply(s[i]))
+        let mut u = eq;
+        for i in 0..D {
+            u[i] = a * eq[i] - b * self.k[i] * self.switch.apply(s[i]);
+        }
+        u
     }
 
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         let (s, _) = self.surface.evaluate(input);
         let (a, b, dist) = self.blend(&s);
         out[..D].copy_from_slice(s.as_slice());
         out[D..D + 3].copy_from_slice(&[a, b, dist]);
     }
+}
 
+impl<const D: usize> Validate for FuzzyFastTerminalSmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
         require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
         require(self.n > 0.0, "n", self.n, "n > 0")?;
         require(self.m > 0.0, "m", self.m, "m > 0")?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for FuzzyFastTerminalSmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: TerminalSurface::from_params(p)?,
+            k: p.axes("k")?,
+            switch: Switch::from_params(p)?,
+            n: p.scalar("n")?,
+            m: p.scalar("m")?,
+        })
     }
 }

@@ -20,58 +20,73 @@ use nalgebra::SVector;
 
 use super::integral_reaching::IntegralSurface;
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require_axes};
+use crate::error::{ParamError, Validate, require_axes};
 use crate::fuzzy::Mamdani;
+use crate::lanes::{Real, add, sub};
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Debug, PartialEq)]
-pub struct FuzzyVariableRate<const D: usize> {
-    pub surface: IntegralSurface<D>,
+pub struct FuzzyVariableRate<const D: usize, R = f64> {
+    pub surface: IntegralSurface<D, R>,
     /// Input scaling of s onto the universe.
-    pub ke: SVector<f64, D>,
+    pub ke: SVector<R, D>,
     /// Input scaling of s'.
-    pub kec: SVector<f64, D>,
+    pub kec: SVector<R, D>,
     /// Output scaling of the fuzzy output, m/s^2 per unit.
-    pub ku: SVector<f64, D>,
+    pub ku: SVector<R, D>,
+    /// Shared by a block.
     pub system: Arc<Mamdani>,
 }
 
-/// Integral of the surface, the previous s and whether there is one.
+crate::gather_struct!(FuzzyVariableRate<const D: usize, R> {
+    lanes: [surface, ke, kec, ku],
+    shared: [system],
+});
+
+/// Integral of the surface, the previous s and whether there is one (every case of a block
+/// starts at the same instant, so the flag is shared).
 #[derive(Clone, Copy, Debug)]
-pub struct VariableRateMemory<const D: usize> {
-    integral: SVector<f64, D>,
-    previous_s: SVector<f64, D>,
+pub struct VariableRateMemory<const D: usize, R> {
+    integral: SVector<R, D>,
+    previous_s: SVector<R, D>,
     started: bool,
 }
 
-impl<const D: usize> FuzzyVariableRate<D> {
+impl<const D: usize, R: Real> FuzzyVariableRate<D, R> {
     /// (s, s', fuzzy output scaled by ku) at this instant.
     #[inline(always)]
     fn terms(
         &self,
-        m: &VariableRateMemory<D>,
-        input: &LawInput<D>,
-    ) -> (SVector<f64, D>, SVector<f64, D>, SVector<f64, D>) {
+        m: &VariableRateMemory<D, R>,
+        input: &LawInput<D, R>,
+    ) -> (SVector<R, D>, SVector<R, D>, SVector<R, D>) {
         let s = self.surface.s(&m.integral, input);
         let ds = if m.started {
-            (s - m.previous_s) / input.dt
+            let mut ds = sub(&s, &m.previous_s);
+            for i in 0..D {
+                ds[i] = ds[i] / input.dt;
+            }
+            ds
         } else {
             SVector::zeros()
         };
-        let out = SVector::from_fn(|i, _| {
-            self.ku[i]
+        let mut out = s;
+        for i in 0..D {
+            out[i] = self.ku[i]
                 * self
                     .system
-                    .evaluate(&[self.ke[i] * s[i], self.kec[i] * ds[i]])
-        });
+                    .evaluate(&[self.ke[i] * s[i], self.kec[i] * ds[i]]);
+        }
         (s, ds, out)
     }
 }
 
-impl<const D: usize> ControlLaw<D> for FuzzyVariableRate<D> {
-    type Memory = VariableRateMemory<D>;
+impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyVariableRate<D, R> {
+    type Memory = VariableRateMemory<D, R>;
     const DIAGNOSTICS: &'static [&'static str] = &["s", "s_dot", "epsilon"];
 
-    fn start(&self, _input: &LawInput<D>) -> VariableRateMemory<D> {
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) -> VariableRateMemory<D, R> {
         VariableRateMemory {
             integral: SVector::zeros(),
             previous_s: SVector::zeros(),
@@ -80,25 +95,28 @@ impl<const D: usize> ControlLaw<D> for FuzzyVariableRate<D> {
     }
 
     #[inline(always)]
-    fn command(&self, m: &VariableRateMemory<D>, input: &LawInput<D>) -> SVector<f64, D> {
+    fn command(&self, m: &VariableRateMemory<D, R>, input: &LawInput<D, R>) -> SVector<R, D> {
         let (s, _, fuzzy) = self.terms(m, input);
-        self.surface.smooth_part(&s, input) + fuzzy
+        add(&self.surface.smooth_part(&s, input), &fuzzy)
     }
 
     #[inline(always)]
-    fn advance(&self, m: &mut VariableRateMemory<D>, input: &LawInput<D>) {
+    fn advance(&self, m: &mut VariableRateMemory<D, R>, input: &LawInput<D, R>) {
         m.previous_s = self.surface.s(&m.integral, input);
         m.started = true;
         self.surface.advance(&mut m.integral, input);
     }
 
-    fn diagnostics(&self, m: &VariableRateMemory<D>, input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, m: &VariableRateMemory<D, R>, input: &LawInput<D, R>, out: &mut [R]) {
         let (s, ds, fuzzy) = self.terms(m, input);
         out[..D].copy_from_slice(s.as_slice());
         out[D..2 * D].copy_from_slice(ds.as_slice());
         out[2 * D..3 * D].copy_from_slice(fuzzy.as_slice());
     }
+}
 
+impl<const D: usize> Validate for FuzzyVariableRate<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
         require_axes(self.ke.as_slice(), "ke", "ke > 0", |v| v > 0.0)?;
@@ -112,5 +130,17 @@ impl<const D: usize> ControlLaw<D> for FuzzyVariableRate<D> {
             ));
         }
         Ok(())
+    }
+}
+
+impl<const D: usize> FromParams for FuzzyVariableRate<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: IntegralSurface::from_params(p)?,
+            ke: p.axes("ke")?,
+            kec: p.axes("kec")?,
+            ku: p.axes("ku")?,
+            system: p.fuzzy_system("system")?,
+        })
     }
 }

@@ -16,41 +16,51 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require_axes};
+use crate::error::{ParamError, Validate, require_axes};
+use crate::lanes::{Real, add, mul, neg, scale, sub};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 
 /// The integral surface with gains c1, c2 and the exponential rate k, shared with the fuzzy
 /// variable-rate law.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct IntegralSurface<const D: usize> {
-    pub c1: SVector<f64, D>,
-    pub c2: SVector<f64, D>,
-    pub k: SVector<f64, D>,
+pub struct IntegralSurface<const D: usize, R = f64> {
+    pub c1: SVector<R, D>,
+    pub c2: SVector<R, D>,
+    pub k: SVector<R, D>,
 }
 
-impl<const D: usize> IntegralSurface<D> {
+crate::gather_struct!(IntegralSurface<const D: usize, R> { lanes: [c1, c2, k], shared: [] });
+
+impl<const D: usize, R: Real> IntegralSurface<D, R> {
     #[inline(always)]
-    pub fn s(&self, integral: &SVector<f64, D>, input: &LawInput<D>) -> SVector<f64, D> {
-        -input.de - integral
+    pub fn s(&self, integral: &SVector<R, D>, input: &LawInput<D, R>) -> SVector<R, D> {
+        sub(&neg(&input.de), integral)
     }
 
     /// The command without its switching term.
     #[inline(always)]
-    pub fn smooth_part(&self, s: &SVector<f64, D>, input: &LawInput<D>) -> SVector<f64, D> {
-        input.reference.acceleration
-            - input.drift
-            - self.c1.component_mul(&input.e)
-            - self.c2.component_mul(&input.de)
-            + self.k.component_mul(s)
+    pub fn smooth_part(&self, s: &SVector<R, D>, input: &LawInput<D, R>) -> SVector<R, D> {
+        let a = sub(&input.reference.acceleration, &input.drift);
+        let a = sub(&a, &mul(&self.c1, &input.e));
+        let a = sub(&a, &mul(&self.c2, &input.de));
+        add(&a, &mul(&self.k, s))
     }
 
     #[inline(always)]
-    pub fn advance(&self, integral: &mut SVector<f64, D>, input: &LawInput<D>) {
-        *integral +=
-            (self.c1.component_mul(&input.e) + self.c2.component_mul(&input.de)) * input.dt;
+    pub fn advance(&self, integral: &mut SVector<R, D>, input: &LawInput<D, R>) {
+        *integral = add(
+            integral,
+            &scale(
+                &add(&mul(&self.c1, &input.e), &mul(&self.c2, &input.de)),
+                input.dt,
+            ),
+        );
     }
+}
 
-    pub fn validate(&self) -> Result<(), ParamError> {
+impl<const D: usize> Validate for IntegralSurface<D> {
+    fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.c1.as_slice(), "c1", "c1 > 0", |v| v > 0.0)?;
         require_axes(self.c2.as_slice(), "c2", "c2 > 0", |v| v > 0.0)?;
         require_axes(self.k.as_slice(), "k", "k >= 0", |v| v >= 0.0)
@@ -58,43 +68,76 @@ impl<const D: usize> IntegralSurface<D> {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct IntegralExponentialReaching<const D: usize> {
-    pub surface: IntegralSurface<D>,
-    pub epsilon: SVector<f64, D>,
-    pub switch: Switch,
+pub struct IntegralExponentialReaching<const D: usize, R = f64> {
+    pub surface: IntegralSurface<D, R>,
+    pub epsilon: SVector<R, D>,
+    pub switch: Switch<R>,
 }
 
-impl<const D: usize> ControlLaw<D> for IntegralExponentialReaching<D> {
+crate::gather_struct!(IntegralExponentialReaching<const D: usize, R> {
+    lanes: [surface, epsilon, switch],
+    shared: [],
+});
+
+impl<const D: usize, R: Real> ControlLaw<R, D> for IntegralExponentialReaching<D, R> {
     /// The integral I of the surface.
-    type Memory = SVector<f64, D>;
+    type Memory = SVector<R, D>;
     const DIAGNOSTICS: &'static [&'static str] = &["s", "integral"];
 
-    fn start(&self, _input: &LawInput<D>) -> SVector<f64, D> {
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) -> SVector<R, D> {
         SVector::zeros()
     }
 
     #[inline(always)]
-    fn command(&self, integral: &SVector<f64, D>, input: &LawInput<D>) -> SVector<f64, D> {
+    fn command(&self, integral: &SVector<R, D>, input: &LawInput<D, R>) -> SVector<R, D> {
         let s = self.surface.s(integral, input);
         let smooth = self.surface.smooth_part(&s, input);
-        SVector::from_fn(|i, _| smooth[i] + self.epsilon[i] * self.switch.apply(s[i]))
+        let mut a = smooth;
+        for i in 0..D {
+            a[i] = smooth[i] + self.epsilon[i] * self.switch.apply(s[i]);
+        }
+        a
     }
 
     #[inline(always)]
-    fn advance(&self, integral: &mut SVector<f64, D>, input: &LawInput<D>) {
+    fn advance(&self, integral: &mut SVector<R, D>, input: &LawInput<D, R>) {
         self.surface.advance(integral, input);
     }
 
-    fn diagnostics(&self, integral: &SVector<f64, D>, input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, integral: &SVector<R, D>, input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.surface.s(integral, input).as_slice());
         out[D..2 * D].copy_from_slice(integral.as_slice());
     }
+}
 
+impl<const D: usize> Validate for IntegralExponentialReaching<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
         require_axes(self.epsilon.as_slice(), "epsilon", "epsilon >= 0", |v| {
             v >= 0.0
         })?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for IntegralSurface<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            c1: p.axes("c1")?,
+            c2: p.axes("c2")?,
+            k: p.axes("k")?,
+        })
+    }
+}
+
+impl<const D: usize> FromParams for IntegralExponentialReaching<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            surface: IntegralSurface::from_params(p)?,
+            epsilon: p.axes("epsilon")?,
+            switch: Switch::from_params(p)?,
+        })
     }
 }

@@ -6,6 +6,11 @@
 //! `a` into thrust, torque or control acceleration. Laws with internal states (integrators,
 //! adaptive weights) keep them in their `Memory`, advanced once per control period by forward
 //! Euler after the command is computed (SPEC 2).
+//!
+//! Every law is written once over [`Real`] lanes (see [`crate::lanes`]). The registry at the end
+//! of this file lists each law once, with its name at the Python boundary; it generates
+//! [`AnyLaw`], the law chosen at run time, whose `match` per control period is perfectly
+//! predicted and keeps the number of compiled rollouts to one per plant and instruction set.
 
 mod fast_terminal;
 mod fixed_time_mss;
@@ -32,30 +37,32 @@ pub use super_twisting::{SuperTwisting, SuperTwistingVariant};
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Gather, Real};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 use crate::reference::RefPoint;
 
 /// What a law sees at a control instant.
 #[derive(Clone, Copy, Debug)]
-pub struct LawInput<const D: usize> {
+pub struct LawInput<const D: usize, R = f64> {
     pub t: f64,
     /// Control period.
     pub dt: f64,
     /// Tracking error `e = q - q_ref`.
-    pub e: SVector<f64, D>,
+    pub e: SVector<R, D>,
     /// Rate error `e' = q' - q_ref'`.
-    pub de: SVector<f64, D>,
-    pub reference: RefPoint<D>,
+    pub de: SVector<R, D>,
+    pub reference: RefPoint<D, R>,
     /// The plant's modelled acceleration (see `Plant::modelled_acceleration`).
-    pub drift: SVector<f64, D>,
+    pub drift: SVector<R, D>,
     /// The plant's diagonal inertia (see `Plant::inertia`).
-    pub inertia: SVector<f64, D>,
+    pub inertia: SVector<R, D>,
 }
 
-pub trait ControlLaw<const D: usize>: Send + Sync {
+pub trait ControlLaw<R: Real, const D: usize>: Send + Sync {
     /// Internal state carried from one control period to the next.
-    type Memory: Copy + Send + Sync;
+    type Memory: Copy + Send + Sync + std::fmt::Debug;
 
     /// Names of the law's diagnostic signals (sliding variables, adaptive terms), each a
     /// D-vector, recorded alongside the states.
@@ -65,25 +72,33 @@ pub trait ControlLaw<const D: usize>: Send + Sync {
     /// the D-vector ones.
     const SCALAR_DIAGNOSTICS: &'static [&'static str] = &[];
 
-    fn start(&self, input: &LawInput<D>) -> Self::Memory;
+    fn start(&self, input: &LawInput<D, R>) -> Self::Memory;
 
     /// Commanded generalized acceleration at this instant.
-    fn command(&self, memory: &Self::Memory, input: &LawInput<D>) -> SVector<f64, D>;
+    fn command(&self, memory: &Self::Memory, input: &LawInput<D, R>) -> SVector<R, D>;
 
     /// Advance the memory over one control period (forward Euler with `input.dt`).
     #[inline(always)]
-    fn advance(&self, _memory: &mut Self::Memory, _input: &LawInput<D>) {}
+    fn advance(&self, _memory: &mut Self::Memory, _input: &LawInput<D, R>) {}
 
     /// Write `DIAGNOSTICS.len() * D + SCALAR_DIAGNOSTICS.len()` values into `out`, signal by
-    /// signal (see [`diagnostic_width`]).
-    fn diagnostics(&self, _memory: &Self::Memory, _input: &LawInput<D>, _out: &mut [f64]) {}
-
-    fn validate(&self) -> Result<(), ParamError>;
+    /// signal.
+    #[inline(always)]
+    fn diagnostics(&self, _memory: &Self::Memory, _input: &LawInput<D, R>, _out: &mut [R]) {}
 }
 
 /// Number of values a law's diagnostics take per recorded instant.
-pub fn diagnostic_width<const D: usize, L: ControlLaw<D>>() -> usize {
+pub fn diagnostic_width<const D: usize, R: Real, L: ControlLaw<R, D>>() -> usize {
     L::DIAGNOSTICS.len() * D + L::SCALAR_DIAGNOSTICS.len()
+}
+
+/// Names and widths of a law's diagnostic signals, in recording order.
+fn layout<const D: usize, L: ControlLaw<f64, D>>() -> Vec<(&'static str, usize)> {
+    L::DIAGNOSTICS
+        .iter()
+        .map(|n| (*n, D))
+        .chain(L::SCALAR_DIAGNOSTICS.iter().map(|n| (*n, 1)))
+        .collect()
 }
 
 /// A switching function's boundary layer must be positive.
@@ -92,4 +107,153 @@ pub(crate) fn validate_switch(switch: &Switch) -> Result<(), ParamError> {
         Some(phi) => require(phi > 0.0, "boundary_layer", phi, "boundary_layer > 0"),
         None => Ok(()),
     }
+}
+
+/// The law registry: each law once, with its name at the Python boundary. Generates
+/// [`AnyLaw`] (one variant per law), [`AnyMemory`] and [`LAW_KINDS`].
+macro_rules! laws {
+    ($($variant:ident => $kind:literal,)*) => {
+        /// A law chosen at run time (one case's, `AnyLaw<D>`, or a block's,
+        /// `AnyLaw<D, Lanes<W>>`).
+        #[derive(Clone, Debug, PartialEq)]
+        pub enum AnyLaw<const D: usize, R = f64> {
+            $($variant($variant<D, R>),)*
+        }
+
+        /// The memory of an [`AnyLaw`]: the same variant as its law.
+        #[derive(Clone, Copy, Debug)]
+        pub enum AnyMemory<const D: usize, R: Real> {
+            $($variant(<$variant<D, R> as ControlLaw<R, D>>::Memory),)*
+        }
+
+        /// The laws' names at the Python boundary, in registry order.
+        pub const LAW_KINDS: &[&str] = &[$($kind),*];
+
+        $(
+            impl<const D: usize, R: Real> From<$variant<D, R>> for AnyLaw<D, R> {
+                fn from(law: $variant<D, R>) -> Self {
+                    Self::$variant(law)
+                }
+            }
+        )*
+
+        impl<const D: usize, R: Real> AnyLaw<D, R> {
+            /// The law's name at the Python boundary.
+            pub fn kind(&self) -> &'static str {
+                match self {
+                    $(Self::$variant(_) => $kind,)*
+                }
+            }
+
+            /// Names and widths of the diagnostic signals, in recording order.
+            pub fn diagnostic_layout(&self) -> Vec<(&'static str, usize)> {
+                match self {
+                    $(Self::$variant(_) => layout::<D, $variant<D>>(),)*
+                }
+            }
+
+            /// Number of diagnostic values per recorded instant.
+            pub fn diagnostic_width(&self) -> usize {
+                match self {
+                    $(Self::$variant(_) => diagnostic_width::<D, R, $variant<D, R>>(),)*
+                }
+            }
+
+            /// Whether the law has a memory to advance (a memoryless law's `advance` does
+            /// nothing, and the rollout need not call it).
+            pub fn has_memory(&self) -> bool {
+                match self {
+                    $(Self::$variant(_) => std::mem::size_of::<
+                        <$variant<D, R> as ControlLaw<R, D>>::Memory,
+                    >() > 0,)*
+                }
+            }
+
+            #[inline(always)]
+            pub fn start(&self, input: &LawInput<D, R>) -> AnyMemory<D, R> {
+                match self {
+                    $(Self::$variant(l) => AnyMemory::$variant(l.start(input)),)*
+                }
+            }
+
+            #[inline(always)]
+            pub fn command(&self, memory: &AnyMemory<D, R>, input: &LawInput<D, R>) -> SVector<R, D> {
+                match (self, memory) {
+                    $((Self::$variant(l), AnyMemory::$variant(m)) => l.command(m, input),)*
+                    // start() makes the memory of the law's own variant
+                    _ => unreachable!("a law's memory has the law's variant"),
+                }
+            }
+
+            #[inline(always)]
+            pub fn advance(&self, memory: &mut AnyMemory<D, R>, input: &LawInput<D, R>) {
+                match (self, memory) {
+                    $((Self::$variant(l), AnyMemory::$variant(m)) => l.advance(m, input),)*
+                    _ => unreachable!("a law's memory has the law's variant"),
+                }
+            }
+
+            #[inline(always)]
+            pub fn diagnostics(&self, memory: &AnyMemory<D, R>, input: &LawInput<D, R>, out: &mut [R]) {
+                match (self, memory) {
+                    $((Self::$variant(l), AnyMemory::$variant(m)) => l.diagnostics(m, input, out),)*
+                    _ => unreachable!("a law's memory has the law's variant"),
+                }
+            }
+        }
+
+        impl<const D: usize, R: Real> Gather<R> for AnyLaw<D, R> {
+            type Case = AnyLaw<D>;
+
+            fn gather<'a>(case: &dyn Fn(usize) -> &'a AnyLaw<D>) -> Self {
+                match case(0) {
+                    $(AnyLaw::$variant(_) => Self::$variant(Gather::gather(&|i| match case(i) {
+                        AnyLaw::$variant(l) => l,
+                        _ => unreachable!("a block's laws have one kind"),
+                    })),)*
+                }
+            }
+
+            fn same_shape(a: &AnyLaw<D>, b: &AnyLaw<D>) -> bool {
+                match (a, b) {
+                    $((AnyLaw::$variant(x), AnyLaw::$variant(y)) =>
+                        <$variant<D, R> as Gather<R>>::same_shape(x, y),)*
+                    _ => false,
+                }
+            }
+        }
+
+        impl<const D: usize> AnyLaw<D> {
+            /// The law a table describes (its `kind` names it), validated.
+            pub fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+                let law = match LAW_KINDS[p.kind(LAW_KINDS)?] {
+                    $($kind => Self::$variant(<$variant<D>>::from_params(p)?),)*
+                    _ => unreachable!("kind() returns a registered kind"),
+                };
+                law.validate()?;
+                Ok(law)
+            }
+        }
+
+        impl<const D: usize> Validate for AnyLaw<D> {
+            fn validate(&self) -> Result<(), ParamError> {
+                match self {
+                    $(Self::$variant(l) => l.validate(),)*
+                }
+            }
+        }
+    };
+}
+
+laws! {
+    FixedTimeMss => "fixed_time_mss",
+    SuperTwisting => "super_twisting",
+    OpenLoop => "open_loop",
+    PdSlidingMode => "pd_sliding_mode",
+    FastTerminalSmc => "fast_terminal_smc",
+    FuzzyFastTerminalSmc => "fuzzy_fast_terminal_smc",
+    IntegralExponentialReaching => "integral_exponential_reaching",
+    FuzzyVariableRate => "fuzzy_variable_rate",
+    Ntsmc => "ntsmc",
+    FixedTimeNtsmc => "fixed_time_ntsmc",
 }

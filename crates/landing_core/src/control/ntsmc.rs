@@ -22,54 +22,72 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require, require_axes};
-use crate::math::{sgn, sig};
+use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::{Real, sub};
+use crate::math::sgn;
+use crate::params::{FromParams, ParamSource};
 
 /// Gains per axis with the seed's symbols (seed: alpha = 1, beta = (0.05, 0.3),
 /// gamma = (1.07, 1.1), K = 0.001).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Ntsmc<const D: usize> {
-    pub alpha: SVector<f64, D>,
-    pub beta: SVector<f64, D>,
-    pub gamma: SVector<f64, D>,
-    pub k: SVector<f64, D>,
+pub struct Ntsmc<const D: usize, R = f64> {
+    pub alpha: SVector<R, D>,
+    pub beta: SVector<R, D>,
+    pub gamma: SVector<R, D>,
+    pub k: SVector<R, D>,
 }
 
-impl<const D: usize> Ntsmc<D> {
-    /// The sliding variable on axis i.
+crate::gather_struct!(Ntsmc<const D: usize, R> { lanes: [alpha, beta, gamma, k], shared: [] });
+
+impl<const D: usize, R: Real> Ntsmc<D, R> {
+    /// (s, sig^(2 - r)(e2)) on axis i, with r = gamma / alpha: both powers of |e2| from one
+    /// logarithm (at e2 = 0 it is -inf and both powers are 0, as 1 < r < 2).
     #[inline(always)]
-    fn s_axis(&self, i: usize, e1: f64, e2: f64) -> f64 {
-        e1 + sig(e2, self.gamma[i] / self.alpha[i]) / self.beta[i]
+    fn axis(&self, i: usize, e1: R, e2: R) -> (R, R) {
+        let r = self.gamma[i] / self.alpha[i];
+        let l = e2.abs().ln();
+        let sign = sgn(e2);
+        let s = e1 + sign * (r * l).exp() / self.beta[i];
+        (s, sign * ((R::splat(2.0) - r) * l).exp())
     }
 
     /// The sliding variable s per axis.
-    pub fn s(&self, input: &LawInput<D>) -> SVector<f64, D> {
-        SVector::from_fn(|i, _| self.s_axis(i, input.e[i], input.de[i]))
+    #[inline(always)]
+    pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
+        // A loop, not `vector(|i| ..)`: see `FixedTimeMss::s2`.
+        let mut s = SVector::<R, D>::from_element(R::zero());
+        for i in 0..D {
+            s[i] = self.axis(i, input.e[i], input.de[i]).0;
+        }
+        s
     }
 }
 
-impl<const D: usize> ControlLaw<D> for Ntsmc<D> {
+impl<const D: usize, R: Real> ControlLaw<R, D> for Ntsmc<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
 
-    fn start(&self, _input: &LawInput<D>) {}
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
-        let mut a = input.reference.acceleration - input.drift;
+    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
+        let mut a = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let r = self.gamma[i] / self.alpha[i];
-            let e2 = input.de[i];
-            let s = self.s_axis(i, input.e[i], e2);
-            a[i] -= self.beta[i] / r * sig(e2, 2.0 - r) + self.k[i] * sgn(s);
+            let (s, sig2r) = self.axis(i, input.e[i], input.de[i]);
+            a[i] -= self.beta[i] / r * sig2r + self.k[i] * sgn(s);
         }
         a
     }
 
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.s(input).as_slice());
     }
+}
 
+impl<const D: usize> Validate for Ntsmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.alpha.as_slice(), "alpha", "alpha > 0", |v| v > 0.0)?;
         require_axes(self.beta.as_slice(), "beta", "beta > 0", |v| v > 0.0)?;
@@ -85,6 +103,17 @@ impl<const D: usize> ControlLaw<D> for Ntsmc<D> {
             .map_err(|e| e.on_axis(i))?;
         }
         require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)
+    }
+}
+
+impl<const D: usize> FromParams for Ntsmc<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            alpha: p.axes("alpha")?,
+            beta: p.axes("beta")?,
+            gamma: p.axes("gamma")?,
+            k: p.axes("k")?,
+        })
     }
 }
 

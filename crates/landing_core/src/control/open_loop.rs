@@ -3,28 +3,43 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct OpenLoop<const D: usize> {
-    pub acceleration: SVector<f64, D>,
+pub struct OpenLoop<const D: usize, R = f64> {
+    pub acceleration: SVector<R, D>,
 }
 
-impl<const D: usize> ControlLaw<D> for OpenLoop<D> {
+crate::gather_struct!(OpenLoop<const D: usize, R> { lanes: [acceleration], shared: [] });
+
+impl<const D: usize, R: Real> ControlLaw<R, D> for OpenLoop<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &[];
 
-    fn start(&self, _input: &LawInput<D>) {}
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
-    fn command(&self, _memory: &(), _input: &LawInput<D>) -> SVector<f64, D> {
+    fn command(&self, _memory: &(), _input: &LawInput<D, R>) -> SVector<R, D> {
         self.acceleration
     }
+}
 
+impl<const D: usize> Validate for OpenLoop<D> {
     fn validate(&self) -> Result<(), ParamError> {
         for (i, a) in self.acceleration.iter().enumerate() {
             require(true, "acceleration", *a, "finite values").map_err(|e| e.on_axis(i))?;
         }
         Ok(())
+    }
+}
+
+impl<const D: usize> FromParams for OpenLoop<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            acceleration: p.axes("acceleration")?,
+        })
     }
 }

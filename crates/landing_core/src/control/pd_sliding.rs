@@ -4,45 +4,69 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require_axes};
+use crate::error::{ParamError, Validate, require_axes};
+use crate::lanes::{Real, add, mul, sub};
 use crate::math::Switch;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PdSlidingMode<const D: usize> {
-    pub lambda: SVector<f64, D>,
-    pub k: SVector<f64, D>,
-    pub switch: Switch,
+pub struct PdSlidingMode<const D: usize, R = f64> {
+    pub lambda: SVector<R, D>,
+    pub k: SVector<R, D>,
+    pub switch: Switch<R>,
 }
 
-impl<const D: usize> PdSlidingMode<D> {
+crate::gather_struct!(PdSlidingMode<const D: usize, R> { lanes: [lambda, k, switch], shared: [] });
+
+impl<const D: usize, R: Real> PdSlidingMode<D, R> {
     #[inline(always)]
-    pub fn surface(&self, input: &LawInput<D>) -> SVector<f64, D> {
-        input.de + self.lambda.component_mul(&input.e)
+    pub fn surface(&self, input: &LawInput<D, R>) -> SVector<R, D> {
+        add(&input.de, &mul(&self.lambda, &input.e))
     }
 }
 
-impl<const D: usize> ControlLaw<D> for PdSlidingMode<D> {
+impl<const D: usize, R: Real> ControlLaw<R, D> for PdSlidingMode<D, R> {
     type Memory = ();
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
 
-    fn start(&self, _input: &LawInput<D>) {}
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) {}
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D>) -> SVector<f64, D> {
+    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
         let s = self.surface(input);
         // s' = e'' + lambda e' = 0 with e'' = drift + a - q_ref''
-        let equivalent =
-            input.reference.acceleration - input.drift - self.lambda.component_mul(&input.de);
-        SVector::from_fn(|i, _| equivalent[i] - self.k[i] * self.switch.apply(s[i]))
+        let equivalent = sub(
+            &sub(&input.reference.acceleration, &input.drift),
+            &mul(&self.lambda, &input.de),
+        );
+        let mut a = equivalent;
+        for i in 0..D {
+            a[i] = equivalent[i] - self.k[i] * self.switch.apply(s[i]);
+        }
+        a
     }
 
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.surface(input).as_slice());
     }
+}
 
+impl<const D: usize> Validate for PdSlidingMode<D> {
     fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.lambda.as_slice(), "lambda", "lambda > 0", |v| v > 0.0)?;
         require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
         super::validate_switch(&self.switch)
+    }
+}
+
+impl<const D: usize> FromParams for PdSlidingMode<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            lambda: p.axes("lambda")?,
+            k: p.axes("k")?,
+            switch: Switch::from_params(p)?,
+        })
     }
 }

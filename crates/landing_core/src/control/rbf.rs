@@ -12,6 +12,8 @@
 //! Gaussian separates, `Phi_(a,c) = exp(-(z1 - mu_a)^2/b^2) exp(-(z2 - mu_c)^2/b^2)`, so a
 //! grid of n^2 nodes costs 2 n exponentials.
 
+use crate::lanes::Real;
+
 /// Most centres per input.
 pub const MAX_GRID: usize = 7;
 /// Most nodes of one axis's network.
@@ -30,16 +32,18 @@ pub fn centre(a: usize, n: usize) -> f64 {
 /// The n^2 basis values at the normalised input `z`, node (a, c) at index `a n + c`; the
 /// entries past n^2 are zero.
 #[inline(always)]
-pub fn basis(n: usize, z: [f64; 2], width: f64) -> [f64; MAX_NODES] {
-    let inv = 1.0 / (width * width);
-    let mut g1 = [0.0; MAX_GRID];
-    let mut g2 = [0.0; MAX_GRID];
+pub fn basis<R: Real>(n: usize, z: [R; 2], width: R) -> [R; MAX_NODES] {
+    let inv = R::one() / (width * width);
+    let mut g1 = [R::zero(); MAX_GRID];
+    let mut g2 = [R::zero(); MAX_GRID];
     for a in 0..n {
         let c = centre(a, n);
-        g1[a] = (-(z[0] - c) * (z[0] - c) * inv).exp();
-        g2[a] = (-(z[1] - c) * (z[1] - c) * inv).exp();
+        let d1 = z[0] - c;
+        let d2 = z[1] - c;
+        g1[a] = (-d1 * d1 * inv).exp();
+        g2[a] = (-d2 * d2 * inv).exp();
     }
-    let mut out = [0.0; MAX_NODES];
+    let mut out = [R::zero(); MAX_NODES];
     for a in 0..n {
         for c in 0..n {
             out[a * n + c] = g1[a] * g2[c];

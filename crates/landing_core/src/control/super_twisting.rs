@@ -20,8 +20,10 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, require, require_axes};
+use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::{Real, add, mul, sub};
 use crate::math::sgn;
+use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SuperTwistingVariant {
@@ -42,39 +44,46 @@ impl SuperTwistingVariant {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SuperTwisting<const D: usize> {
-    pub b1: SVector<f64, D>,
-    pub b2: SVector<f64, D>,
+pub struct SuperTwisting<const D: usize, R = f64> {
+    pub b1: SVector<R, D>,
+    pub b2: SVector<R, D>,
     /// Slope of the sliding variable of the standard variant.
-    pub c: SVector<f64, D>,
+    pub c: SVector<R, D>,
+    /// Shared by a block.
     pub variant: SuperTwistingVariant,
     /// Floor on |s| in `|s|^(-1/2)` of the printed variant (the singularity guard).
-    pub s_floor: f64,
+    pub s_floor: R,
 }
 
-impl<const D: usize> SuperTwisting<D> {
+crate::gather_struct!(SuperTwisting<const D: usize, R> {
+    lanes: [b1, b2, c, s_floor],
+    shared: [variant],
+});
+
+impl<const D: usize, R: Real> SuperTwisting<D, R> {
     /// The sliding variable the law drives to zero: s itself (printed) or s' + c s (standard).
     #[inline(always)]
-    pub fn sigma(&self, input: &LawInput<D>) -> SVector<f64, D> {
+    pub fn sigma(&self, input: &LawInput<D, R>) -> SVector<R, D> {
         match self.variant {
             SuperTwistingVariant::Printed => input.e,
-            SuperTwistingVariant::Standard => input.de + self.c.component_mul(&input.e),
+            SuperTwistingVariant::Standard => add(&input.de, &mul(&self.c, &input.e)),
         }
     }
 }
 
-impl<const D: usize> ControlLaw<D> for SuperTwisting<D> {
+impl<const D: usize, R: Real> ControlLaw<R, D> for SuperTwisting<D, R> {
     /// The integral state w of the standard variant, in force units.
-    type Memory = SVector<f64, D>;
+    type Memory = SVector<R, D>;
     const DIAGNOSTICS: &'static [&'static str] = &["sigma", "w"];
 
-    fn start(&self, _input: &LawInput<D>) -> SVector<f64, D> {
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) -> SVector<R, D> {
         SVector::zeros()
     }
 
     #[inline(always)]
-    fn command(&self, w: &SVector<f64, D>, input: &LawInput<D>) -> SVector<f64, D> {
-        let mut a = input.reference.acceleration - input.drift;
+    fn command(&self, w: &SVector<R, D>, input: &LawInput<D, R>) -> SVector<R, D> {
+        let mut a = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let s = input.e[i];
             let ds = input.de[i];
@@ -82,7 +91,7 @@ impl<const D: usize> ControlLaw<D> for SuperTwisting<D> {
             a[i] += match self.variant {
                 SuperTwistingVariant::Printed => {
                     let root = s.abs().max(self.s_floor).sqrt();
-                    -(0.5 * self.b1[i] * ds / root + self.b2[i] * sgn(s)) / m
+                    -(R::splat(0.5) * self.b1[i] * ds / root + self.b2[i] * sgn(s)) / m
                 }
                 SuperTwistingVariant::Standard => {
                     let sigma = ds + self.c[i] * s;
@@ -94,24 +103,42 @@ impl<const D: usize> ControlLaw<D> for SuperTwisting<D> {
     }
 
     #[inline(always)]
-    fn advance(&self, w: &mut SVector<f64, D>, input: &LawInput<D>) {
+    fn advance(&self, w: &mut SVector<R, D>, input: &LawInput<D, R>) {
         if self.variant == SuperTwistingVariant::Standard {
             let sigma = self.sigma(input);
             for i in 0..D {
-                w[i] -= input.dt * self.b2[i] * sgn(sigma[i]);
+                w[i] -= R::splat(input.dt) * self.b2[i] * sgn(sigma[i]);
             }
         }
     }
 
-    fn diagnostics(&self, w: &SVector<f64, D>, input: &LawInput<D>, out: &mut [f64]) {
+    #[inline(always)]
+    fn diagnostics(&self, w: &SVector<R, D>, input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(self.sigma(input).as_slice());
         out[D..2 * D].copy_from_slice(w.as_slice());
     }
+}
 
+impl<const D: usize> Validate for SuperTwisting<D> {
     fn validate(&self) -> Result<(), ParamError> {
         require_axes(self.b1.as_slice(), "b1", "b1 > 0", |v| v > 0.0)?;
         require_axes(self.b2.as_slice(), "b2", "b2 > 0", |v| v > 0.0)?;
         require_axes(self.c.as_slice(), "c", "c > 0", |v| v > 0.0)?;
         require(self.s_floor > 0.0, "s_floor", self.s_floor, "s_floor > 0")
+    }
+}
+
+impl<const D: usize> FromParams for SuperTwisting<D> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            b1: p.axes("b1")?,
+            b2: p.axes("b2")?,
+            c: p.axes("c")?,
+            variant: [
+                SuperTwistingVariant::Printed,
+                SuperTwistingVariant::Standard,
+            ][p.choice("variant", &SuperTwistingVariant::NAMES)?],
+            s_floor: p.scalar("s_floor")?,
+        })
     }
 }

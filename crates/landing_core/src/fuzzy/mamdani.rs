@@ -2,15 +2,22 @@
 //! centroid defuzzification of the aggregated membership sampled on the output universe and
 //! interpolated linearly between samples (the scikit-fuzzy conventions, which the Python tests
 //! compare with).
+//!
+//! Evaluated over [`Real`] lanes, one system for a block of cases. Only the output sets some
+//! lane fires are aggregated, and only over the grid points where one of them is positive:
+//! elsewhere the aggregated membership is zero and adds nothing to the centroid's sums.
 
 use super::Membership;
 use crate::error::{ParamError, require};
+use crate::lanes::{Mask, Real};
 
 /// Most sets one output variable may have (the aggregation keeps one activation per set on
 /// the stack, so evaluation never allocates).
 pub const MAX_OUTPUT_SETS: usize = 16;
 /// Most inputs a system may have.
 pub const MAX_INPUTS: usize = 4;
+/// Most sets one input variable may have (their memberships are kept on the stack).
+pub const MAX_INPUT_SETS: usize = 16;
 
 /// A linguistic variable on the universe [lo, hi].
 #[derive(Clone, Debug, PartialEq)]
@@ -48,6 +55,9 @@ pub struct Mamdani {
     grid: Vec<f64>,
     /// Output set memberships on the grid, set-major.
     table: Vec<f64>,
+    /// Per output set, the first and last grid index where its membership is positive
+    /// (first > last when it is nowhere positive on the grid).
+    support: Vec<(usize, usize)>,
 }
 
 impl Mamdani {
@@ -66,6 +76,12 @@ impl Mamdani {
         )?;
         for v in &inputs {
             v.validate("inputs")?;
+            require(
+                v.sets.len() <= MAX_INPUT_SETS,
+                "inputs",
+                v.sets.len() as f64,
+                "at most 16 sets per input",
+            )?;
         }
         output.validate("output")?;
         require(
@@ -107,10 +123,21 @@ impl Mamdani {
         let grid: Vec<f64> = (0..resolution)
             .map(|j| output.lo + step * j as f64)
             .collect();
-        let table = output
+        let table: Vec<f64> = output
             .sets
             .iter()
             .flat_map(|s| grid.iter().map(|&y| s.eval(y)))
+            .collect();
+        let support = table
+            .chunks(resolution)
+            .map(|row| {
+                let first = row.iter().position(|&m| m > 0.0);
+                let last = row.iter().rposition(|&m| m > 0.0);
+                match (first, last) {
+                    (Some(a), Some(b)) => (a, b),
+                    _ => (resolution, 0),
+                }
+            })
             .collect();
         Ok(Self {
             inputs,
@@ -118,6 +145,7 @@ impl Mamdani {
             rules,
             grid,
             table,
+            support,
         })
     }
 
@@ -142,47 +170,83 @@ impl Mamdani {
         self.grid.len()
     }
 
-    /// The crisp output for `x` (one value per input; values outside an input's universe are
-    /// clipped to it). 0 when no rule fires.
-    pub fn evaluate(&self, x: &[f64]) -> f64 {
-        let mut fire = [0.0f64; MAX_OUTPUT_SETS];
-        let mut clipped = [0.0f64; MAX_INPUTS];
-        for (i, v) in self.inputs.iter().enumerate() {
-            clipped[i] = x[i].clamp(v.lo, v.hi);
+    /// The aggregated membership at grid point `j`: the largest of the fired output sets
+    /// clipped at their firing strengths.
+    #[inline(always)]
+    fn aggregated<R: Real>(&self, fire: &[R; MAX_OUTPUT_SETS], active: &[usize], j: usize) -> R {
+        let n = self.grid.len();
+        let mut m = R::zero();
+        for &k in active {
+            m = m.max(fire[k].min(R::splat(self.table[k * n + j])));
         }
+        m
+    }
+
+    /// The crisp output for `x` (one value per input; values outside an input's universe are
+    /// clipped to it), lane by lane. 0 where no rule fires.
+    ///
+    /// The centroid of the piecewise-linear interpolant of the aggregated membership m_j on the
+    /// grid x_j = lo + j h, j = 0..n-1, is, summing the trapezoids' areas and first moments in
+    /// closed form,
+    /// `lo + h (S1 - (n - 1) m_(n-1) / 2 + (m_0 - m_(n-1)) / 6) / (S0 - (m_0 + m_(n-1)) / 2)`
+    /// with `S0 = sum m_j`, `S1 = sum j m_j`: two sums per grid point.
+    #[inline(always)]
+    pub fn evaluate<R: Real>(&self, x: &[R]) -> R {
+        let zero = R::zero();
+        // memberships of every input set, each evaluated once
+        let mut mu = [[zero; MAX_INPUT_SETS]; MAX_INPUTS];
+        for (i, v) in self.inputs.iter().enumerate() {
+            let xi = x[i].clamp(R::splat(v.lo), R::splat(v.hi));
+            for (a, set) in v.sets.iter().enumerate() {
+                mu[i][a] = set.eval_lanes(xi);
+            }
+        }
+        let mut fire = [zero; MAX_OUTPUT_SETS];
         for r in &self.rules {
-            let mut w: f64 = 1.0;
+            let mut w = R::one();
             for (i, &a) in r.antecedent.iter().enumerate() {
-                w = w.min(self.inputs[i].sets[a].eval(clipped[i]));
+                w = w.min(mu[i][a]);
             }
             fire[r.consequent] = fire[r.consequent].max(w);
         }
+        // the output sets fired in some lane, and the grid points where one is positive
         let n = self.grid.len();
-        let fire = &fire[..self.output.sets.len()];
-        let aggregated = |j: usize| -> f64 {
-            let mut mu: f64 = 0.0;
-            for (k, &f) in fire.iter().enumerate() {
-                if f > 0.0 {
-                    mu = mu.max(f.min(self.table[k * n + j]));
-                }
+        let mut active = [0usize; MAX_OUTPUT_SETS];
+        let mut n_active = 0;
+        let (mut first, mut last) = (n, 0);
+        for (k, f) in fire.iter().enumerate().take(self.output.sets.len()) {
+            if f.simd_gt(zero).any() {
+                active[n_active] = k;
+                n_active += 1;
+                first = first.min(self.support[k].0);
+                last = last.max(self.support[k].1);
             }
-            mu
-        };
-        // centroid of the piecewise-linear interpolant: each grid interval is a trapezoid with
-        // area h (m0 + m1) / 2 and first moment h (x0 (2 m0 + m1) + x1 (m0 + 2 m1)) / 6
-        let (mut moment, mut area) = (0.0, 0.0);
-        let mut m0 = aggregated(0);
-        for j in 1..n {
-            let m1 = aggregated(j);
-            if m0 > 0.0 || m1 > 0.0 {
-                let (x0, x1) = (self.grid[j - 1], self.grid[j]);
-                let h = x1 - x0;
-                area += 0.5 * h * (m0 + m1);
-                moment += h * (x0 * (2.0 * m0 + m1) + x1 * (m0 + 2.0 * m1)) / 6.0;
-            }
-            m0 = m1;
         }
-        if area > 0.0 { moment / area } else { 0.0 }
+        if first > last {
+            return zero;
+        }
+        let active = &active[..n_active];
+        let (mut s0, mut s1) = (zero, zero);
+        for j in first..=last {
+            let m = self.aggregated(&fire, active, j);
+            s0 += m;
+            s1 += m * (j as f64);
+        }
+        let m0 = if first == 0 {
+            self.aggregated(&fire, active, 0)
+        } else {
+            zero
+        };
+        let mn = if last == n - 1 {
+            self.aggregated(&fire, active, n - 1)
+        } else {
+            zero
+        };
+        let h = (self.output.hi - self.output.lo) / (n - 1) as f64;
+        let area = s0 - (m0 + mn) * 0.5;
+        let moment = s1 - mn * (0.5 * (n - 1) as f64) + (m0 - mn) / 6.0;
+        let centroid = R::splat(self.output.lo) + moment * h / area;
+        R::select(area.simd_gt(zero), centroid, zero)
     }
 }
 

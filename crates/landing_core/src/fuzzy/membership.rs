@@ -2,6 +2,7 @@
 //! b = c, is 1 on its flat side up to the corner and 0 outside [a, c]).
 
 use crate::error::{ParamError, require};
+use crate::lanes::Real;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Membership {
@@ -17,6 +18,17 @@ impl Membership {
         match *self {
             Membership::Triangle(a, b, c) => ramp_up(x, a, b).min(ramp_down(x, b, c)),
             Membership::Trapezoid(a, b, c, d) => ramp_up(x, a, b).min(ramp_down(x, c, d)),
+        }
+    }
+
+    /// The membership of each lane of `x` (the same ramps as [`Membership::eval`], as selects).
+    #[inline(always)]
+    pub fn eval_lanes<R: Real>(&self, x: R) -> R {
+        match *self {
+            Membership::Triangle(a, b, c) => ramp_up_lanes(x, a, b).min(ramp_down_lanes(x, b, c)),
+            Membership::Trapezoid(a, b, c, d) => {
+                ramp_up_lanes(x, a, b).min(ramp_down_lanes(x, c, d))
+            }
         }
     }
 
@@ -59,6 +71,28 @@ fn ramp_down(x: f64, b: f64, c: f64) -> f64 {
     } else {
         (c - x) / (c - b)
     }
+}
+
+/// [`ramp_up`] per lane.
+#[inline(always)]
+fn ramp_up_lanes<R: Real>(x: R, a: f64, b: f64) -> R {
+    let (a_, b_) = (R::splat(a), R::splat(b));
+    R::select(
+        x.simd_lt(a_),
+        R::zero(),
+        R::select(x.simd_ge(b_), R::one(), (x - a) / (b - a)),
+    )
+}
+
+/// [`ramp_down`] per lane.
+#[inline(always)]
+fn ramp_down_lanes<R: Real>(x: R, b: f64, c: f64) -> R {
+    let (b_, c_) = (R::splat(b), R::splat(c));
+    R::select(
+        x.simd_gt(c_),
+        R::zero(),
+        R::select(x.simd_le(b_), R::one(), (R::splat(c) - x) / (c - b)),
+    )
 }
 
 #[cfg(test)]

@@ -2,8 +2,10 @@
 
 use nalgebra::Vector3;
 
-use super::GravityField;
-use crate::error::{ParamError, require};
+use super::{GravityField, GravityModel};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Real, add, dot, scale_by, sub};
+use crate::params::{FromParams, ParamSource};
 
 /// `U = (mu/r) [1 + (R0/r)^2 (C20 (3 z^2/r^2 - 1)/2 + 3 C22 (x^2 - y^2)/r^2)]`.
 ///
@@ -13,14 +15,16 @@ use crate::error::{ParamError, require};
 /// the field through attitude angles and is garbled in print; this is the gradient of its eq. 2
 /// truncated at degree two, checked against finite differences of U in the tests.)
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Harmonic2 {
+pub struct Harmonic2<R = f64> {
     /// Gravitational parameter, m^3/s^2.
-    pub mu: f64,
+    pub mu: R,
     /// Reference radius, m.
-    pub r0: f64,
-    pub c20: f64,
-    pub c22: f64,
+    pub r0: R,
+    pub c20: R,
+    pub c22: R,
 }
+
+crate::gather_struct!(Harmonic2<R> { lanes: [mu, r0, c20, c22], shared: [] });
 
 impl Harmonic2 {
     /// Seed 002 Table 2 (433 Eros): mu = 4.842e5 m^3/s^2, R0 = 1138.5 m, C20 = -0.043,
@@ -33,44 +37,65 @@ impl Harmonic2 {
             c22: 0.058,
         }
     }
+}
 
-    fn validate_fields(&self) -> Result<(), ParamError> {
+impl Validate for Harmonic2 {
+    fn validate(&self) -> Result<(), ParamError> {
         require(self.mu > 0.0, "mu", self.mu, "mu > 0")?;
         require(self.r0 > 0.0, "r0", self.r0, "r0 > 0")?;
         require(true, "c20", self.c20, "finite values")?;
         require(true, "c22", self.c22, "finite values")
     }
+}
 
+impl<R: Real> Harmonic2<R> {
     #[inline(always)]
-    fn form(&self, r: &Vector3<f64>) -> f64 {
+    fn form(&self, r: &Vector3<R>) -> R {
         let (x2, y2, z2) = (r[0] * r[0], r[1] * r[1], r[2] * r[2]);
-        0.5 * self.c20 * (2.0 * z2 - x2 - y2) + 3.0 * self.c22 * (x2 - y2)
+        R::splat(0.5) * self.c20 * (z2 * 2.0 - x2 - y2) + R::splat(3.0) * self.c22 * (x2 - y2)
     }
 }
 
-impl GravityField for Harmonic2 {
+impl<R: Real> GravityField<R> for Harmonic2<R> {
     #[inline(always)]
-    fn acceleration(&self, r: &Vector3<f64>) -> Vector3<f64> {
-        let r2 = r.norm_squared();
-        let inv = 1.0 / r2.sqrt();
+    fn acceleration(&self, r: &Vector3<R>) -> Vector3<R> {
+        let r2 = dot(r, r);
+        let inv = R::one() / r2.sqrt();
         let inv2 = inv * inv;
         let inv5 = inv2 * inv2 * inv;
         let grad_p = Vector3::new(
-            (6.0 * self.c22 - self.c20) * r[0],
-            -(self.c20 + 6.0 * self.c22) * r[1],
-            2.0 * self.c20 * r[2],
+            (self.c22 * 6.0 - self.c20) * r[0],
+            -(self.c20 + self.c22 * 6.0) * r[1],
+            self.c20 * 2.0 * r[2],
         );
         let k = self.mu * self.r0 * self.r0;
-        r * (-self.mu * inv2 * inv) + (grad_p * inv5 - r * (5.0 * self.form(r) * inv5 * inv2)) * k
-    }
-
-    fn validate(&self) -> Result<(), ParamError> {
-        self.validate_fields()
+        let monopole = scale_by(r, -self.mu * inv2 * inv);
+        let quadrupole = sub(
+            &scale_by(&grad_p, inv5),
+            &scale_by(r, R::splat(5.0) * self.form(r) * inv5 * inv2),
+        );
+        add(&monopole, &scale_by(&quadrupole, k))
     }
 
     #[inline(always)]
-    fn potential(&self, r: &Vector3<f64>) -> f64 {
-        let rn = r.norm();
-        self.mu / rn + self.mu * self.r0 * self.r0 * self.form(r) / rn.powi(5)
+    fn potential(&self, r: &Vector3<R>) -> R {
+        let rn = dot(r, r).sqrt();
+        let rn2 = rn * rn;
+        self.mu / rn + self.mu * self.r0 * self.r0 * self.form(r) / (rn2 * rn2 * rn)
+    }
+}
+
+impl GravityModel for Harmonic2 {
+    type At<R: Real> = Harmonic2<R>;
+}
+
+impl FromParams for Harmonic2 {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            mu: p.scalar("mu")?,
+            r0: p.scalar("r0")?,
+            c20: p.scalar("c20")?,
+            c22: p.scalar("c22")?,
+        })
     }
 }

@@ -1,5 +1,8 @@
 //! Gravity fields. Sign convention (SPEC 3.2): the potential U is positive for a point mass
 //! (U = +mu/r), and the field is its gradient, g = grad U, so gravity always attracts.
+//!
+//! Every field is generic over its number type (see [`crate::lanes`]): `PointMass` is one
+//! case's field, `PointMass<Lanes<W>>` the fields of a block of cases.
 
 mod harmonic2;
 mod point_mass;
@@ -13,12 +16,21 @@ pub use uniform::Uniform;
 
 use nalgebra::Vector3;
 
-pub trait GravityField: Copy + Send + Sync {
+use crate::error::Validate;
+use crate::lanes::{Gather, Real};
+
+pub trait GravityField<R: Real>: Copy + Send + Sync {
     /// Field (acceleration) at `r`, m/s^2.
-    fn acceleration(&self, r: &Vector3<f64>) -> Vector3<f64>;
+    fn acceleration(&self, r: &Vector3<R>) -> Vector3<R>;
     /// Potential at `r` with `acceleration = grad potential`, m^2/s^2.
-    fn potential(&self, r: &Vector3<f64>) -> f64;
-    fn validate(&self) -> Result<(), crate::error::ParamError>;
+    fn potential(&self, r: &Vector3<R>) -> R;
+}
+
+/// A gravity field as configured (one case's parameters), and the same field over lanes.
+pub trait GravityModel:
+    GravityField<f64> + Validate + Clone + PartialEq + Send + Sync + 'static
+{
+    type At<R: Real>: GravityField<R> + Gather<R, Case = Self>;
 }
 
 #[cfg(test)]
@@ -26,7 +38,7 @@ mod tests {
     use super::*;
 
     /// Central finite difference of the potential, 4th order.
-    fn fd_gradient<F: GravityField>(f: &F, r: &Vector3<f64>) -> Vector3<f64> {
+    fn fd_gradient<F: GravityField<f64>>(f: &F, r: &Vector3<f64>) -> Vector3<f64> {
         let h = 1e-2 * r.norm().max(1.0) * 1e-3;
         Vector3::from_fn(|i, _| {
             let e = Vector3::from_fn(|j, _| if i == j { h } else { 0.0 });
@@ -47,7 +59,7 @@ mod tests {
         ]
     }
 
-    fn check_gradient<F: GravityField>(f: &F) {
+    fn check_gradient<F: GravityField<f64>>(f: &F) {
         for r in probes() {
             let g = f.acceleration(&r);
             let fd = fd_gradient(f, &r);
@@ -58,7 +70,7 @@ mod tests {
         }
     }
 
-    fn check_inward<F: GravityField>(f: &F) {
+    fn check_inward<F: GravityField<f64>>(f: &F) {
         // beyond the mass points' span (2 x 7.7 km for the Eros dumbbell) the field points
         // at the centre's side
         for r in probes() {
@@ -126,5 +138,32 @@ mod tests {
         let d = e.positions[0][0];
         assert!((d * d / (17_200.0f64.powi(2) / 5.0) - 1.0).abs() < 1e-14);
         assert_eq!(e.positions[1][0], -d);
+    }
+
+    #[test]
+    fn a_block_of_fields_evaluates_each_case() {
+        use crate::lanes::Lanes;
+        let cases = [
+            Harmonic2::seed002(),
+            Harmonic2 {
+                mu: 1e6,
+                r0: 5000.0,
+                c20: 0.3,
+                c22: -0.2,
+            },
+        ];
+        let block: Harmonic2<Lanes<2>> = Gather::gather(&|i| &cases[i]);
+        let r = [
+            Vector3::new(3200.0, 1300.0, 9000.0),
+            Vector3::new(-900.0, 20.0, 4000.0),
+        ];
+        let rl = Vector3::from_fn(|j, _| Lanes([r[0][j], r[1][j]]));
+        let g = block.acceleration(&rl);
+        for i in 0..2 {
+            let gi = cases[i].acceleration(&r[i]);
+            for j in 0..3 {
+                assert_eq!(g[j].0[i].to_bits(), gi[j].to_bits());
+            }
+        }
     }
 }

@@ -1,34 +1,46 @@
 use nalgebra::Vector3;
 
-use super::GravityField;
-use crate::error::{ParamError, require};
+use super::{GravityField, GravityModel};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Real, dot, scale_by};
+use crate::params::{FromParams, ParamSource};
 
 /// A point mass, `U = mu / r`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointMass {
+pub struct PointMass<R = f64> {
     /// Gravitational parameter G M, m^3/s^2.
-    pub mu: f64,
+    pub mu: R,
 }
 
-impl PointMass {
-    fn validate_fields(&self) -> Result<(), ParamError> {
+crate::gather_struct!(PointMass<R> { lanes: [mu], shared: [] });
+
+impl Validate for PointMass {
+    fn validate(&self) -> Result<(), ParamError> {
         require(self.mu > 0.0, "mu", self.mu, "mu > 0")
     }
 }
 
-impl GravityField for PointMass {
+impl<R: Real> GravityField<R> for PointMass<R> {
     #[inline(always)]
-    fn acceleration(&self, r: &Vector3<f64>) -> Vector3<f64> {
-        let r2 = r.norm_squared();
-        r * (-self.mu / (r2 * r2.sqrt()))
-    }
-
-    fn validate(&self) -> Result<(), ParamError> {
-        self.validate_fields()
+    fn acceleration(&self, r: &Vector3<R>) -> Vector3<R> {
+        let r2 = dot(r, r);
+        scale_by(r, -self.mu / (r2 * r2.sqrt()))
     }
 
     #[inline(always)]
-    fn potential(&self, r: &Vector3<f64>) -> f64 {
-        self.mu / r.norm()
+    fn potential(&self, r: &Vector3<R>) -> R {
+        self.mu / dot(r, r).sqrt()
+    }
+}
+
+impl GravityModel for PointMass {
+    type At<R: Real> = PointMass<R>;
+}
+
+impl FromParams for PointMass {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            mu: p.scalar("mu")?,
+        })
     }
 }

@@ -2,8 +2,10 @@
 
 use nalgebra::Vector3;
 
-use super::GravityField;
-use crate::error::{ParamError, require};
+use super::{GravityField, GravityModel};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Real, dot, scale_by, sub};
+use crate::params::{FromParams, ParamSource};
 
 /// Newton's constant, m^3 / (kg s^2) (CODATA 2018).
 pub const G: f64 = 6.6743e-11;
@@ -11,27 +13,46 @@ pub const G: f64 = 6.6743e-11;
 /// `U = sum_i G M_i / |r - r_i|`. The seed prints the gradient with the wrong sign and omits
 /// where the mass points are; [`TwoPointMass::eros`] gives the documented defaults.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TwoPointMass {
+pub struct TwoPointMass<R = f64> {
     /// Gravitational parameters G M_i, m^3/s^2.
-    pub mu: [f64; 2],
+    pub mu: [R; 2],
     /// Positions of the mass points in the body frame, m.
-    pub positions: [Vector3<f64>; 2],
+    pub positions: [Vector3<R>; 2],
 }
+
+crate::gather_struct!(TwoPointMass<R> { lanes: [mu, positions], shared: [] });
 
 impl TwoPointMass {
     /// 433 Eros as a dumbbell: M = 6.687e15 kg (the seed's "6.69e5 kg" is a typo) split in two
     /// halves at (+-d, 0, 0), d = a / sqrt(5) with a = 17.2 km, so that the dumbbell has the
     /// second moment M a^2 / 5 of a homogeneous ellipsoid of semi-axis a along x.
     pub fn eros() -> Self {
-        let mu = G * 6.687e15 / 2.0;
-        let d = 17_200.0 / 5f64.sqrt();
-        Self {
-            mu: [mu, mu],
-            positions: [Vector3::new(d, 0.0, 0.0), Vector3::new(-d, 0.0, 0.0)],
-        }
+        Self::from_masses(
+            [6.687e15 / 2.0; 2],
+            [
+                Vector3::new(17_200.0 / 5f64.sqrt(), 0.0, 0.0),
+                Vector3::new(-17_200.0 / 5f64.sqrt(), 0.0, 0.0),
+            ],
+        )
     }
 
-    fn validate_fields(&self) -> Result<(), ParamError> {
+    /// The field of masses `m_i` (kg) at `positions`, with Newton's constant [`G`]:
+    /// `mu_i = G m_i`.
+    pub fn from_masses(masses: [f64; 2], positions: [Vector3<f64>; 2]) -> Self {
+        Self::from_masses_with(G, masses, positions)
+    }
+
+    /// The same with another gravitational constant (m^3 / (kg s^2)).
+    pub fn from_masses_with(g: f64, masses: [f64; 2], positions: [Vector3<f64>; 2]) -> Self {
+        Self {
+            mu: masses.map(|m| g * m),
+            positions,
+        }
+    }
+}
+
+impl Validate for TwoPointMass {
+    fn validate(&self) -> Result<(), ParamError> {
         for (i, &m) in self.mu.iter().enumerate() {
             require(m > 0.0, "masses", m, "masses > 0").map_err(|e| e.on_axis(i))?;
         }
@@ -44,28 +65,38 @@ impl TwoPointMass {
     }
 }
 
-impl GravityField for TwoPointMass {
+impl<R: Real> GravityField<R> for TwoPointMass<R> {
     #[inline(always)]
-    fn acceleration(&self, r: &Vector3<f64>) -> Vector3<f64> {
+    fn acceleration(&self, r: &Vector3<R>) -> Vector3<R> {
         let mut g = Vector3::zeros();
         for (mu, p) in self.mu.iter().zip(&self.positions) {
-            let d = r - p;
-            let d2 = d.norm_squared();
-            g -= d * (mu / (d2 * d2.sqrt()));
+            let d = sub(r, p);
+            let d2 = dot(&d, &d);
+            g = sub(&g, &scale_by(&d, *mu / (d2 * d2.sqrt())));
         }
         g
     }
 
-    fn validate(&self) -> Result<(), ParamError> {
-        self.validate_fields()
-    }
-
     #[inline(always)]
-    fn potential(&self, r: &Vector3<f64>) -> f64 {
-        self.mu
-            .iter()
-            .zip(&self.positions)
-            .map(|(mu, p)| mu / (r - p).norm())
-            .sum()
+    fn potential(&self, r: &Vector3<R>) -> R {
+        let mut u = R::zero();
+        for (mu, p) in self.mu.iter().zip(&self.positions) {
+            let d = r - p;
+            u += *mu / dot(&d, &d).sqrt();
+        }
+        u
+    }
+}
+
+impl GravityModel for TwoPointMass {
+    type At<R: Real> = TwoPointMass<R>;
+}
+
+impl FromParams for TwoPointMass {
+    /// Masses `m1`, `m2` (kg) at `position1`, `position2` (m), with Newton's constant `G`.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let m = [p.scalar("m1")?, p.scalar("m2")?];
+        let positions = [p.axes::<3>("position1")?, p.axes::<3>("position2")?];
+        Ok(Self::from_masses_with(p.scalar("G")?, m, positions))
     }
 }

@@ -1,25 +1,35 @@
 use nalgebra::Vector3;
 
-use super::GravityField;
+use super::{GravityField, GravityModel};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::Real;
 
 /// Uniform field `g = (0, 0, -g0)` of a flat planet near its surface (Mars descent, seed 001).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Uniform {
-    pub g0: f64,
+pub struct Uniform<R = f64> {
+    pub g0: R,
 }
 
-impl GravityField for Uniform {
+crate::gather_struct!(Uniform<R> { lanes: [g0], shared: [] });
+
+impl Validate for Uniform {
+    fn validate(&self) -> Result<(), ParamError> {
+        require(self.g0 >= 0.0, "gravity", self.g0, "gravity >= 0")
+    }
+}
+
+impl<R: Real> GravityField<R> for Uniform<R> {
     #[inline(always)]
-    fn acceleration(&self, _r: &Vector3<f64>) -> Vector3<f64> {
-        Vector3::new(0.0, 0.0, -self.g0)
+    fn acceleration(&self, _r: &Vector3<R>) -> Vector3<R> {
+        Vector3::new(R::zero(), R::zero(), -self.g0)
     }
 
-    fn validate(&self) -> Result<(), crate::error::ParamError> {
-        crate::error::require(self.g0 >= 0.0, "gravity", self.g0, "gravity >= 0")
-    }
-
     #[inline(always)]
-    fn potential(&self, r: &Vector3<f64>) -> f64 {
+    fn potential(&self, r: &Vector3<R>) -> R {
         -self.g0 * r[2]
     }
+}
+
+impl GravityModel for Uniform {
+    type At<R: Real> = Uniform<R>;
 }

@@ -4,16 +4,20 @@
 
 use nalgebra::SVector;
 
-use super::Plant;
-use crate::error::ParamError;
+use super::{Plant, PlantModel};
+use crate::error::{ParamError, Validate};
+use crate::lanes::{Real, add};
+use crate::params::{FromParams, ParamSource};
 
-pub type DoubleIntegratorState = SVector<f64, 6>;
+pub type DoubleIntegratorState<R = f64> = SVector<R, 6>;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DoubleIntegrator {
+pub struct DoubleIntegrator<R = f64> {
     /// Per-axis limit on the commanded acceleration |u_i|; infinite for none.
-    pub acceleration_limit: SVector<f64, 3>,
+    pub acceleration_limit: SVector<R, 3>,
 }
+
+crate::gather_struct!(DoubleIntegrator<R> { lanes: [acceleration_limit], shared: [] });
 
 impl Default for DoubleIntegrator {
     fn default() -> Self {
@@ -23,30 +27,35 @@ impl Default for DoubleIntegrator {
     }
 }
 
-impl Plant<3> for DoubleIntegrator {
-    type State = DoubleIntegratorState;
-    const STATE_NAMES: &'static [&'static str] = &["x", "y", "z", "vx", "vy", "vz"];
-    const CONTROL_NAMES: &'static [&'static str] = &["ax", "ay", "az"];
+impl<R: Real> Plant<R, 3> for DoubleIntegrator<R> {
+    type State = DoubleIntegratorState<R>;
 
     #[inline(always)]
-    fn coordinates(&self, x: &Self::State) -> (SVector<f64, 3>, SVector<f64, 3>) {
-        (x.fixed_rows::<3>(0).into(), x.fixed_rows::<3>(3).into())
+    fn coordinates(&self, x: &Self::State) -> (SVector<R, 3>, SVector<R, 3>) {
+        (
+            SVector::from([x[0], x[1], x[2]]),
+            SVector::from([x[3], x[4], x[5]]),
+        )
     }
 
     #[inline(always)]
-    fn modelled_acceleration(&self, _t: f64, _x: &Self::State) -> SVector<f64, 3> {
+    fn modelled_acceleration(&self, _t: f64, _x: &Self::State) -> SVector<R, 3> {
         SVector::zeros()
     }
 
     #[inline(always)]
-    fn inertia(&self, _x: &Self::State) -> SVector<f64, 3> {
-        SVector::repeat(1.0)
+    fn inertia(&self, _x: &Self::State) -> SVector<R, 3> {
+        SVector::from_element(R::one())
     }
 
     #[inline(always)]
-    fn actuate(&self, _x: &Self::State, a: &SVector<f64, 3>) -> SVector<f64, 3> {
+    fn actuate(&self, _x: &Self::State, a: &SVector<R, 3>) -> SVector<R, 3> {
         let l = &self.acceleration_limit;
-        SVector::from_fn(|i, _| a[i].clamp(-l[i], l[i]))
+        let mut u = *a;
+        for i in 0..3 {
+            u[i] = a[i].clamp(-l[i], l[i]);
+        }
+        u
     }
 
     #[inline(always)]
@@ -54,13 +63,22 @@ impl Plant<3> for DoubleIntegrator {
         &self,
         _t: f64,
         x: &Self::State,
-        u: &SVector<f64, 3>,
-        d: &SVector<f64, 3>,
+        u: &SVector<R, 3>,
+        d: &SVector<R, 3>,
     ) -> Self::State {
-        let a = u + d;
+        let a = add(u, d);
         DoubleIntegratorState::from([x[3], x[4], x[5], a[0], a[1], a[2]])
     }
+}
 
+impl PlantModel<3> for DoubleIntegrator {
+    type At<R: Real> = DoubleIntegrator<R>;
+    type Blocks = crate::kernel::Wide;
+    const STATE_NAMES: &'static [&'static str] = &["x", "y", "z", "vx", "vy", "vz"];
+    const CONTROL_NAMES: &'static [&'static str] = &["ax", "ay", "az"];
+}
+
+impl Validate for DoubleIntegrator {
     fn validate(&self) -> Result<(), ParamError> {
         for (i, &l) in self.acceleration_limit.iter().enumerate() {
             if l.is_nan() || l <= 0.0 {
@@ -70,5 +88,15 @@ impl Plant<3> for DoubleIntegrator {
             }
         }
         Ok(())
+    }
+}
+
+impl FromParams for DoubleIntegrator {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            acceleration_limit: p
+                .opt_axes::<3>("acceleration_limit")?
+                .unwrap_or(SVector::repeat(f64::INFINITY)),
+        })
     }
 }

@@ -17,30 +17,37 @@
 
 use nalgebra::{SVector, Vector3};
 
-use super::Plant;
-use crate::error::{ParamError, require, require_axes};
+use super::{Plant, PlantModel};
+use crate::error::{ParamError, Validate, require, require_axes};
 use crate::gravity::{GravityField, Uniform};
+use crate::lanes::{Real, norm};
+use crate::params::{FromParams, ParamSource};
 
-pub type MarsState = SVector<f64, 7>;
+pub type MarsState<R = f64> = SVector<R, 7>;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MarsLander {
+pub struct MarsLander<R = f64> {
     /// Specific impulse, s (225 s, seed reference [1]).
-    pub isp: f64,
+    pub isp: R,
     /// Effective cross-sectional areas perpendicular to x, y, z, m^2 (seed Table I).
-    pub area: Vector3<f64>,
-    pub gravity: Uniform,
+    pub area: Vector3<R>,
+    pub gravity: Uniform<R>,
     /// Standard gravity used in the rocket equation, m/s^2.
-    pub g0: f64,
-    /// Whether the plant has drag; the guidance then models it too.
+    pub g0: R,
+    /// Whether the plant has drag; the guidance then models it too. Shared by a block.
     pub drag: bool,
     /// k_d of seed eq. 12, kg/m.
-    pub drag_coefficient: f64,
+    pub drag_coefficient: R,
     /// h_d of seed eq. 12, 1/m (the seed's 0.0009; the underlying Mars model uses 0.00009).
-    pub density_decay: f64,
+    pub density_decay: R,
     /// Per-axis thrust limit |F_i| <= F_max, N; infinite for none.
-    pub thrust_limit: Vector3<f64>,
+    pub thrust_limit: Vector3<R>,
 }
+
+crate::gather_struct!(MarsLander<R> {
+    lanes: [isp, area, gravity, g0, drag_coefficient, density_decay, thrust_limit],
+    shared: [drag],
+});
 
 impl Default for MarsLander {
     fn default() -> Self {
@@ -57,109 +64,143 @@ impl Default for MarsLander {
     }
 }
 
-impl MarsLander {
+impl<R: Real> MarsLander<R> {
     /// Drag acceleration at altitude `rz`, velocity `v` and mass `m`.
     #[inline(always)]
-    pub fn drag_acceleration(&self, rz: f64, v: &Vector3<f64>, m: f64) -> Vector3<f64> {
+    pub fn drag_acceleration(&self, rz: R, v: &Vector3<R>, m: R) -> Vector3<R> {
+        self.drag_with_inverse_mass(rz, v, R::one() / m)
+    }
+
+    /// The same from `1 / m`. The divisions by the areas are multiplications by their
+    /// reciprocals, which depend on the parameters only and are computed once per block (a
+    /// vector division costs as much as a dozen multiplications).
+    #[inline(always)]
+    fn drag_with_inverse_mass(&self, rz: R, v: &Vector3<R>, inv_m: R) -> Vector3<R> {
         if !self.drag {
             return Vector3::zeros();
         }
-        let k = -self.drag_coefficient * (-self.density_decay * rz).exp() / m;
+        let k = -self.drag_coefficient * (-self.density_decay * rz).exp() * inv_m;
+        let one = R::one();
         Vector3::new(
-            k * v[0] * v[0].abs() / self.area[0],
-            k * v[1] * v[1].abs() / self.area[1],
-            k * v[2] * v[2].abs() / self.area[2],
+            k * v[0] * v[0].abs() * (one / self.area[0]),
+            k * v[1] * v[1].abs() * (one / self.area[1]),
+            k * v[2] * v[2].abs() * (one / self.area[2]),
         )
     }
 
     /// Effective exhaust velocity `c = Isp g_e`, m/s.
     #[inline(always)]
-    pub fn exhaust_velocity(&self) -> f64 {
+    pub fn exhaust_velocity(&self) -> R {
         self.isp * self.g0
     }
 }
 
 #[inline(always)]
-fn split(x: &MarsState) -> (Vector3<f64>, Vector3<f64>, f64) {
+fn split<R: Real>(x: &MarsState<R>) -> (Vector3<R>, Vector3<R>, R) {
     (
-        x.fixed_rows::<3>(0).into(),
-        x.fixed_rows::<3>(3).into(),
+        Vector3::new(x[0], x[1], x[2]),
+        Vector3::new(x[3], x[4], x[5]),
         x[6],
     )
 }
 
-impl Plant<3> for MarsLander {
-    type State = MarsState;
-    const STATE_NAMES: &'static [&'static str] = &["rx", "ry", "rz", "vx", "vy", "vz", "m"];
-    const CONTROL_NAMES: &'static [&'static str] = &["Fx", "Fy", "Fz"];
+#[inline(always)]
+fn pack<R: Real>(v: &Vector3<R>, a: &Vector3<R>, mdot: R) -> MarsState<R> {
+    MarsState::from([v[0], v[1], v[2], a[0], a[1], a[2], mdot])
+}
+
+impl<R: Real> Plant<R, 3> for MarsLander<R> {
+    type State = MarsState<R>;
 
     #[inline(always)]
-    fn coordinates(&self, x: &MarsState) -> (Vector3<f64>, Vector3<f64>) {
+    fn coordinates(&self, x: &MarsState<R>) -> (Vector3<R>, Vector3<R>) {
         let (r, v, _) = split(x);
         (r, v)
     }
 
     #[inline(always)]
-    fn modelled_acceleration(&self, _t: f64, x: &MarsState) -> Vector3<f64> {
+    fn modelled_acceleration(&self, _t: f64, x: &MarsState<R>) -> Vector3<R> {
         let (r, v, m) = split(x);
         self.gravity.acceleration(&r) + self.drag_acceleration(r[2], &v, m)
     }
 
     #[inline(always)]
-    fn inertia(&self, x: &MarsState) -> Vector3<f64> {
-        Vector3::repeat(x[6])
+    fn inertia(&self, x: &MarsState<R>) -> Vector3<R> {
+        Vector3::from_element(x[6])
     }
 
     #[inline(always)]
-    fn actuate(&self, x: &MarsState, acceleration: &Vector3<f64>) -> Vector3<f64> {
-        let f = acceleration * x[6];
+    fn actuate(&self, x: &MarsState<R>, acceleration: &Vector3<R>) -> Vector3<R> {
         let lim = &self.thrust_limit;
-        Vector3::new(
-            f[0].clamp(-lim[0], lim[0]),
-            f[1].clamp(-lim[1], lim[1]),
-            f[2].clamp(-lim[2], lim[2]),
-        )
+        let mut f = *acceleration;
+        for i in 0..3 {
+            f[i] = (acceleration[i] * x[6]).clamp(-lim[i], lim[i]);
+        }
+        f
     }
 
     #[inline(always)]
-    fn derivative(&self, _t: f64, x: &MarsState, u: &Vector3<f64>, d: &Vector3<f64>) -> MarsState {
-        let (r, v, m) = split(x);
-        let a = u / m + self.gravity.acceleration(&r) + self.drag_acceleration(r[2], &v, m) + d;
-        let mdot = -u.norm() / self.exhaust_velocity();
-        MarsState::from([v[0], v[1], v[2], a[0], a[1], a[2], mdot])
+    fn derivative(&self, t: f64, x: &MarsState<R>, u: &Vector3<R>, d: &Vector3<R>) -> MarsState<R> {
+        self.derivative_with_drift(t, x, u, d, &self.modelled_acceleration(t, x))
     }
 
     #[inline(always)]
-    fn admissible(&self, x: &MarsState) -> bool {
-        x.iter().all(|v| v.is_finite()) && x[6] > 0.0
+    fn derivative_with_drift(
+        &self,
+        _t: f64,
+        x: &MarsState<R>,
+        u: &Vector3<R>,
+        d: &Vector3<R>,
+        drift: &Vector3<R>,
+    ) -> MarsState<R> {
+        let (_, v, m) = split(x);
+        let inv_m = R::one() / m;
+        let a = Vector3::new(
+            u[0] * inv_m + drift[0] + d[0],
+            u[1] * inv_m + drift[1] + d[1],
+            u[2] * inv_m + drift[2] + d[2],
+        );
+        // |u| and the exhaust velocity are the same at every stage of a period: the compiler
+        // computes this once per period
+        let mdot = -norm(u) * (R::one() / self.exhaust_velocity());
+        pack(&v, &a, mdot)
     }
 
     #[inline(always)]
-    fn mass(&self, x: &MarsState) -> Option<f64> {
+    fn admissible(&self, x: &MarsState<R>) -> R::Mask {
+        crate::lanes::all_finite(x) & x[6].simd_gt(R::zero())
+    }
+
+    #[inline(always)]
+    fn mass(&self, x: &MarsState<R>) -> Option<R> {
         Some(x[6])
     }
 
     #[inline(always)]
-    fn altitude(&self, x: &MarsState) -> Option<f64> {
+    fn altitude(&self, x: &MarsState<R>) -> Option<R> {
         Some(x[2])
     }
+}
 
-    fn check_initial(&self, x: &MarsState) -> Result<(), ParamError> {
+impl PlantModel<3> for MarsLander {
+    type At<R: Real> = MarsLander<R>;
+    type Blocks = crate::kernel::Wide;
+    const STATE_NAMES: &'static [&'static str] = &["rx", "ry", "rz", "vx", "vy", "vz", "m"];
+    const CONTROL_NAMES: &'static [&'static str] = &["Fx", "Fy", "Fz"];
+
+    fn check_initial(&self, x: &[f64]) -> Result<(), ParamError> {
         for (i, v) in x.iter().enumerate() {
             require(true, "x0", *v, "finite values").map_err(|e| e.on_axis(i))?;
         }
         require(x[6] > 0.0, "x0", x[6], "mass x0[6] > 0").map_err(|e| e.on_axis(6))
     }
+}
 
+impl Validate for MarsLander {
     fn validate(&self) -> Result<(), ParamError> {
         require(self.isp > 0.0, "isp", self.isp, "isp > 0")?;
         require_axes(self.area.as_slice(), "area", "area > 0", |a| a > 0.0)?;
-        require(
-            self.gravity.g0 >= 0.0,
-            "gravity",
-            self.gravity.g0,
-            "gravity >= 0",
-        )?;
+        self.gravity.validate()?;
         require(self.g0 > 0.0, "g0", self.g0, "g0 > 0")?;
         require(
             self.drag_coefficient >= 0.0,
@@ -179,6 +220,25 @@ impl Plant<3> for MarsLander {
             }
         }
         Ok(())
+    }
+}
+
+impl FromParams for MarsLander {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            isp: p.scalar("isp")?,
+            area: p.axes::<3>("area")?,
+            gravity: Uniform {
+                g0: p.scalar("gravity")?,
+            },
+            g0: p.scalar("g0")?,
+            drag: p.flag("drag")?,
+            drag_coefficient: p.scalar("drag_coefficient")?,
+            density_decay: p.scalar("density_decay")?,
+            thrust_limit: p
+                .opt_axes::<3>("thrust_limit")?
+                .unwrap_or(Vector3::repeat(f64::INFINITY)),
+        })
     }
 }
 

@@ -4,6 +4,9 @@
 //! for the landers, angles for the tethered satellite). Laws compute a generalized-acceleration
 //! command from the tracking errors and the plant's modelled drift; the plant's actuator turns
 //! it into the applied command (thrust, control acceleration, torque) and saturates it.
+//!
+//! A plant type is generic over its number type (see [`crate::lanes`]): `MarsLander` is one
+//! case, `MarsLander<Lanes<W>>` a block of W cases advanced together, one lane per case.
 
 mod double_integrator;
 mod mars;
@@ -17,64 +20,121 @@ pub use tether::{TetheredFlexible, TetheredSimplified};
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Gather, Real};
 use crate::state::State;
 
-pub trait Plant<const D: usize>: Send + Sync {
-    type State: State;
-
-    /// Names of the state components, for tables and plots.
-    const STATE_NAMES: &'static [&'static str];
-    /// Names of the applied-command components.
-    const CONTROL_NAMES: &'static [&'static str];
+/// The dynamics over lanes of cases.
+pub trait Plant<R: Real, const D: usize>: Send + Sync {
+    type State: State<R>;
 
     /// Generalized coordinates and their rates, as the law reads them.
-    fn coordinates(&self, x: &Self::State) -> (SVector<f64, D>, SVector<f64, D>);
+    fn coordinates(&self, x: &Self::State) -> (SVector<R, D>, SVector<R, D>);
 
     /// The part of q'' the controller may model (gravity, modelled drag, frame terms), without
     /// the command and without the unknown disturbance. Equivalent controls cancel it.
-    fn modelled_acceleration(&self, t: f64, x: &Self::State) -> SVector<f64, D>;
+    fn modelled_acceleration(&self, t: f64, x: &Self::State) -> SVector<R, D>;
 
     /// Diagonal inertia seen by the command: q'' gains `u_i / inertia_i`. The mass for a
     /// lander commanded in force, 1 for a commanded acceleration.
-    fn inertia(&self, x: &Self::State) -> SVector<f64, D>;
+    fn inertia(&self, x: &Self::State) -> SVector<R, D>;
 
     /// The applied command for a commanded generalized acceleration: scaling to actuator units
     /// and saturation. Held over the control period.
-    fn actuate(&self, x: &Self::State, acceleration: &SVector<f64, D>) -> SVector<f64, D>;
+    fn actuate(&self, x: &Self::State, acceleration: &SVector<R, D>) -> SVector<R, D>;
 
     /// `x'` under the held command `u` and the disturbance acceleration `d`.
     fn derivative(
         &self,
         t: f64,
         x: &Self::State,
-        u: &SVector<f64, D>,
-        d: &SVector<f64, D>,
+        u: &SVector<R, D>,
+        d: &SVector<R, D>,
     ) -> Self::State;
 
-    /// Whether the model is defined at `x` (finite, positive mass, ...). A rollout stops and
-    /// flags the case as diverged when it is not.
-    fn admissible(&self, x: &Self::State) -> bool {
+    /// `x'` at a control instant, where the law has just evaluated `drift`, the modelled
+    /// acceleration at the same `(t, x)`: plants whose derivative contains it reuse it (the
+    /// Mars lander's drag exponential is then computed once for the law and the first stage).
+    /// With `drift = modelled_acceleration(t, x)` it must give `derivative`'s bits: the rollout
+    /// calls it at every stage.
+    #[inline(always)]
+    fn derivative_with_drift(
+        &self,
+        t: f64,
+        x: &Self::State,
+        u: &SVector<R, D>,
+        d: &SVector<R, D>,
+        _drift: &SVector<R, D>,
+    ) -> Self::State {
+        self.derivative(t, x, u, d)
+    }
+
+    /// Whether the model is defined at `x` (finite, positive mass, ...), per lane. A rollout
+    /// stops and flags a case as diverged when it is not.
+    #[inline(always)]
+    fn admissible(&self, x: &Self::State) -> R::Mask {
         x.all_finite()
     }
 
     /// Mass, for plants that burn propellant (fuel used = m0 - m(t_final)).
-    fn mass(&self, _x: &Self::State) -> Option<f64> {
+    #[inline(always)]
+    fn mass(&self, _x: &Self::State) -> Option<R> {
         None
     }
 
     /// Height above the landing surface, for plants that can touch down.
-    fn altitude(&self, _x: &Self::State) -> Option<f64> {
+    #[inline(always)]
+    fn altitude(&self, _x: &Self::State) -> Option<R> {
+        None
+    }
+}
+
+/// A plant as configured: one case's `f64` parameters, its names and rules, and the same
+/// plant over lanes ([`PlantModel::At`]).
+pub trait PlantModel<const D: usize>:
+    Plant<f64, D> + Validate + Clone + Send + Sync + 'static
+{
+    /// The plant over lanes of cases.
+    type At<R: Real>: Plant<R, D> + Gather<R, Case = Self>;
+
+    /// How wide its blocks are at each instruction-set level ([`crate::kernel::Wide`] or
+    /// [`crate::kernel::Narrow`]): a performance choice, measured; the bits do not depend on
+    /// it.
+    type Blocks: crate::kernel::Blocks;
+
+    /// Number of state components.
+    const STATE_DIM: usize = <<Self as Plant<f64, D>>::State as State<f64>>::DIM;
+    /// Names of the state components, for tables and plots.
+    const STATE_NAMES: &'static [&'static str];
+    /// Names of the applied-command components.
+    const CONTROL_NAMES: &'static [&'static str];
+
+    /// Derived figures of the model, for tables and documentation (e.g. the tethered
+    /// satellite's inertia and orbital rate): names and values.
+    fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        Vec::new()
+    }
+
+    /// The largest stable RK4 step of the model's fastest mode, s (infinite unless stiff).
+    fn max_step(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    /// The state at generalized coordinates `q` and rates `qd`, for plants whose state they
+    /// determine (None for the others).
+    fn state_at(
+        &self,
+        _q: &SVector<f64, D>,
+        _qd: &SVector<f64, D>,
+    ) -> Option<Result<Vec<f64>, ParamError>> {
         None
     }
 
     /// Checks an initial state; by default, that it is finite.
-    fn check_initial(&self, x: &Self::State) -> Result<(), ParamError> {
-        for (i, v) in x.as_slice().iter().enumerate() {
+    fn check_initial(&self, x: &[f64]) -> Result<(), ParamError> {
+        for (i, v) in x.iter().enumerate() {
             require(v.is_finite(), "x0", *v, "finite values").map_err(|e| e.on_axis(i))?;
         }
         Ok(())
     }
-
-    fn validate(&self) -> Result<(), ParamError>;
 }

@@ -13,22 +13,26 @@
 
 use nalgebra::{SVector, Vector3};
 
-use super::Plant;
-use crate::error::{ParamError, require};
-use crate::gravity::GravityField;
+use super::{Plant, PlantModel};
+use crate::error::{ParamError, Validate, require};
+use crate::gravity::{GravityField, GravityModel};
+use crate::lanes::{Gather, Real, add};
+use crate::params::{FromParams, ParamSource};
 
-pub type SmallBodyState = SVector<f64, 6>;
+pub type SmallBodyState<R = f64> = SVector<R, 6>;
 
+/// A small body with the gravity field `G` (one case's, e.g. `SmallBody<PointMass>`, or a
+/// block's, `SmallBody<PointMass<Lanes<W>>, Lanes<W>>`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SmallBody<G: GravityField> {
+pub struct SmallBody<G, R = f64> {
     pub gravity: G,
     /// Rotation rate of the body about its z axis, rad/s.
-    pub omega: f64,
+    pub omega: R,
     /// Per-axis limit on |u_i|, m/s^2; infinite for none.
-    pub acceleration_limit: Vector3<f64>,
+    pub acceleration_limit: Vector3<R>,
 }
 
-impl<G: GravityField> SmallBody<G> {
+impl<G> SmallBody<G> {
     pub fn new(gravity: G, omega: f64) -> Self {
         Self {
             gravity,
@@ -36,68 +40,111 @@ impl<G: GravityField> SmallBody<G> {
             acceleration_limit: Vector3::repeat(f64::INFINITY),
         }
     }
+}
 
+impl<R: Real, G: Gather<R>> Gather<R> for SmallBody<G, R> {
+    type Case = SmallBody<G::Case, f64>;
+
+    fn gather<'a>(case: &dyn Fn(usize) -> &'a Self::Case) -> Self {
+        Self {
+            gravity: G::gather(&|i| &case(i).gravity),
+            omega: Gather::gather(&|i| &case(i).omega),
+            acceleration_limit: Gather::gather(&|i| &case(i).acceleration_limit),
+        }
+    }
+
+    fn same_shape(a: &Self::Case, b: &Self::Case) -> bool {
+        G::same_shape(&a.gravity, &b.gravity)
+    }
+}
+
+impl<G, R: Real> SmallBody<G, R> {
     /// Coriolis and centrifugal accelerations of the rotating frame.
     #[inline(always)]
-    pub fn frame_acceleration(&self, r: &Vector3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    pub fn frame_acceleration(&self, r: &Vector3<R>, v: &Vector3<R>) -> Vector3<R> {
         let w = self.omega;
+        let w2 = w * w;
         Vector3::new(
-            2.0 * w * v[1] + w * w * r[0],
-            -2.0 * w * v[0] + w * w * r[1],
-            0.0,
+            w * 2.0 * v[1] + w2 * r[0],
+            -w * 2.0 * v[0] + w2 * r[1],
+            R::zero(),
         )
     }
 }
 
 #[inline(always)]
-fn split(x: &SmallBodyState) -> (Vector3<f64>, Vector3<f64>) {
-    (x.fixed_rows::<3>(0).into(), x.fixed_rows::<3>(3).into())
+fn split<R: Real>(x: &SmallBodyState<R>) -> (Vector3<R>, Vector3<R>) {
+    (
+        Vector3::new(x[0], x[1], x[2]),
+        Vector3::new(x[3], x[4], x[5]),
+    )
 }
 
-impl<G: GravityField> Plant<3> for SmallBody<G> {
-    type State = SmallBodyState;
-    const STATE_NAMES: &'static [&'static str] = &["x", "y", "z", "vx", "vy", "vz"];
-    const CONTROL_NAMES: &'static [&'static str] = &["ux", "uy", "uz"];
+impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
+    type State = SmallBodyState<R>;
 
     #[inline(always)]
-    fn coordinates(&self, x: &SmallBodyState) -> (Vector3<f64>, Vector3<f64>) {
+    fn coordinates(&self, x: &SmallBodyState<R>) -> (Vector3<R>, Vector3<R>) {
         split(x)
     }
 
     #[inline(always)]
-    fn modelled_acceleration(&self, _t: f64, x: &SmallBodyState) -> Vector3<f64> {
+    fn modelled_acceleration(&self, _t: f64, x: &SmallBodyState<R>) -> Vector3<R> {
         let (r, v) = split(x);
-        self.frame_acceleration(&r, &v) + self.gravity.acceleration(&r)
-    }
-
-    #[inline(always)]
-    fn inertia(&self, _x: &SmallBodyState) -> Vector3<f64> {
-        Vector3::repeat(1.0)
-    }
-
-    #[inline(always)]
-    fn actuate(&self, _x: &SmallBodyState, a: &Vector3<f64>) -> Vector3<f64> {
-        let l = &self.acceleration_limit;
-        Vector3::new(
-            a[0].clamp(-l[0], l[0]),
-            a[1].clamp(-l[1], l[1]),
-            a[2].clamp(-l[2], l[2]),
+        add(
+            &self.frame_acceleration(&r, &v),
+            &self.gravity.acceleration(&r),
         )
+    }
+
+    #[inline(always)]
+    fn inertia(&self, _x: &SmallBodyState<R>) -> Vector3<R> {
+        Vector3::from_element(R::one())
+    }
+
+    #[inline(always)]
+    fn actuate(&self, _x: &SmallBodyState<R>, a: &Vector3<R>) -> Vector3<R> {
+        let l = &self.acceleration_limit;
+        let mut u = *a;
+        for i in 0..3 {
+            u[i] = a[i].clamp(-l[i], l[i]);
+        }
+        u
     }
 
     #[inline(always)]
     fn derivative(
         &self,
         t: f64,
-        x: &SmallBodyState,
-        u: &Vector3<f64>,
-        d: &Vector3<f64>,
-    ) -> SmallBodyState {
-        let (_, v) = split(x);
-        let a = self.modelled_acceleration(t, x) + u + d;
-        SmallBodyState::from([v[0], v[1], v[2], a[0], a[1], a[2]])
+        x: &SmallBodyState<R>,
+        u: &Vector3<R>,
+        d: &Vector3<R>,
+    ) -> SmallBodyState<R> {
+        self.derivative_with_drift(t, x, u, d, &self.modelled_acceleration(t, x))
     }
 
+    #[inline(always)]
+    fn derivative_with_drift(
+        &self,
+        _t: f64,
+        x: &SmallBodyState<R>,
+        u: &Vector3<R>,
+        d: &Vector3<R>,
+        drift: &Vector3<R>,
+    ) -> SmallBodyState<R> {
+        let a = add(&add(drift, u), d);
+        SmallBodyState::from([x[3], x[4], x[5], a[0], a[1], a[2]])
+    }
+}
+
+impl<G: GravityModel> PlantModel<3> for SmallBody<G> {
+    type At<R: Real> = SmallBody<G::At<R>, R>;
+    type Blocks = crate::kernel::Narrow;
+    const STATE_NAMES: &'static [&'static str] = &["x", "y", "z", "vx", "vy", "vz"];
+    const CONTROL_NAMES: &'static [&'static str] = &["ux", "uy", "uz"];
+}
+
+impl<G: Validate> Validate for SmallBody<G> {
     fn validate(&self) -> Result<(), ParamError> {
         require(true, "omega", self.omega, "finite values")?;
         for (i, &l) in self.acceleration_limit.iter().enumerate() {
@@ -111,23 +158,52 @@ impl<G: GravityField> Plant<3> for SmallBody<G> {
     }
 }
 
+impl<G: FromParams> FromParams for SmallBody<G> {
+    /// The body's rotation and limit, and its field from the nested table `gravity` (whose kind
+    /// the registry has matched with `G`).
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        Ok(Self {
+            gravity: p.nested("gravity", G::from_params)?,
+            omega: p.scalar("omega")?,
+            acceleration_limit: p
+                .opt_axes::<3>("acceleration_limit")?
+                .unwrap_or(Vector3::repeat(f64::INFINITY)),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::integrator::{Integrator, Rk4};
+    use crate::integrator::{IntegratorKind, Stage};
 
     #[derive(Clone, Copy)]
     struct NoGravity;
 
-    impl GravityField for NoGravity {
+    impl GravityField<f64> for NoGravity {
         fn acceleration(&self, _r: &Vector3<f64>) -> Vector3<f64> {
             Vector3::zeros()
         }
         fn potential(&self, _r: &Vector3<f64>) -> f64 {
             0.0
         }
-        fn validate(&self) -> Result<(), ParamError> {
-            Ok(())
+    }
+
+    fn advance<P: Plant<f64, 3, State = SmallBodyState>>(
+        p: &P,
+        x: &mut SmallBodyState,
+        steps: usize,
+        h: f64,
+    ) {
+        for k in 0..steps {
+            let t = k as f64 * h;
+            *x = IntegratorKind::Rk4.step(
+                &|stage: Stage, y: &SmallBodyState| {
+                    p.derivative(stage.time(t, h), y, &Vector3::zeros(), &Vector3::zeros())
+                },
+                x,
+                h,
+            );
         }
     }
 
@@ -146,12 +222,7 @@ mod tests {
             -w * big_r[0],
             0.0,
         ]);
-        let f =
-            |t: f64, s: &SmallBodyState| p.derivative(t, s, &Vector3::zeros(), &Vector3::zeros());
-        let h = 1.0;
-        for k in 0..8000 {
-            x = Rk4.step(&f, k as f64 * h, &x, h);
-        }
+        advance(&p, &mut x, 8000, 1.0);
         let th = w * 8000.0;
         let expect = Vector3::new(
             big_r[0] * th.cos() + big_r[1] * th.sin(),
@@ -176,11 +247,7 @@ mod tests {
         };
         let mut x = SmallBodyState::from([30_000.0, 1000.0, 5000.0, 0.5, 3.0, -0.2]);
         let c0 = jacobi(&x);
-        let f =
-            |t: f64, s: &SmallBodyState| p.derivative(t, s, &Vector3::zeros(), &Vector3::zeros());
-        for k in 0..20_000 {
-            x = Rk4.step(&f, k as f64, &x, 1.0);
-        }
+        advance(&p, &mut x, 20_000, 1.0);
         assert!(
             ((jacobi(&x) - c0) / c0).abs() < 1e-9,
             "{} vs {c0}",

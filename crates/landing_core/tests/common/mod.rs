@@ -2,11 +2,12 @@
 #![allow(dead_code)]
 
 use landing_core::SimConfig;
-use landing_core::batch::{Batch, BatchOutput, PerCase, run};
-use landing_core::control::{ControlLaw, FixedTimeMss, MssVariant};
+use landing_core::batch::{Batch, BatchOutput, PerCase, RunOptions, run};
+use landing_core::control::{AnyLaw, FixedTimeMss, MssVariant};
 use landing_core::disturbance::Disturbance;
-use landing_core::integrator::Integrator;
-use landing_core::plant::{MarsLander, Plant};
+use landing_core::error::Validate;
+use landing_core::integrator::IntegratorKind;
+use landing_core::plant::MarsLander;
 use landing_core::reference::Reference;
 use landing_core::workloads::{MARS_NOMINAL, spec_fixed_time_gains};
 use nalgebra::SVector;
@@ -27,22 +28,27 @@ pub fn spec_gains(variant: MssVariant) -> FixedTimeMss<3> {
     spec_fixed_time_gains(variant)
 }
 
-pub fn run_one<L: ControlLaw<3>, I: Integrator>(
+pub fn run_one(
     plant: MarsLander,
-    law: L,
-    integrator: I,
+    law: impl Into<AnyLaw<3>>,
+    integrator: IntegratorKind,
     x0: MarsState,
     disturbance: Disturbance<3>,
     cfg: &SimConfig,
 ) -> BatchOutput<3> {
     let batch = Batch {
         plants: PerCase::shared(plant),
-        laws: PerCase::shared(law),
+        laws: PerCase::shared(law.into()),
         references: PerCase::shared(Reference::default()),
         disturbances: PerCase::shared(disturbance),
         x0: vec![x0],
     };
-    run(&batch, integrator, cfg).expect("batch runs")
+    run(
+        &batch,
+        &cfg.with_integrator(integrator),
+        &RunOptions::default(),
+    )
+    .expect("batch runs")
 }
 
 pub fn no_drag() -> MarsLander {
@@ -56,6 +62,6 @@ pub fn final_state(out: &BatchOutput<3>, case: usize) -> MarsState {
     MarsState::from_column_slice(&out.final_state[case * 7..(case + 1) * 7])
 }
 
-pub fn check_plant_ok<P: Plant<3>>(p: &P) {
+pub fn check_plant_ok<P: Validate>(p: &P) {
     p.validate().expect("valid plant");
 }

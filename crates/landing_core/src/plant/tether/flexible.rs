@@ -34,28 +34,82 @@ use nalgebra::{SVector, Vector2};
 
 use super::names::{MAX_NODES, NAMES};
 use super::{TetherBody, rigid_tension};
-use crate::error::{ParamError, require};
-use crate::plant::Plant;
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::{Gather, Real, add, neg, scale_by, sub};
+use crate::params::{FromParams, ParamSource};
+use crate::plant::{Plant, PlantModel};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TetheredFlexible<const N: usize, const S: usize> {
-    pub body: TetherBody,
+pub struct TetheredFlexible<const N: usize, const S: usize, R = f64> {
+    pub body: TetherBody<R>,
     /// Tether linear density rho_t, kg/m.
-    pub density: f64,
+    pub density: R,
     /// Axial stiffness EA, N.
-    pub axial_stiffness: f64,
+    pub axial_stiffness: R,
     /// Kelvin-Voigt axial damping c_A (tension per unit strain rate), N s.
-    pub axial_damping: f64,
+    pub axial_damping: R,
 }
 
-pub type TetheredFlexible2 = TetheredFlexible<2, 14>;
-pub type TetheredFlexible4 = TetheredFlexible<4, 22>;
-pub type TetheredFlexible8 = TetheredFlexible<8, 38>;
-pub type TetheredFlexible16 = TetheredFlexible<16, 70>;
+/// The node counts the bindings offer (each is its own fixed-size state type): enough for the
+/// refinement study to show convergence, few enough to keep the compiled rollouts few.
+pub const NODE_COUNTS: [usize; 4] = [2, 4, 8, 16];
+
+pub type TetheredFlexible2<R = f64> = TetheredFlexible<2, 14, R>;
+pub type TetheredFlexible4<R = f64> = TetheredFlexible<4, 22, R>;
+pub type TetheredFlexible8<R = f64> = TetheredFlexible<8, 38, R>;
+pub type TetheredFlexible16<R = f64> = TetheredFlexible<16, 70, R>;
+
+impl<const N: usize, const S: usize, R: Real> Gather<R> for TetheredFlexible<N, S, R> {
+    type Case = TetheredFlexible<N, S>;
+
+    fn gather<'a>(case: &dyn Fn(usize) -> &'a Self::Case) -> Self {
+        Self {
+            body: Gather::gather(&|i| &case(i).body),
+            density: Gather::gather(&|i| &case(i).density),
+            axial_stiffness: Gather::gather(&|i| &case(i).axial_stiffness),
+            axial_damping: Gather::gather(&|i| &case(i).axial_damping),
+        }
+    }
+}
+
+/// The Clohessy-Wiltshire field on a point mass at radial offset `px` with velocity
+/// `(vx, vy)`: gravity gradient and Coriolis terms of the Hill frame (a function, not a
+/// closure, so that it is always inlined into the kernel).
+#[inline(always)]
+fn hill_field<R: Real>(n: R, n2: R, px: R, vx: R, vy: R) -> (R, R) {
+    (
+        R::splat(2.0) * n * vy + R::splat(3.0) * n2 * px,
+        -(R::splat(2.0) * n * vx),
+    )
+}
+
+/// Adds the pull `f` of segment j to the accelerations: it pulls node j (if j >= 1) outwards
+/// and node j + 1 inwards, or, for the last segment, the sub-satellite (`on_attachment`).
+#[inline(always)]
+fn apply_pull<const N: usize, const S: usize, R: Real>(
+    dx: &mut SVector<R, S>,
+    on_attachment: &mut Vector2<R>,
+    inv_node: R,
+    j: usize,
+    f: &Vector2<R>,
+) {
+    if j >= 1 {
+        let i = 6 + 4 * (j - 1);
+        dx[i + 2] += f[0] * inv_node;
+        dx[i + 3] += f[1] * inv_node;
+    }
+    if j < N {
+        let i = 6 + 4 * j;
+        dx[i + 2] -= f[0] * inv_node;
+        dx[i + 3] -= f[1] * inv_node;
+    } else {
+        *on_attachment = neg(f);
+    }
+}
 
 /// 2D cross product (z component).
 #[inline(always)]
-fn cross(a: &Vector2<f64>, b: &Vector2<f64>) -> f64 {
+fn cross<R: Real>(a: &Vector2<R>, b: &Vector2<R>) -> R {
     a[0] * b[1] - a[1] * b[0]
 }
 
@@ -71,7 +125,7 @@ impl<const N: usize, const S: usize> Default for TetheredFlexible<N, S> {
     }
 }
 
-impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
+impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
     const LAYOUT: () = assert!(
         S == 4 * N + 6 && N >= 1 && N <= MAX_NODES,
         "the state size must be 4 N + 6, with 1 <= N <= MAX_NODES"
@@ -81,13 +135,13 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
 
     /// Rest length of one segment, h = L0 / (N + 1).
     #[inline(always)]
-    pub fn segment_length(&self) -> f64 {
-        self.body.length / (N + 1) as f64
+    pub fn segment_length(&self) -> R {
+        self.body.length / ((N + 1) as f64)
     }
 
     /// Mass of one node, rho_t h.
     #[inline(always)]
-    pub fn node_mass(&self) -> f64 {
+    pub fn node_mass(&self) -> R {
         self.density * self.segment_length()
     }
 
@@ -95,24 +149,37 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
     /// (so that the discretised tether keeps its whole mass, and refining N converges at
     /// second order). Its rotation keeps J = m_s a^2 / 6.
     #[inline(always)]
-    pub fn end_mass(&self) -> f64 {
-        self.body.sub_mass + 0.5 * self.node_mass()
+    pub fn end_mass(&self) -> R {
+        self.body.sub_mass + R::splat(0.5) * self.node_mass()
     }
 
     /// Position and velocity of the tether's attachment point on the sub-satellite.
     #[inline(always)]
-    pub fn attachment(&self, x: &SVector<f64, S>) -> (Vector2<f64>, Vector2<f64>) {
-        let half = 0.5 * self.body.side;
+    pub fn attachment(&self, x: &SVector<R, S>) -> (Vector2<R>, Vector2<R>) {
         let (s, c) = x[2].sin_cos();
+        self.attachment_at(x, s, c)
+    }
+
+    /// [`Self::attachment`] given the sine and cosine of the cube's attitude (computed once
+    /// per derivative: the sine's rare slow path is a call, which the compiler would not
+    /// merge with a second evaluation).
+    #[inline(always)]
+    fn attachment_at(&self, x: &SVector<R, S>, s: R, c: R) -> (Vector2<R>, Vector2<R>) {
+        let half = R::splat(0.5) * self.body.side;
         (
             Vector2::new(x[0] + half * c, x[1] + half * s),
             Vector2::new(x[3] - half * x[5] * s, x[4] + half * x[5] * c),
         )
     }
 
-    /// Point j of the chain: 0 is the main satellite, 1..=N the nodes, N + 1 the attachment.
+    /// Point j of the chain: 0 is the main satellite, 1..=N the nodes, N + 1 the attachment
+    /// (given).
     #[inline(always)]
-    fn point(&self, x: &SVector<f64, S>, j: usize) -> (Vector2<f64>, Vector2<f64>) {
+    fn point(
+        x: &SVector<R, S>,
+        j: usize,
+        attachment: &(Vector2<R>, Vector2<R>),
+    ) -> (Vector2<R>, Vector2<R>) {
         if j == 0 {
             (Vector2::zeros(), Vector2::zeros())
         } else if j <= N {
@@ -122,38 +189,137 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
                 Vector2::new(x[k + 2], x[k + 3]),
             )
         } else {
-            self.attachment(x)
+            *attachment
         }
     }
 
-    /// Tension of a segment from point (p0, v0) to (p1, v1), and the unit vector from 0 to 1.
+    /// Segment j (from point j to point j + 1): the vector `d` along it, the rate `dv` at which
+    /// its ends separate, and its length.
     #[inline(always)]
-    fn pull(
-        &self,
-        p0: &Vector2<f64>,
-        v0: &Vector2<f64>,
-        p1: &Vector2<f64>,
-        v1: &Vector2<f64>,
-    ) -> (f64, Vector2<f64>) {
-        let d = p1 - p0;
-        let l = d.norm();
-        let h = self.segment_length();
-        if l <= h {
-            return (0.0, Vector2::zeros());
-        }
-        let u = d / l;
-        let strain = (l - h) / h;
-        let rate = u.dot(&(v1 - v0)) / h;
-        let t = self.axial_stiffness * strain + self.axial_damping * rate;
-        (t.max(0.0), u)
+    fn segment(
+        x: &SVector<R, S>,
+        j: usize,
+        attachment: &(Vector2<R>, Vector2<R>),
+    ) -> (Vector2<R>, Vector2<R>, R) {
+        let (p0, v0) = Self::point(x, j, attachment);
+        let (p1, v1) = Self::point(x, j + 1, attachment);
+        let d = sub(&p1, &p0);
+        (d, sub(&v1, &v0), (d[0] * d[0] + d[1] * d[1]).sqrt())
     }
 
+    /// Tension of a segment `d` of length `l` (`inv_l = 1/l` where it is taut) whose ends
+    /// separate at `dv`, `T = EA (l - h)/h + c_A l'/h`, and the unit vector `d / l`; zero
+    /// (and a zero vector) where the segment is slack, and `T >= 0` always.
+    #[inline(always)]
+    fn pull(&self, d: &Vector2<R>, dv: &Vector2<R>, l: R, inv_l: R) -> (R, Vector2<R>) {
+        let h = self.segment_length();
+        let taut = l.simd_gt(h);
+        let u = scale_by(d, inv_l);
+        // 1/h depends on the parameters only: computed once per block, not per segment
+        let inv_h = R::one() / h;
+        let strain = (l - h) * inv_h;
+        let rate = (u[0] * dv[0] + u[1] * dv[1]) * inv_h;
+        let t = self.axial_stiffness * strain + self.axial_damping * rate;
+        let zero = R::zero();
+        (
+            R::select(taut, t.max(zero), zero),
+            Vector2::new(R::select(taut, u[0], zero), R::select(taut, u[1], zero)),
+        )
+    }
+
+    /// `x'` of the chain and the sub-satellite (see the module documentation).
+    #[inline(always)]
+    fn chain_derivative(&self, x: &SVector<R, S>, u: &Vector2<R>, d: &Vector2<R>) -> SVector<R, S> {
+        let () = Self::LAYOUT;
+        let b = &self.body;
+        let n = b.orbital_rate;
+        let n2 = n * n;
+        let inv_node = R::one() / self.node_mass();
+        let h = self.segment_length();
+        let (s, c) = x[2].sin_cos();
+        let attachment = self.attachment_at(x, s, c);
+        let mut dx = SVector::<R, S>::zeros();
+        // Hill-frame field on every point mass; spring forces are added below
+        for k in 0..N {
+            let i = 6 + 4 * k;
+            dx[i] = x[i + 2];
+            dx[i + 1] = x[i + 3];
+            let (ax, ay) = hill_field(n, n2, x[i], x[i + 2], x[i + 3]);
+            dx[i + 2] = ax;
+            dx[i + 3] = ay;
+        }
+        let mut pull_on_attachment = Vector2::zeros();
+        // Segments two at a time, their lengths' reciprocals from one division,
+        // `1/a = b / (a b)`: the divider, shared with the square roots, bounds the step. A
+        // slack segment needs no reciprocal; 1 in its place keeps the product in range (a
+        // taut length is at least the rest length).
+        let one = R::one();
+        let mut j = 0;
+        while j < N {
+            let (d0, dv0, l0) = Self::segment(x, j, &attachment);
+            let (d1, dv1, l1) = Self::segment(x, j + 1, &attachment);
+            let a0 = R::select(l0.simd_gt(h), l0, one);
+            let a1 = R::select(l1.simd_gt(h), l1, one);
+            let inv = one / (a0 * a1);
+            let (t0, u0) = self.pull(&d0, &dv0, l0, inv * a1);
+            let (t1, u1) = self.pull(&d1, &dv1, l1, inv * a0);
+            apply_pull::<N, S, R>(
+                &mut dx,
+                &mut pull_on_attachment,
+                inv_node,
+                j,
+                &scale_by(&u0, t0),
+            );
+            apply_pull::<N, S, R>(
+                &mut dx,
+                &mut pull_on_attachment,
+                inv_node,
+                j + 1,
+                &scale_by(&u1, t1),
+            );
+            j += 2;
+        }
+        if j == N {
+            let (d0, dv0, l0) = Self::segment(x, j, &attachment);
+            let (t0, u0) = self.pull(&d0, &dv0, l0, one / l0);
+            apply_pull::<N, S, R>(
+                &mut dx,
+                &mut pull_on_attachment,
+                inv_node,
+                j,
+                &scale_by(&u0, t0),
+            );
+        }
+        // the sub-satellite: thrust perpendicular to the main-to-centre line, through the centre
+        let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
+        let along = Vector2::new(-x[1], x[0]) / rho;
+        let m = self.end_mass();
+        let force = add(
+            &pull_on_attachment,
+            &scale_by(&along, u[0] + m * rho * d[0]),
+        );
+        let (ax, ay) = hill_field(n, n2, x[0], x[3], x[4]);
+        let half = R::splat(0.5) * b.side;
+        let arm = Vector2::new(half * c, half * s);
+        let j_s = b.moment_of_inertia();
+        dx[0] = x[3];
+        dx[1] = x[4];
+        dx[2] = x[5];
+        // reciprocals of parameters: computed once per block
+        let inv_m = R::one() / m;
+        dx[3] = ax + force[0] * inv_m;
+        dx[4] = ay + force[1] * inv_m;
+        dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) * (R::one() / j_s) + d[1];
+        dx
+    }
+}
+
+impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
     /// Tension of segment j (0 at the main satellite, N at the sub-satellite), N.
     pub fn tension(&self, x: &SVector<f64, S>, j: usize) -> f64 {
         assert!(j <= N, "segment {j} of {}", N + 1);
-        let (p0, v0) = self.point(x, j);
-        let (p1, v1) = self.point(x, j + 1);
-        self.pull(&p0, &v0, &p1, &v1).0
+        let (d, dv, l) = Self::segment(x, j, &self.attachment(x));
+        self.pull(&d, &dv, l, 1.0 / l).0
     }
 
     /// The Jacobi integral of the Hill frame, the energy-like constant of the motion without
@@ -173,7 +339,7 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
         }
         let h = self.segment_length();
         for j in 0..=N {
-            let l = (self.point(x, j + 1).0 - self.point(x, j).0).norm();
+            let l = Self::segment(x, j, &self.attachment(x)).2;
             if l > h {
                 c += 0.5 * self.axial_stiffness * (l - h) * (l - h) / h;
             }
@@ -250,13 +416,11 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
     }
 }
 
-impl<const N: usize, const S: usize> Plant<2> for TetheredFlexible<N, S> {
-    type State = SVector<f64, S>;
-    const STATE_NAMES: &'static [&'static str] = NAMES.split_at(S).0;
-    const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
+impl<const N: usize, const S: usize, R: Real> Plant<R, 2> for TetheredFlexible<N, S, R> {
+    type State = SVector<R, S>;
 
     #[inline(always)]
-    fn coordinates(&self, x: &SVector<f64, S>) -> (Vector2<f64>, Vector2<f64>) {
+    fn coordinates(&self, x: &SVector<R, S>) -> (Vector2<R>, Vector2<R>) {
         let (px, py, vx, vy) = (x[0], x[1], x[3], x[4]);
         let phi = (-py).atan2(-px);
         let dphi = (px * vy - py * vx) / (px * px + py * py);
@@ -265,18 +429,18 @@ impl<const N: usize, const S: usize> Plant<2> for TetheredFlexible<N, S> {
 
     /// Nothing: the controller knows the inertia only (seed section 3.1.3).
     #[inline(always)]
-    fn modelled_acceleration(&self, _t: f64, _x: &SVector<f64, S>) -> Vector2<f64> {
+    fn modelled_acceleration(&self, _t: f64, _x: &SVector<R, S>) -> Vector2<R> {
         Vector2::zeros()
     }
 
     /// The simplified model's M: the controller does not know the flexible dynamics.
     #[inline(always)]
-    fn inertia(&self, _x: &SVector<f64, S>) -> Vector2<f64> {
+    fn inertia(&self, _x: &SVector<R, S>) -> Vector2<R> {
         self.body.inertia()
     }
 
     #[inline(always)]
-    fn actuate(&self, _x: &SVector<f64, S>, acceleration: &Vector2<f64>) -> Vector2<f64> {
+    fn actuate(&self, _x: &SVector<R, S>, acceleration: &Vector2<R>) -> Vector2<R> {
         self.body.actuate(acceleration)
     }
 
@@ -284,73 +448,51 @@ impl<const N: usize, const S: usize> Plant<2> for TetheredFlexible<N, S> {
     fn derivative(
         &self,
         _t: f64,
-        x: &SVector<f64, S>,
-        u: &Vector2<f64>,
-        d: &Vector2<f64>,
-    ) -> SVector<f64, S> {
-        let () = Self::LAYOUT;
-        let b = &self.body;
-        let n = b.orbital_rate;
-        let n2 = n * n;
-        let inv_node = 1.0 / self.node_mass();
-        let mut dx = SVector::<f64, S>::zeros();
-        // Hill-frame field on every point mass; spring forces are added below
-        let field = |px: f64, vx: f64, vy: f64| (2.0 * n * vy + 3.0 * n2 * px, -2.0 * n * vx);
-        for k in 0..N {
-            let i = 6 + 4 * k;
-            dx[i] = x[i + 2];
-            dx[i + 1] = x[i + 3];
-            let (ax, ay) = field(x[i], x[i + 2], x[i + 3]);
-            dx[i + 2] = ax;
-            dx[i + 3] = ay;
-        }
-        let mut pull_on_attachment = Vector2::zeros();
-        let (mut p0, mut v0) = self.point(x, 0);
-        for j in 0..=N {
-            let (p1, v1) = self.point(x, j + 1);
-            let (t, dir) = self.pull(&p0, &v0, &p1, &v1);
-            let f = dir * t;
-            if j >= 1 {
-                let i = 6 + 4 * (j - 1);
-                dx[i + 2] += f[0] * inv_node;
-                dx[i + 3] += f[1] * inv_node;
-            }
-            if j < N {
-                let i = 6 + 4 * j;
-                dx[i + 2] -= f[0] * inv_node;
-                dx[i + 3] -= f[1] * inv_node;
-            } else {
-                pull_on_attachment = -f;
-            }
-            p0 = p1;
-            v0 = v1;
-        }
-        // the sub-satellite: thrust perpendicular to the main-to-centre line, through the centre
-        let r = Vector2::new(x[0], x[1]);
-        let rho = r.norm();
-        let along = Vector2::new(-r[1], r[0]) / rho;
-        let m = self.end_mass();
-        let force = pull_on_attachment + along * (u[0] + m * rho * d[0]);
-        let (ax, ay) = field(x[0], x[3], x[4]);
-        let half = 0.5 * b.side;
-        let (s, c) = x[2].sin_cos();
-        let arm = Vector2::new(half * c, half * s);
-        let j_s = b.moment_of_inertia();
-        dx[0] = x[3];
-        dx[1] = x[4];
-        dx[2] = x[5];
-        dx[3] = ax + force[0] / m;
-        dx[4] = ay + force[1] / m;
-        dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) / j_s + d[1];
-        dx
+        x: &SVector<R, S>,
+        u: &Vector2<R>,
+        d: &Vector2<R>,
+    ) -> SVector<R, S> {
+        self.chain_derivative(x, u, d)
     }
 
     #[inline(always)]
-    fn admissible(&self, x: &SVector<f64, S>) -> bool {
-        x.iter().all(|v| v.is_finite()) && (x[0] != 0.0 || x[1] != 0.0)
+    fn admissible(&self, x: &SVector<R, S>) -> R::Mask {
+        let zero = R::zero();
+        crate::lanes::all_finite(x) & !(x[0].simd_eq(zero) & x[1].simd_eq(zero))
+    }
+}
+
+impl<const N: usize, const S: usize> PlantModel<2> for TetheredFlexible<N, S> {
+    type At<R: Real> = TetheredFlexible<N, S, R>;
+    type Blocks = crate::kernel::Narrow;
+    const STATE_NAMES: &'static [&'static str] = NAMES.split_at(S).0;
+    const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
+
+    fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        let mut f = self.body.figures();
+        f.push(("nodes", vec![N as f64]));
+        f.push(("segment_length", vec![self.segment_length()]));
+        f
     }
 
-    fn check_initial(&self, x: &SVector<f64, S>) -> Result<(), ParamError> {
+    fn max_step(&self) -> f64 {
+        TetheredFlexible::max_step(self)
+    }
+
+    /// The tether laid straight and stretched by the rigid dumbbell's tension
+    /// ([`TetheredFlexible::state_at`]).
+    fn state_at(
+        &self,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Option<Result<Vec<f64>, ParamError>> {
+        Some(
+            TetheredFlexible::state_at(self, q[0], q[1], qd[0], qd[1])
+                .map(|x| x.as_slice().to_vec()),
+        )
+    }
+
+    fn check_initial(&self, x: &[f64]) -> Result<(), ParamError> {
         for (i, v) in x.iter().enumerate() {
             require(true, "x0", *v, "finite values").map_err(|e| e.on_axis(i))?;
         }
@@ -362,7 +504,9 @@ impl<const N: usize, const S: usize> Plant<2> for TetheredFlexible<N, S> {
             "the sub-satellite away from the main satellite, hypot(x0[0], x0[1]) > 0",
         )
     }
+}
 
+impl<const N: usize, const S: usize> Validate for TetheredFlexible<N, S> {
     fn validate(&self) -> Result<(), ParamError> {
         let () = Self::LAYOUT;
         self.body.validate()?;
@@ -384,5 +528,18 @@ impl<const N: usize, const S: usize> Plant<2> for TetheredFlexible<N, S> {
             self.axial_damping,
             "axial_damping >= 0",
         )
+    }
+}
+
+impl<const N: usize, const S: usize> FromParams for TetheredFlexible<N, S> {
+    /// The shared body and the tether (`nodes` itself picks the type, in the registry).
+    fn from_params<Src: ParamSource>(p: &mut Src) -> Result<Self, Src::Error> {
+        p.skip("nodes");
+        Ok(Self {
+            body: TetherBody::from_params(p)?,
+            density: p.scalar("tether_density")?,
+            axial_stiffness: p.scalar("axial_stiffness")?,
+            axial_damping: p.scalar("axial_damping")?,
+        })
     }
 }

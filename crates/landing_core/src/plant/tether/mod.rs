@@ -27,14 +27,17 @@ mod names;
 mod simplified;
 
 pub use flexible::{
-    TetheredFlexible, TetheredFlexible2, TetheredFlexible4, TetheredFlexible8, TetheredFlexible16,
+    NODE_COUNTS, TetheredFlexible, TetheredFlexible2, TetheredFlexible4, TetheredFlexible8,
+    TetheredFlexible16,
 };
 pub use names::MAX_NODES;
 pub use simplified::TetheredSimplified;
 
 use nalgebra::Vector2;
 
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, Validate, require};
+use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
 
 /// Earth's gravitational parameter, m^3/s^2 (WGS 84).
 pub const MU_EARTH: f64 = 3.986_004_418e14;
@@ -55,24 +58,29 @@ pub fn orbital_rate(altitude: f64) -> Result<f64, ParamError> {
 
 /// The parameters both fidelities share (seed Table 1 and the orbit of its section 4).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TetherBody {
+pub struct TetherBody<R = f64> {
     /// Main satellite mass m_m, kg (seed: 1000 kg). It enters the controller's model (the
     /// reduced mass); in the plant the main satellite is the origin of the Hill frame.
-    pub main_mass: f64,
+    pub main_mass: R,
     /// Sub-satellite mass m_s, kg (seed: 10 kg).
-    pub sub_mass: f64,
+    pub sub_mass: R,
     /// Unstretched tether length L0, m (seed: 100 m).
-    pub length: f64,
+    pub length: R,
     /// Side a of the cubic sub-satellite, m (seed: 1 m); the tether is attached a/2 from its
     /// centre.
-    pub side: f64,
+    pub side: R,
     /// Mean motion n of the main satellite's circular orbit, rad/s (500 km: 1.1068e-3).
-    pub orbital_rate: f64,
+    pub orbital_rate: R,
     /// Limit on |u_phi|, N (seed: 0.1 N); infinite for none.
-    pub thrust_limit: f64,
-    /// Limit on |u_theta|, N m (SPEC 3.3: thrust_limit a / 2 unless set).
-    pub torque_limit: f64,
+    pub thrust_limit: R,
+    /// Limit on |u_theta|, N m ([`TetherBody::default_torque_limit`] unless set).
+    pub torque_limit: R,
 }
+
+crate::gather_struct!(TetherBody<R> {
+    lanes: [main_mass, sub_mass, length, side, orbital_rate, thrust_limit, torque_limit],
+    shared: [],
+});
 
 impl Default for TetherBody {
     fn default() -> Self {
@@ -89,30 +97,53 @@ impl Default for TetherBody {
 }
 
 impl TetherBody {
+    /// The torque limit when none is set: the thrust limit times the lever arm a/2, as if the
+    /// attitude were steered by the same thrusters at the cube's faces (docs/parameters.md).
+    pub fn default_torque_limit(side: f64, thrust_limit: f64) -> f64 {
+        0.5 * side * thrust_limit
+    }
+}
+
+impl<R: Real> TetherBody<R> {
     /// `M = diag(mu L0, m_s a^2 / 6)`: the seed's eq. 17 inertia in the actuators' units.
     #[inline(always)]
-    pub fn inertia(&self) -> Vector2<f64> {
+    pub fn inertia(&self) -> Vector2<R> {
         let mu = self.main_mass * self.sub_mass / (self.main_mass + self.sub_mass);
         Vector2::new(mu * self.length, self.moment_of_inertia())
     }
 
     /// The cube's moment of inertia about its centre, `m_s a^2 / 6`, kg m^2.
     #[inline(always)]
-    pub fn moment_of_inertia(&self) -> f64 {
+    pub fn moment_of_inertia(&self) -> R {
         self.sub_mass * self.side * self.side / 6.0
     }
 
     /// Thrust and torque for a commanded generalized acceleration, saturated.
     #[inline(always)]
-    pub fn actuate(&self, acceleration: &Vector2<f64>) -> Vector2<f64> {
-        let u = acceleration.component_mul(&self.inertia());
+    pub fn actuate(&self, acceleration: &Vector2<R>) -> Vector2<R> {
+        let m = self.inertia();
         Vector2::new(
-            u[0].clamp(-self.thrust_limit, self.thrust_limit),
-            u[1].clamp(-self.torque_limit, self.torque_limit),
+            (acceleration[0] * m[0]).clamp(-self.thrust_limit, self.thrust_limit),
+            (acceleration[1] * m[1]).clamp(-self.torque_limit, self.torque_limit),
         )
     }
+}
 
-    pub fn validate(&self) -> Result<(), ParamError> {
+impl TetherBody {
+    /// The figures the Python layer shows: the controller's inertia, the orbital rate and the
+    /// actuator limits.
+    pub(crate) fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        vec![
+            ("inertia", self.inertia().as_slice().to_vec()),
+            ("orbital_rate", vec![self.orbital_rate]),
+            ("thrust_limit", vec![self.thrust_limit]),
+            ("torque_limit", vec![self.torque_limit]),
+        ]
+    }
+}
+
+impl Validate for TetherBody {
+    fn validate(&self) -> Result<(), ParamError> {
         require(
             self.main_mass > 0.0,
             "main_mass",
@@ -156,15 +187,36 @@ impl TetherBody {
     }
 }
 
+impl FromParams for TetherBody {
+    /// Table 1 and the orbit: the orbital rate from `orbit_altitude` (a circular Earth orbit);
+    /// no limit where `thrust_limit` is absent, and the torque limit from the thrust limit
+    /// where `torque_limit` is ([`TetherBody::default_torque_limit`]).
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        let side = p.scalar("side")?;
+        let thrust_limit = p.opt_scalar("thrust_limit")?.unwrap_or(f64::INFINITY);
+        Ok(Self {
+            main_mass: p.scalar("main_mass")?,
+            sub_mass: p.scalar("sub_mass")?,
+            length: p.scalar("tether_length")?,
+            side,
+            orbital_rate: orbital_rate(p.scalar("orbit_altitude")?)?,
+            thrust_limit,
+            torque_limit: p
+                .opt_scalar("torque_limit")?
+                .unwrap_or(Self::default_torque_limit(side, thrust_limit)),
+        })
+    }
+}
+
 /// Tension of a rigid tether holding the sub-satellite's centre at distance `rho` with the
 /// line at angle `phi` turning at `dphi` in the Hill frame: the radial balance
 /// `T = m_s rho ((dphi + n)^2 + n^2 (3 cos^2 phi - 1))` (centripetal plus gravity gradient),
 /// floored at zero because a tether cannot push.
 #[inline(always)]
-pub fn rigid_tension(sub_mass: f64, rho: f64, n: f64, phi: f64, dphi: f64) -> f64 {
+pub fn rigid_tension<R: Real>(sub_mass: R, rho: R, n: R, phi: R, dphi: R) -> R {
     let c = phi.cos();
     let w = dphi + n;
-    (sub_mass * rho * (w * w + n * n * (3.0 * c * c - 1.0))).max(0.0)
+    (sub_mass * rho * (w * w + n * n * (R::splat(3.0) * c * c - 1.0))).max(R::zero())
 }
 
 #[cfg(test)]

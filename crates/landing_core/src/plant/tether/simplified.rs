@@ -21,25 +21,38 @@
 use nalgebra::{SVector, Vector2};
 
 use super::{TetherBody, rigid_tension};
-use crate::error::ParamError;
-use crate::plant::Plant;
+use crate::error::{ParamError, Validate};
+use crate::lanes::Real;
+use crate::params::{FromParams, ParamSource};
+use crate::plant::{Plant, PlantModel};
 
-pub type SimplifiedState = SVector<f64, 4>;
+pub type SimplifiedState<R = f64> = SVector<R, 4>;
 
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub struct TetheredSimplified {
-    pub body: TetherBody,
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TetheredSimplified<R = f64> {
+    pub body: TetherBody<R>,
 }
 
-impl TetheredSimplified {
+crate::gather_struct!(TetheredSimplified<R> { lanes: [body], shared: [] });
+
+impl Default for TetheredSimplified {
+    fn default() -> Self {
+        Self {
+            body: TetherBody::default(),
+        }
+    }
+}
+
+impl<R: Real> TetheredSimplified<R> {
     /// Distance from the main satellite to the sub-satellite's centre, `L0 + a/2`.
     #[inline(always)]
-    pub fn arm(&self) -> f64 {
-        self.body.length + 0.5 * self.body.side
+    pub fn arm(&self) -> R {
+        self.body.length + R::splat(0.5) * self.body.side
     }
 
     /// The tether tension at state `x` (N).
-    pub fn tension(&self, x: &SimplifiedState) -> f64 {
+    #[inline(always)]
+    pub fn tension(&self, x: &SimplifiedState<R>) -> R {
         rigid_tension(
             self.body.sub_mass,
             self.arm(),
@@ -50,29 +63,27 @@ impl TetheredSimplified {
     }
 }
 
-impl Plant<2> for TetheredSimplified {
-    type State = SimplifiedState;
-    const STATE_NAMES: &'static [&'static str] = &["phi", "theta", "phi_dot", "theta_dot"];
-    const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
+impl<R: Real> Plant<R, 2> for TetheredSimplified<R> {
+    type State = SimplifiedState<R>;
 
     #[inline(always)]
-    fn coordinates(&self, x: &SimplifiedState) -> (Vector2<f64>, Vector2<f64>) {
+    fn coordinates(&self, x: &SimplifiedState<R>) -> (Vector2<R>, Vector2<R>) {
         (Vector2::new(x[0], x[1]), Vector2::new(x[2], x[3]))
     }
 
     /// Nothing: every term but the inertia is unknown to the controller (seed section 3.1.3).
     #[inline(always)]
-    fn modelled_acceleration(&self, _t: f64, _x: &SimplifiedState) -> Vector2<f64> {
+    fn modelled_acceleration(&self, _t: f64, _x: &SimplifiedState<R>) -> Vector2<R> {
         Vector2::zeros()
     }
 
     #[inline(always)]
-    fn inertia(&self, _x: &SimplifiedState) -> Vector2<f64> {
+    fn inertia(&self, _x: &SimplifiedState<R>) -> Vector2<R> {
         self.body.inertia()
     }
 
     #[inline(always)]
-    fn actuate(&self, _x: &SimplifiedState, acceleration: &Vector2<f64>) -> Vector2<f64> {
+    fn actuate(&self, _x: &SimplifiedState<R>, acceleration: &Vector2<R>) -> Vector2<R> {
         self.body.actuate(acceleration)
     }
 
@@ -80,24 +91,64 @@ impl Plant<2> for TetheredSimplified {
     fn derivative(
         &self,
         _t: f64,
-        x: &SimplifiedState,
-        u: &Vector2<f64>,
-        d: &Vector2<f64>,
-    ) -> SimplifiedState {
+        x: &SimplifiedState<R>,
+        u: &Vector2<R>,
+        d: &Vector2<R>,
+    ) -> SimplifiedState<R> {
         let b = &self.body;
         let n = b.orbital_rate;
         let (phi, theta) = (x[0], x[1]);
         let rho = self.arm();
         let (s, c) = phi.sin_cos();
-        let phi_dd = u[0] / (b.sub_mass * rho) - 3.0 * n * n * s * c + d[0];
+        let phi_dd = u[0] / (b.sub_mass * rho) - R::splat(3.0) * n * n * s * c + d[0];
         let t = self.tension(x);
-        let theta_dd =
-            (u[1] - 0.5 * b.side * t * (theta - phi).sin()) / b.moment_of_inertia() + d[1];
+        let theta_dd = (u[1] - R::splat(0.5) * b.side * t * (theta - phi).sin())
+            / b.moment_of_inertia()
+            + d[1];
         SimplifiedState::new(x[2], x[3], phi_dd, theta_dd)
     }
+}
 
+impl PlantModel<2> for TetheredSimplified {
+    type At<R: Real> = TetheredSimplified<R>;
+    type Blocks = crate::kernel::Wide;
+    const STATE_NAMES: &'static [&'static str] = &["phi", "theta", "phi_dot", "theta_dot"];
+    const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
+
+    fn figures(&self) -> Vec<(&'static str, Vec<f64>)> {
+        self.body.figures()
+    }
+
+    /// The state is the angles and rates themselves.
+    fn state_at(
+        &self,
+        q: &Vector2<f64>,
+        qd: &Vector2<f64>,
+    ) -> Option<Result<Vec<f64>, ParamError>> {
+        Some(Ok(vec![q[0], q[1], qd[0], qd[1]]))
+    }
+}
+
+impl Validate for TetheredSimplified {
     fn validate(&self) -> Result<(), ParamError> {
         self.body.validate()
+    }
+}
+
+impl FromParams for TetheredSimplified {
+    /// The shared body; the flexible model's tether parameters are known but unused here.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+        for key in [
+            "nodes",
+            "tether_density",
+            "axial_stiffness",
+            "axial_damping",
+        ] {
+            p.skip(key);
+        }
+        Ok(Self {
+            body: TetherBody::from_params(p)?,
+        })
     }
 }
 

@@ -1,14 +1,16 @@
-//! Fuzzy systems from Python tables: `{"inputs": [var, ...], "output": var, "rules":
-//! [[set indices..., output set], ...], "resolution": n}`, each variable
-//! `{"lo": .., "hi": .., "sets": [["triangle", a, b, c] | ["trapezoid", a, b, c, d], ...]}`.
+//! Fuzzy inference systems: `{"inputs": [var, ...], "output": var, "rules": [[set indices...,
+//! output set], ...], "resolution": n}`, each variable `{"lo": .., "hi": .., "sets":
+//! [["triangle", a, b, c] | ["trapezoid", a, b, c, d], ...]}`, compiled once into a handle.
+
+use std::sync::Arc;
 
 use numpy::{PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::fuzzy::{Mamdani, Membership, Rule, Variable};
+use landing_core::fuzzy::{Mamdani, Membership, Rule, Variable, variable_rate_system};
 
-use crate::errors::{InputError, param_error, to_pyerr};
+use crate::errors::InputError;
 
 fn item<'py, T: for<'a> FromPyObject<'a, 'py>>(
     d: &Bound<'py, PyDict>,
@@ -16,9 +18,9 @@ fn item<'py, T: for<'a> FromPyObject<'a, 'py>>(
     what: &str,
 ) -> Result<T, InputError> {
     d.get_item(key)?
-        .ok_or_else(|| InputError::Type(format!("{what} has no '{key}'")))?
+        .ok_or_else(|| InputError::type_(format!("{what} has no '{key}'")))?
         .extract::<T>()
-        .map_err(|_| InputError::Type(format!("{what}: '{key}' has the wrong type")))
+        .map_err(|_| InputError::type_(format!("{what}: '{key}' has the wrong type")))
 }
 
 fn variable(d: &Bound<'_, PyDict>, what: &str) -> Result<Variable, InputError> {
@@ -31,7 +33,7 @@ fn variable(d: &Bound<'_, PyDict>, what: &str) -> Result<Variable, InputError> {
             ("triangle", [a, b, c]) => Membership::Triangle(*a, *b, *c),
             ("trapezoid", [a, b, c, d]) => Membership::Trapezoid(*a, *b, *c, *d),
             _ => {
-                return Err(InputError::Value(format!(
+                return Err(InputError::value(format!(
                     "{what}: a set is ('triangle', a, b, c) or ('trapezoid', a, b, c, d), got ({kind:?}, {p:?})"
                 )));
             }
@@ -40,8 +42,8 @@ fn variable(d: &Bound<'_, PyDict>, what: &str) -> Result<Variable, InputError> {
     Ok(Variable { lo, hi, sets })
 }
 
-/// Builds and validates a Mamdani system.
-pub fn parse_mamdani(table: &Bound<'_, PyDict>) -> Result<Mamdani, InputError> {
+/// Builds and validates a Mamdani system from its table.
+fn parse(table: &Bound<'_, PyDict>) -> Result<Mamdani, InputError> {
     let inputs: Vec<Bound<'_, PyDict>> = item(table, "inputs", "fuzzy system")?;
     let inputs = inputs
         .iter()
@@ -62,43 +64,50 @@ pub fn parse_mamdani(table: &Bound<'_, PyDict>) -> Result<Mamdani, InputError> {
         })
         .collect();
     let resolution: usize = item(table, "resolution", "fuzzy system")?;
-    Mamdani::new(inputs, output, rules, resolution).map_err(|e| param_error(&e, None))
+    Ok(Mamdani::new(inputs, output, rules, resolution)?)
 }
 
-/// Crisp outputs of a fuzzy system for inputs of shape (N, number of inputs).
-#[pyfunction]
-pub fn evaluate_fuzzy<'py>(
-    py: Python<'py>,
-    table: Bound<'py, PyDict>,
-    inputs: PyReadonlyArray2<'py, f64>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let system = parse_mamdani(&table).map_err(|e| to_pyerr(py, e.context("fuzzy system")))?;
-    let shape = inputs.shape();
-    if shape[1] != system.n_inputs() {
-        return Err(to_pyerr(
-            py,
-            InputError::Shape(format!(
+/// A compiled Mamdani system (`landing.fuzzy.Mamdani` holds one).
+#[pyclass(frozen, module = "landing._core")]
+pub struct FuzzySystem {
+    pub system: Arc<Mamdani>,
+}
+
+#[pymethods]
+impl FuzzySystem {
+    #[new]
+    fn new(table: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let system = parse(table).map_err(|e| e.context("fuzzy system"))?;
+        Ok(Self {
+            system: Arc::new(system),
+        })
+    }
+
+    /// Crisp outputs for inputs of shape (N, number of inputs).
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        inputs: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let shape = inputs.shape();
+        if shape[1] != self.system.n_inputs() {
+            return Err(InputError::value(format!(
                 "inputs has {} columns; the system takes {}",
                 shape[1],
-                system.n_inputs()
-            )),
-        ));
+                self.system.n_inputs()
+            ))
+            .into());
+        }
+        let x = inputs.as_array();
+        let rows: Vec<Vec<f64>> = x
+            .outer_iter()
+            .map(|r| r.iter().copied().collect())
+            .collect();
+        let system = self.system.clone();
+        let out: Vec<f64> =
+            py.detach(move || rows.iter().map(|r| system.evaluate::<f64>(r)).collect());
+        Ok(PyArray1::from_vec(py, out))
     }
-    let x = inputs.as_array();
-    let rows: Vec<Vec<f64>> = x
-        .outer_iter()
-        .map(|r| r.iter().copied().collect())
-        .collect();
-    let out: Vec<f64> = py.detach(|| rows.iter().map(|r| system.evaluate(r)).collect());
-    Ok(PyArray1::from_vec(py, out))
-}
-
-/// Validates a fuzzy-system table.
-#[pyfunction]
-pub fn check_fuzzy(py: Python<'_>, table: Bound<'_, PyDict>) -> PyResult<()> {
-    parse_mamdani(&table)
-        .map(|_| ())
-        .map_err(|e| to_pyerr(py, e.context("fuzzy system")))
 }
 
 fn variable_table<'py>(py: Python<'py>, v: &Variable) -> PyResult<Bound<'py, PyDict>> {
@@ -124,14 +133,12 @@ pub fn variable_rate_system_table(
     resolution: usize,
 ) -> PyResult<Bound<'_, PyDict>> {
     if resolution < 2 {
-        return Err(to_pyerr(
-            py,
-            InputError::Value(format!(
-                "resolution = {resolution} violates resolution >= 2"
-            )),
-        ));
+        return Err(InputError::value(format!(
+            "resolution = {resolution} violates resolution >= 2"
+        ))
+        .into());
     }
-    let m = landing_core::fuzzy::variable_rate_system(resolution);
+    let m = variable_rate_system(resolution);
     let d = PyDict::new(py);
     let inputs = m
         .inputs()
@@ -154,11 +161,4 @@ pub fn variable_rate_system_table(
     d.set_item("rules", rules)?;
     d.set_item("resolution", m.resolution())?;
     Ok(d)
-}
-
-pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_function(wrap_pyfunction!(variable_rate_system_table, m)?)?;
-    m.add_function(wrap_pyfunction!(evaluate_fuzzy, m)?)?;
-    m.add_function(wrap_pyfunction!(check_fuzzy, m)?)?;
-    Ok(())
 }

@@ -1,0 +1,279 @@
+//! Instruction-set levels: the block rollout compiled for each, chosen at run time.
+//!
+//! The same generic rollout ([`crate::rollout`]) is instantiated once per level inside a
+//! function compiled with that level's target features, so the lane operations become the
+//! widest vector instructions the CPU has: SSE2 at the x86-64 baseline, AVX2 (x86-64-v3), or
+//! AVX-512 (x86-64-v4). Every level runs the same IEEE operations in the same order (no fused
+//! multiply-add anywhere, no libm in the step), so a case gives the same bits at every level of
+//! one machine architecture; only the speed differs. Other architectures build the portable
+//! instance only (no x86 intrinsics anywhere).
+//!
+//! The best level the CPU supports is used unless the environment variable `LANDING_KERNEL`
+//! (`baseline`, `avx2`, `avx512`) or the caller forces one, for testing and benchmarking.
+
+use std::fmt;
+
+use crate::lanes::Real;
+
+/// An instruction-set level the block rollout is compiled for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Level {
+    /// The architecture's baseline (SSE2 on x86-64; the portable build elsewhere).
+    Baseline,
+    /// x86-64-v3: AVX2, FMA (unused), BMI1/2.
+    Avx2,
+    /// x86-64-v4: AVX-512 F, CD, BW, DQ, VL.
+    Avx512,
+}
+
+/// The environment variable that forces a level.
+pub const LEVEL_VARIABLE: &str = "LANDING_KERNEL";
+
+/// A level that cannot be used.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LevelError {
+    Unknown(String),
+    Unsupported(Level),
+}
+
+impl fmt::Display for LevelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Unknown(name) => {
+                write!(f, "kernel level {name:?} is not one of {:?}", Level::NAMES)
+            }
+            Self::Unsupported(level) => write!(
+                f,
+                "kernel level {:?} is not supported by this CPU (supported: {:?})",
+                level.name(),
+                Level::supported()
+                    .iter()
+                    .map(|l| l.name())
+                    .collect::<Vec<_>>()
+            ),
+        }
+    }
+}
+
+impl std::error::Error for LevelError {}
+
+impl Level {
+    pub const ALL: [Level; 3] = [Level::Baseline, Level::Avx2, Level::Avx512];
+    pub const NAMES: [&'static str; 3] = ["baseline", "avx2", "avx512"];
+
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+
+    pub fn from_name(name: &str) -> Result<Self, LevelError> {
+        Self::ALL
+            .into_iter()
+            .find(|l| l.name() == name)
+            .ok_or_else(|| LevelError::Unknown(name.to_string()))
+    }
+
+    /// Whether this CPU can run the level.
+    pub fn is_supported(self) -> bool {
+        match self {
+            Level::Baseline => true,
+            #[cfg(target_arch = "x86_64")]
+            Level::Avx2 => {
+                std::arch::is_x86_feature_detected!("avx2")
+                    && std::arch::is_x86_feature_detected!("fma")
+                    && std::arch::is_x86_feature_detected!("bmi1")
+                    && std::arch::is_x86_feature_detected!("bmi2")
+            }
+            #[cfg(target_arch = "x86_64")]
+            Level::Avx512 => {
+                Level::Avx2.is_supported()
+                    && std::arch::is_x86_feature_detected!("avx512f")
+                    && std::arch::is_x86_feature_detected!("avx512cd")
+                    && std::arch::is_x86_feature_detected!("avx512bw")
+                    && std::arch::is_x86_feature_detected!("avx512dq")
+                    && std::arch::is_x86_feature_detected!("avx512vl")
+            }
+            #[cfg(not(target_arch = "x86_64"))]
+            _ => false,
+        }
+    }
+
+    /// The levels this CPU supports, lowest first.
+    pub fn supported() -> Vec<Level> {
+        Self::ALL.into_iter().filter(|l| l.is_supported()).collect()
+    }
+
+    /// The best level this CPU supports.
+    pub fn best() -> Level {
+        *Self::supported()
+            .last()
+            .expect("the baseline is always supported")
+    }
+
+    /// `requested` if given, else the level `LANDING_KERNEL` names, else the best; an error if
+    /// the name is unknown or the CPU lacks the level.
+    pub fn resolve(requested: Option<Level>) -> Result<Level, LevelError> {
+        let level = match requested {
+            Some(l) => l,
+            None => match std::env::var(LEVEL_VARIABLE) {
+                Ok(name) if !name.is_empty() => Self::from_name(&name)?,
+                _ => Self::best(),
+            },
+        };
+        if level.is_supported() {
+            Ok(level)
+        } else {
+            Err(LevelError::Unsupported(level))
+        }
+    }
+
+    /// Cases per block at this level for blocks of width `B`.
+    pub fn lanes<B: Blocks>(self) -> usize {
+        match self {
+            Level::Baseline => <B::Baseline as Real>::LANES,
+            #[cfg(target_arch = "x86_64")]
+            Level::Avx2 => <B::Avx2 as Real>::LANES,
+            #[cfg(target_arch = "x86_64")]
+            Level::Avx512 => <B::Avx512 as Real>::LANES,
+            #[cfg(not(target_arch = "x86_64"))]
+            _ => 1,
+        }
+    }
+}
+
+/// The lane types of a plant's blocks at each level. A block's lanes must fill several vector
+/// registers, so that each instruction's latency hides behind the others' (measured: W1 takes
+/// 53, 41 and 37 ns per case-step at 8, 16 and 32 AVX-512 lanes), but a block must also stay
+/// in the registers and the first-level cache: a plant with a large state (the flexible
+/// tether's 38 components) or a law dominated by divisions gains nothing from width and loses
+/// to the copies (W6: 262 ms at 8 lanes, 551 ms at 32). Each plant picks [`Wide`] or
+/// [`Narrow`] blocks ([`crate::plant::PlantModel::Blocks`]); a case's bits do not depend on it.
+pub trait Blocks: Send + Sync + 'static {
+    type Baseline: Real;
+    #[cfg(target_arch = "x86_64")]
+    type Avx2: Real;
+    #[cfg(target_arch = "x86_64")]
+    type Avx512: Real;
+}
+
+/// Blocks of 8 cases in SSE2 registers, 16 in AVX2, 32 in AVX-512.
+pub struct Wide;
+
+/// Blocks of 8 cases at every level.
+pub struct Narrow;
+
+#[cfg(target_arch = "x86_64")]
+impl Blocks for Wide {
+    type Baseline = crate::lanes::x86::Sse2<4>;
+    type Avx2 = crate::lanes::x86::Avx2<4>;
+    type Avx512 = crate::lanes::x86::Avx512<4>;
+}
+
+#[cfg(target_arch = "x86_64")]
+impl Blocks for Narrow {
+    type Baseline = crate::lanes::x86::Sse2<4>;
+    type Avx2 = crate::lanes::x86::Avx2<2>;
+    type Avx512 = crate::lanes::x86::Avx512<1>;
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl Blocks for Wide {
+    type Baseline = crate::lanes::Lanes<8>;
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+impl Blocks for Narrow {
+    type Baseline = crate::lanes::Lanes<8>;
+}
+
+/// The laws compiled for one level: out-of-line trampolines, generic over the axis count and
+/// the lane type, that the level's block rollouts call once per control period (see
+/// [`LawCalls`](crate::rollout::LawCalls)). Only the level's own lane types are given them.
+macro_rules! level_laws {
+    ($name:ident $(, $features:literal)?) => {
+        pub(crate) struct $name;
+
+        const _: () = {
+            use nalgebra::SVector;
+
+            use crate::control::{AnyLaw, AnyMemory, LawInput};
+            use crate::lanes::Real;
+            use crate::rollout::LawCalls;
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn start<const D: usize, L: Real>(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
+                law.start(input)
+            }
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn command<const D: usize, L: Real>(
+                law: &AnyLaw<D, L>,
+                memory: &AnyMemory<D, L>,
+                input: &LawInput<D, L>,
+            ) -> SVector<L, D> {
+                law.command(memory, input)
+            }
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn advance<const D: usize, L: Real>(
+                law: &AnyLaw<D, L>,
+                memory: &mut AnyMemory<D, L>,
+                input: &LawInput<D, L>,
+            ) {
+                law.advance(memory, input)
+            }
+
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn diagnostics<const D: usize, L: Real>(
+                law: &AnyLaw<D, L>,
+                memory: &AnyMemory<D, L>,
+                input: &LawInput<D, L>,
+                out: &mut [L],
+            ) {
+                law.diagnostics(memory, input, out)
+            }
+
+            // SAFETY (every call below): this type is used only by the block rollouts of its
+            // own level, which run only once `Level::resolve` has checked the CPU has it.
+            impl<const D: usize, L: Real> LawCalls<D, L> for $name {
+                #[inline(always)]
+                fn start(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
+                    unsafe { start(law, input) }
+                }
+                #[inline(always)]
+                fn command(
+                    law: &AnyLaw<D, L>,
+                    memory: &AnyMemory<D, L>,
+                    input: &LawInput<D, L>,
+                ) -> SVector<L, D> {
+                    unsafe { command(law, memory, input) }
+                }
+                #[inline(always)]
+                fn advance(law: &AnyLaw<D, L>, memory: &mut AnyMemory<D, L>, input: &LawInput<D, L>) {
+                    unsafe { advance(law, memory, input) }
+                }
+                #[inline(always)]
+                fn diagnostics(
+                    law: &AnyLaw<D, L>,
+                    memory: &AnyMemory<D, L>,
+                    input: &LawInput<D, L>,
+                    out: &mut [L],
+                ) {
+                    unsafe { diagnostics(law, memory, input, out) }
+                }
+            }
+        };
+    };
+}
+
+level_laws!(BaselineLaws);
+#[cfg(target_arch = "x86_64")]
+level_laws!(Avx2Laws, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
+#[cfg(target_arch = "x86_64")]
+level_laws!(
+    Avx512Laws,
+    "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
+);

@@ -1,0 +1,85 @@
+//! Reading a configured model from a table of named parameters.
+//!
+//! Each plant, law, gravity field, reference and disturbance reads its own keys
+//! ([`FromParams`], written beside the type), from a [`ParamSource`]: a table positioned at one
+//! case of a batch. The Python bindings implement the source over the Python layer's
+//! parameter tables (and know how many cases a table holds); the registries
+//! ([`crate::registry`], [`crate::control::AnyLaw`]) pick the type from the table's `kind`.
+
+use std::sync::Arc;
+
+use nalgebra::SVector;
+
+use crate::error::ParamError;
+use crate::fuzzy::Mamdani;
+
+/// A table of named parameters, read at one case.
+pub trait ParamSource {
+    type Error: From<ParamError>;
+
+    /// A number: shared by every case, or this case's.
+    fn scalar(&mut self, key: &'static str) -> Result<f64, Self::Error>;
+
+    /// A number that may be absent (or None).
+    fn opt_scalar(&mut self, key: &'static str) -> Result<Option<f64>, Self::Error>;
+
+    /// D numbers, one per axis (a single number serves every axis).
+    fn axes<const D: usize>(&mut self, key: &'static str) -> Result<SVector<f64, D>, Self::Error>;
+
+    /// D numbers that may be absent (or None).
+    fn opt_axes<const D: usize>(
+        &mut self,
+        key: &'static str,
+    ) -> Result<Option<SVector<f64, D>>, Self::Error>;
+
+    /// One of `names`, shared by every case: its index.
+    fn choice(
+        &mut self,
+        key: &'static str,
+        names: &'static [&'static str],
+    ) -> Result<usize, Self::Error>;
+
+    /// A flag, shared by every case.
+    fn flag(&mut self, key: &'static str) -> Result<bool, Self::Error>;
+
+    /// A whole number in `allowed`, shared by every case (it fixes a size or a type).
+    fn count(
+        &mut self,
+        key: &'static str,
+        allowed: &'static [usize],
+        rule: &'static str,
+    ) -> Result<usize, Self::Error>;
+
+    /// The position in `known` of the `kind` of the table being read (an error naming the
+    /// known kinds if it is none of them).
+    fn kind(&mut self, known: &'static [&'static str]) -> Result<usize, Self::Error>;
+
+    /// Reads the nested table `key` with `read`.
+    fn nested<T>(
+        &mut self,
+        key: &'static str,
+        read: impl FnOnce(&mut Self) -> Result<T, Self::Error>,
+    ) -> Result<T, Self::Error>;
+
+    /// Number of tables in the list `key` (0 if absent).
+    fn list_len(&mut self, key: &'static str) -> Result<usize, Self::Error>;
+
+    /// Reads table `index` of the list `key` with `read`.
+    fn list_item<T>(
+        &mut self,
+        key: &'static str,
+        index: usize,
+        read: impl FnOnce(&mut Self) -> Result<T, Self::Error>,
+    ) -> Result<T, Self::Error>;
+
+    /// A fuzzy inference system, shared by every case.
+    fn fuzzy_system(&mut self, key: &'static str) -> Result<Arc<Mamdani>, Self::Error>;
+
+    /// Marks `key` as known but unused by this kind (so that it is not reported as unknown).
+    fn skip(&mut self, key: &'static str);
+}
+
+/// A configured model that reads its parameters from a table (one case at a time).
+pub trait FromParams: Sized {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error>;
+}

@@ -1,0 +1,204 @@
+//! `simulate_batch`: compiled handles and initial states in, a batch run with the GIL released,
+//! numpy arrays out.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use landing_core::batch::{Batch, RunOptions, run};
+use landing_core::control::AnyLaw;
+use landing_core::disturbance::Disturbance as CoreDisturbance;
+use landing_core::integrator::IntegratorKind;
+use landing_core::plant::PlantModel;
+use landing_core::reference::Reference as CoreReference;
+use landing_core::registry::PlantVisitor;
+use landing_core::state::State;
+use landing_core::{Level, PerCase, SimConfig, Tolerance};
+
+use crate::errors::{InputError, batch_error, internal_error};
+use crate::laws::Law;
+use crate::output;
+use crate::plants::Plant;
+use crate::signals::{Disturbance, Reference};
+use crate::table::Cases;
+
+/// Checks that a compiled table's case count suits a batch of `n` cases.
+fn check_cases(owner: &str, cases: &Cases, n: usize) -> Result<(), InputError> {
+    match &cases.key {
+        Some(key) if cases.count != n => Err(InputError::value(format!(
+            "{owner}: {key} has {} values per case but the batch has {n} cases",
+            cases.count
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// Builds the batch for the plant's type and runs it without the GIL.
+struct Simulate<'a, 'py> {
+    py: Python<'py>,
+    law: &'a Law,
+    reference: Option<&'a Reference>,
+    disturbance: Option<&'a Disturbance>,
+    x0: &'a [f64],
+    n: usize,
+    cfg: SimConfig,
+    options: RunOptions<'static>,
+}
+
+impl<'py> PlantVisitor for Simulate<'_, 'py> {
+    type Output = PyResult<Bound<'py, PyDict>>;
+
+    fn visit<const D: usize, P: PlantModel<D>>(self, plants: &PerCase<P>) -> Self::Output {
+        let n = self.n;
+        let (laws, law_cases) = self.law.compiled.get::<AnyLaw<D>, D>()?;
+        check_cases(&format!("controller ({})", self.law.kind), law_cases, n)?;
+        let references = match self.reference {
+            None => PerCase::shared(CoreReference::default()),
+            Some(r) => {
+                let (refs, cases) = r.compiled.get::<CoreReference<D>, D>()?;
+                check_cases("reference", cases, n)?;
+                refs.clone()
+            }
+        };
+        let disturbances = match self.disturbance {
+            None => PerCase::shared(CoreDisturbance::none()),
+            Some(d) => {
+                let (ds, cases) = d.compiled.get::<CoreDisturbance<D>, D>()?;
+                check_cases("disturbance", cases, n)?;
+                ds.clone()
+            }
+        };
+        let nx = P::STATE_DIM;
+        let mut x0 = Vec::with_capacity(n);
+        for (i, row) in self.x0.chunks_exact(nx).enumerate() {
+            plants.get(i).check_initial(row).map_err(|e| {
+                let axis = e.axis.unwrap_or(0);
+                InputError::value(format!("x0[{i}, {axis}] = {} violates {}", e.value, e.rule))
+            })?;
+            x0.push(<P as landing_core::plant::Plant<f64, D>>::State::from_components(|c| row[c]));
+        }
+        let batch = Batch {
+            plants: plants.clone(),
+            laws: laws.clone(),
+            references,
+            disturbances,
+            x0,
+        };
+        let layout = laws.get(0).diagnostic_layout();
+        let (cfg, options) = (self.cfg, self.options);
+        let result = self
+            .py
+            .detach(move || catch_unwind(AssertUnwindSafe(|| run(&batch, &cfg, &options))));
+        let out = match result {
+            Ok(Ok(out)) => out,
+            Ok(Err(e)) => return Err(batch_error(e)),
+            Err(panic) => return Err(internal_error(panic)),
+        };
+        output::to_dict(
+            self.py,
+            output::Parts {
+                out,
+                state_names: P::STATE_NAMES,
+                control_names: P::CONTROL_NAMES,
+                layout,
+            },
+        )
+    }
+}
+
+/// See `landing.simulate_batch` for the documentation.
+#[pyfunction]
+#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_batch<'py>(
+    py: Python<'py>,
+    plant: &Plant,
+    controller: &Law,
+    x0: PyReadonlyArray2<'py, f64>,
+    t_final: f64,
+    dt: f64,
+    integrator: &str,
+    substeps: i64,
+    reference: Option<PyRef<'py, Reference>>,
+    disturbance: Option<PyRef<'py, Disturbance>>,
+    record_every: i64,
+    seed: u64,
+    first_case: u64,
+    settle_tolerance: f64,
+    settle_relative: bool,
+    chatter_cutoff: Option<f64>,
+    threads: Option<i64>,
+    kernel: Option<&str>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let integ = IntegratorKind::from_name(integrator).ok_or_else(|| {
+        InputError::value(format!(
+            "integrator = {integrator:?} is not one of {:?}",
+            IntegratorKind::NAMES
+        ))
+    })?;
+    if substeps < 1 || substeps > u32::MAX as i64 {
+        return Err(
+            InputError::value(format!("substeps = {substeps} violates substeps >= 1")).into(),
+        );
+    }
+    if record_every < 0 {
+        return Err(InputError::value(format!(
+            "record_every = {record_every} violates record_every >= 0"
+        ))
+        .into());
+    }
+    let threads = match threads {
+        None => None,
+        Some(k) if k >= 1 => Some(k as usize),
+        Some(k) => {
+            return Err(InputError::value(format!("threads = {k} violates threads >= 1")).into());
+        }
+    };
+    let level = kernel
+        .map(Level::from_name)
+        .transpose()
+        .map_err(|e| InputError::value(format!("kernel: {e}")))?;
+    let cfg = SimConfig::new(t_final, dt, substeps as u32, record_every as u64, seed)
+        .map_err(InputError::from)?
+        .with_first_case(first_case)
+        .with_integrator(integ)
+        .with_settle(if settle_relative {
+            Tolerance::Relative(settle_tolerance)
+        } else {
+            Tolerance::Absolute(settle_tolerance)
+        })
+        .map_err(InputError::from)?;
+    let cfg = match chatter_cutoff {
+        None => cfg,
+        Some(hz) => cfg.with_chatter_cutoff(hz).map_err(InputError::from)?,
+    };
+    let shape = x0.shape();
+    let n = shape[0];
+    let (names, ..) = plant.plants.visit(crate::plants::Names);
+    if shape[1] != names.len() || n == 0 {
+        return Err(InputError::value(format!(
+            "x0 has shape ({}, {}); this plant takes (N, {}) with N >= 1 (state {names:?})",
+            shape[0],
+            shape[1],
+            names.len()
+        ))
+        .into());
+    }
+    check_cases(&format!("plant ({})", plant.kind), &plant.cases, n)?;
+    plant.plants.visit(Simulate {
+        py,
+        law: controller,
+        reference: reference.as_deref(),
+        disturbance: disturbance.as_deref(),
+        x0: x0.as_slice()?,
+        n,
+        cfg,
+        options: RunOptions {
+            threads,
+            level,
+            cancel: None,
+        },
+    })
+}
