@@ -1,4 +1,4 @@
-"""W1 side by side (SPEC section 10): landing against the peers a user would write instead, same
+"""W1 side by side (BENCHMARKS.md): landing against the peers a user would write instead, same
 workload, same machine, same thread counts, one run.
 
 W1: seed-001 fixed-time multiple-sliding-surface guidance, eq. 25 as printed (variant "printed"),

@@ -1,4 +1,4 @@
-"""W4 (SPEC section 10): scaling from 10^3 to 10^6 cases. Time and peak memory should grow
+"""W4 (BENCHMARKS.md): scaling from 10^3 to 10^6 cases. Time and peak memory should grow
 linearly with the case count, with no per-case Python.
 
 The W1 set-up (seed-001 fixed-time guidance, Table II dispersions, RK4, drag, 50 kN per axis,

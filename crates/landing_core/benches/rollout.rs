@@ -1,4 +1,4 @@
-//! The hot loop (SPEC section 10): the workloads W1 to W3, W5 and W6, and W1 at every
+//! The hot loop (BENCHMARKS.md): the workloads W1 to W3, W5 and W6, and W1 at every
 //! instruction-set level this CPU has.
 //!
 //! - W1: seed-001 fixed-time guidance on 300 dispersed Mars cases, 10 s at dt = 1 ms, RK4,
