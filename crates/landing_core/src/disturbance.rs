@@ -7,7 +7,7 @@
 use nalgebra::SVector;
 
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Gather, Real, add, mul, scale_by};
+use crate::lanes::{Gather, Real, add, mul, scale_by, zeros};
 use crate::params::{FromParams, ParamSource};
 use crate::rng::{CaseStream, streams};
 
@@ -52,7 +52,7 @@ pub struct Disturbance<const D: usize, R = f64> {
 
 impl<const D: usize> Default for Disturbance<D> {
     fn default() -> Self {
-        let zero = SVector::zeros();
+        let zero = zeros();
         Self {
             constant: zero,
             sinusoids: [Sinusoid {
@@ -193,7 +193,7 @@ impl<const D: usize, R: Real> Disturbance<D, R> {
         period: u64,
         command: &SVector<R, D>,
     ) -> SVector<R, D> {
-        let mut held = SVector::zeros();
+        let mut held = zeros();
         if self.noisy {
             let u = lane_uniforms::<D, R>(rng, period, |s| &s.additive);
             held = add(&held, &mul(&self.noise_bound, &u));
@@ -255,7 +255,7 @@ fn lane_uniforms<const D: usize, R: Real>(
     stream: impl Fn(&NoiseStreams) -> &CaseStream,
 ) -> SVector<R, D> {
     let blocks = D.div_ceil(4) as u64;
-    let mut u = SVector::<R, D>::zeros();
+    let mut u: SVector<R, D> = zeros();
     let mut one = [0.0f64; D];
     for (i, s) in rng.iter().enumerate().take(R::LANES) {
         stream(s).fill_uniforms(period * blocks, &mut one);

@@ -2,7 +2,7 @@
 
 use nalgebra::SVector;
 
-use crate::lanes::{Mask, Real, abs, add, mul, norm, scale, scale_by, select_vector, sub};
+use crate::lanes::{Mask, Real, abs, add, mul, norm, scale, scale_by, select_vector, sub, zeros};
 
 /// First crossing of the landing surface (altitude from positive to non-positive),
 /// interpolated linearly within the integrator step.
@@ -59,11 +59,11 @@ impl<const D: usize> CaseMetrics<D> {
             fuel_used: f64::NAN,
             fuel_to_settle: f64::NAN,
             peak_command: 0.0,
-            peak_command_axis: SVector::zeros(),
+            peak_command_axis: zeros(),
             control_effort: 0.0,
             settle_time: f64::NAN,
-            iae: SVector::zeros(),
-            command_variation: SVector::zeros(),
+            iae: zeros(),
+            command_variation: zeros(),
             high_frequency_share: SVector::repeat(f64::NAN),
             high_frequency_share_total: f64::NAN,
             touchdown: None,
@@ -183,7 +183,7 @@ impl<const D: usize, R: Real> Sums<D, R> {
 
 impl<const D: usize, R: Real> CommandStats<D, R> {
     pub(crate) fn new(filter: HighPass) -> Self {
-        let z = SVector::zeros();
+        let z = zeros();
         let sums = Sums {
             z: [z, z],
             last: z,

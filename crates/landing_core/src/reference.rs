@@ -3,7 +3,7 @@
 use nalgebra::SVector;
 
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Gather, Real, add, scale, scale_by, select_vector};
+use crate::lanes::{Gather, Real, add, scale, scale_by, select_vector, zeros};
 use crate::params::{FromParams, ParamSource};
 
 /// The reference kinds at the Python boundary.
@@ -40,8 +40,8 @@ pub enum Reference<const D: usize, R = f64> {
 impl<const D: usize> Default for Reference<D> {
     fn default() -> Self {
         Self::Constant {
-            position: SVector::zeros(),
-            velocity: SVector::zeros(),
+            position: zeros(),
+            velocity: zeros(),
         }
     }
 }
@@ -105,7 +105,7 @@ impl<const D: usize, R: Real> Reference<D, R> {
             Self::Constant { position, velocity } => RefPoint {
                 position,
                 velocity,
-                acceleration: SVector::zeros(),
+                acceleration: zeros(),
             },
             Self::Cubic {
                 coefficients: [c0, c1, c2, c3],
@@ -126,7 +126,7 @@ impl<const D: usize, R: Real> Reference<D, R> {
                     ),
                 );
                 let acceleration = add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(6.0) * tt));
-                let zero = SVector::zeros();
+                let zero = zeros();
                 RefPoint {
                     position,
                     velocity: select_vector(before, &velocity, &zero),

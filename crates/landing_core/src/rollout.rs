@@ -19,7 +19,9 @@ use crate::control::{AnyLaw, AnyMemory, LawInput};
 use crate::disturbance::{Disturbance, NoiseStreams, disturbance_stream};
 use crate::error::ParamError;
 use crate::integrator::{IntegratorKind, Stage, StageDerivative};
-use crate::lanes::{Mask, Real, add, all_finite, div, dot, norm, scale_by, select_vector, sub};
+use crate::lanes::{
+    Mask, Real, add, all_finite, div, dot, filled, norm, scale_by, select_vector, sub, zeros,
+};
 use crate::metrics::{CaseMetrics, CommandStats, HighPass, Touchdown};
 use crate::plant::Plant;
 use crate::reference::Reference;
@@ -306,7 +308,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> StageDerivative<R, P::State> for H
         let det = match self.table {
             Some(tab) => {
                 let v = tab.get(self.k, self.j, stage.index());
-                let mut splat = SVector::<R, D>::zeros();
+                let mut splat = zeros();
                 for i in 0..D {
                     splat[i] = R::splat(v[i]);
                 }
@@ -432,8 +434,8 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
     let mut diverged_at = nan;
     let mut touched = R::Mask::splat(false);
     let mut td_time = nan;
-    let mut td_position = SVector::<R, D>::from_element(nan);
-    let mut td_velocity = SVector::<R, D>::from_element(nan);
+    let mut td_position = filled(nan);
+    let mut td_velocity = filled(nan);
     let mut slot = 0usize;
     let mut next_record = 0u64;
     let tolerance = match cfg.settle {
@@ -482,7 +484,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
         let held = if disturbance.is_random() {
             disturbance.draw(&rng, k, &div(&u, &input.inertia))
         } else {
-            SVector::zeros()
+            zeros()
         };
         if advances {
             K::advance(law, &mut memory, &input);

@@ -14,7 +14,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real, sub};
+use crate::lanes::{Mask, Real, sub, zeros};
 use crate::math::{Switch, sgn};
 use crate::params::{FromParams, ParamSource};
 
@@ -38,7 +38,7 @@ impl<const D: usize, R: Real> TerminalSurface<D, R> {
     /// (s, u_eq) at this instant.
     #[inline(always)]
     pub fn evaluate(&self, input: &LawInput<D, R>) -> (SVector<R, D>, SVector<R, D>) {
-        let mut s = SVector::zeros();
+        let mut s = zeros();
         let mut eq = sub(&input.reference.acceleration, &input.drift);
         for i in 0..D {
             let e = input.e[i];

@@ -20,7 +20,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real, sub};
+use crate::lanes::{Mask, Real, filled, sub};
 use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -116,7 +116,7 @@ impl<const D: usize, R: Real> FixedTimeMss<D, R> {
     pub fn s2(&self, input: &LawInput<D, R>) -> SVector<R, D> {
         // A loop, not `vector(|i| ..)`: the closure is too large to be inlined reliably, and
         // out of line it would run without the kernel's instruction set.
-        let mut s2 = SVector::<R, D>::from_element(R::zero());
+        let mut s2 = filled(R::zero());
         for i in 0..D {
             s2[i] = self.s2_axis(i, &self.powers(i, input.e[i]), input.de[i]);
         }

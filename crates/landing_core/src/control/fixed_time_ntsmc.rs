@@ -38,7 +38,7 @@ use nalgebra::{SMatrix, SVector};
 use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real, sub, vector};
+use crate::lanes::{Mask, Real, sub, vector, zeros};
 use crate::math::sgn;
 use crate::params::{FromParams, ParamSource};
 
@@ -197,7 +197,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
 
     #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> Self::Memory {
-        SMatrix::zeros()
+        zeros()
     }
 
     #[inline(always)]

@@ -22,7 +22,7 @@ use super::integral_reaching::IntegralSurface;
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
 use crate::fuzzy::Mamdani;
-use crate::lanes::{Real, add, sub};
+use crate::lanes::{Real, add, sub, zeros};
 use crate::params::{FromParams, ParamSource};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -68,7 +68,7 @@ impl<const D: usize, R: Real> FuzzyVariableRate<D, R> {
             }
             ds
         } else {
-            SVector::zeros()
+            zeros()
         };
         let mut out = s;
         for i in 0..D {
@@ -88,8 +88,8 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyVariableRate<D, R> {
     #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> VariableRateMemory<D, R> {
         VariableRateMemory {
-            integral: SVector::zeros(),
-            previous_s: SVector::zeros(),
+            integral: zeros(),
+            previous_s: zeros(),
             started: false,
         }
     }

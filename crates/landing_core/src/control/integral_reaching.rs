@@ -17,7 +17,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require_axes};
-use crate::lanes::{Real, add, mul, neg, scale, sub};
+use crate::lanes::{Real, add, mul, neg, scale, sub, zeros};
 use crate::math::Switch;
 use crate::params::{FromParams, ParamSource};
 
@@ -86,7 +86,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for IntegralExponentialReaching<D
 
     #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> SVector<R, D> {
-        SVector::zeros()
+        zeros()
     }
 
     #[inline(always)]

@@ -23,7 +23,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Real, sub};
+use crate::lanes::{Real, filled, sub};
 use crate::math::sgn;
 use crate::params::{FromParams, ParamSource};
 
@@ -55,7 +55,7 @@ impl<const D: usize, R: Real> Ntsmc<D, R> {
     #[inline(always)]
     pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
         // A loop, not `vector(|i| ..)`: see `FixedTimeMss::s2`.
-        let mut s = SVector::<R, D>::from_element(R::zero());
+        let mut s = filled(R::zero());
         for i in 0..D {
             s[i] = self.axis(i, input.e[i], input.de[i]).0;
         }

@@ -21,7 +21,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Real, add, mul, sub};
+use crate::lanes::{Real, add, mul, sub, zeros};
 use crate::math::sgn;
 use crate::params::{FromParams, ParamSource};
 
@@ -78,7 +78,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for SuperTwisting<D, R> {
 
     #[inline(always)]
     fn start(&self, _input: &LawInput<D, R>) -> SVector<R, D> {
-        SVector::zeros()
+        zeros()
     }
 
     #[inline(always)]

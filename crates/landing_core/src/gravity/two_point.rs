@@ -4,7 +4,7 @@ use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Real, dot, scale_by, sub};
+use crate::lanes::{Real, dot, scale_by, sub, zeros};
 use crate::params::{FromParams, ParamSource};
 
 /// Newton's constant, m^3 / (kg s^2) (CODATA 2018).
@@ -68,7 +68,7 @@ impl Validate for TwoPointMass {
 impl<R: Real> GravityField<R> for TwoPointMass<R> {
     #[inline(always)]
     fn acceleration(&self, r: &Vector3<R>) -> Vector3<R> {
-        let mut g = Vector3::zeros();
+        let mut g = zeros();
         for (mu, p) in self.mu.iter().zip(&self.positions) {
             let d = sub(r, p);
             let d2 = dot(&d, &d);

@@ -6,7 +6,7 @@ use nalgebra::SVector;
 
 use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate};
-use crate::lanes::{Real, add};
+use crate::lanes::{Real, add, filled, zeros};
 use crate::params::{FromParams, ParamSource};
 
 pub type DoubleIntegratorState<R = f64> = SVector<R, 6>;
@@ -40,12 +40,12 @@ impl<R: Real> Plant<R, 3> for DoubleIntegrator<R> {
 
     #[inline(always)]
     fn modelled_acceleration(&self, _t: f64, _x: &Self::State) -> SVector<R, 3> {
-        SVector::zeros()
+        zeros()
     }
 
     #[inline(always)]
     fn inertia(&self, _x: &Self::State) -> SVector<R, 3> {
-        SVector::from_element(R::one())
+        filled(R::one())
     }
 
     #[inline(always)]

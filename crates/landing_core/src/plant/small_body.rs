@@ -16,7 +16,7 @@ use nalgebra::{SVector, Vector3};
 use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate, require};
 use crate::gravity::{GravityField, GravityModel};
-use crate::lanes::{Gather, Real, add};
+use crate::lanes::{Gather, Real, add, filled};
 use crate::params::{FromParams, ParamSource};
 
 pub type SmallBodyState<R = f64> = SVector<R, 6>;
@@ -99,7 +99,7 @@ impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
 
     #[inline(always)]
     fn inertia(&self, _x: &SmallBodyState<R>) -> Vector3<R> {
-        Vector3::from_element(R::one())
+        filled(R::one())
     }
 
     #[inline(always)]

@@ -35,7 +35,7 @@ use nalgebra::{SVector, Vector2};
 use super::names::{MAX_NODES, NAMES};
 use super::{TetherBody, rigid_tension};
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Gather, Real, add, neg, scale_by, sub};
+use crate::lanes::{Gather, Real, add, neg, scale_by, sub, zeros};
 use crate::params::{FromParams, ParamSource};
 use crate::plant::{Plant, PlantModel};
 
@@ -181,7 +181,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         attachment: &(Vector2<R>, Vector2<R>),
     ) -> (Vector2<R>, Vector2<R>) {
         if j == 0 {
-            (Vector2::zeros(), Vector2::zeros())
+            (zeros(), zeros())
         } else if j <= N {
             let k = 6 + 4 * (j - 1);
             (
@@ -238,7 +238,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let h = self.segment_length();
         let (s, c) = x[2].sin_cos();
         let attachment = self.attachment_at(x, s, c);
-        let mut dx = SVector::<R, S>::zeros();
+        let mut dx = zeros();
         // Hill-frame field on every point mass; spring forces are added below
         for k in 0..N {
             let i = 6 + 4 * k;
@@ -248,7 +248,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
             dx[i + 2] = ax;
             dx[i + 3] = ay;
         }
-        let mut pull_on_attachment = Vector2::zeros();
+        let mut pull_on_attachment = zeros();
         // Segments two at a time, their lengths' reciprocals from one division,
         // `1/a = b / (a b)`: the divider, shared with the square roots, bounds the step. A
         // slack segment needs no reciprocal; 1 in its place keeps the product in range (a
@@ -430,7 +430,7 @@ impl<const N: usize, const S: usize, R: Real> Plant<R, 2> for TetheredFlexible<N
     /// Nothing: the controller knows the inertia only (seed section 3.1.3).
     #[inline(always)]
     fn modelled_acceleration(&self, _t: f64, _x: &SVector<R, S>) -> Vector2<R> {
-        Vector2::zeros()
+        zeros()
     }
 
     /// The simplified model's M: the controller does not know the flexible dynamics.

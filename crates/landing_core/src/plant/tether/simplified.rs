@@ -22,7 +22,7 @@ use nalgebra::{SVector, Vector2};
 
 use super::{TetherBody, rigid_tension};
 use crate::error::{ParamError, Validate};
-use crate::lanes::Real;
+use crate::lanes::{Real, zeros};
 use crate::params::{FromParams, ParamSource};
 use crate::plant::{Plant, PlantModel};
 
@@ -74,7 +74,7 @@ impl<R: Real> Plant<R, 2> for TetheredSimplified<R> {
     /// Nothing: every term but the inertia is unknown to the controller (seed section 3.1.3).
     #[inline(always)]
     fn modelled_acceleration(&self, _t: f64, _x: &SimplifiedState<R>) -> Vector2<R> {
-        Vector2::zeros()
+        zeros()
     }
 
     #[inline(always)]
