@@ -20,7 +20,10 @@ from landing.errors import (
     ParameterTypeError,
     SimulationError,
 )
-from landing.simulation import Metrics, SimulationResult, simulate, simulate_batch
+from landing.simulation import DIVERGENCE_REASONS, Metrics, SimulationResult, simulate, simulate_batch
+
+MAX_COMMAND: float = _core.MAX_COMMAND
+"""Largest magnitude of a command component a case may apply before it is stopped."""
 
 
 def kernel_levels() -> list[str]:
@@ -50,6 +53,8 @@ __all__ = [
     "simulate_batch",
     "kernel_levels",
     "Metrics",
+    "DIVERGENCE_REASONS",
+    "MAX_COMMAND",
     "SimulationResult",
     "LandingError",
     "ParameterError",

@@ -12,7 +12,7 @@ import numpy as np
 from landing._progress import ProgressBar
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
-from landing.simulation import Metrics, SimulationResult
+from landing.simulation import Metrics, SimulationResult, describe_diverged, diverged_cases
 
 __all__ = ["MonteCarloResult", "Summary", "monte_carlo"]
 
@@ -32,11 +32,27 @@ SUMMARY_COLUMNS = (
 
 class Summary(dict):
     """Statistics of the per-case metrics: ``summary[column]`` is a dict with ``n`` (cases
-    with a finite value), ``mean``, ``std``, ``min``, ``p50``, ``p95`` and ``max``."""
+    with a finite value), ``mean``, ``std``, ``min``, ``p50``, ``p95`` and ``max``.
+
+    Diverged cases have NaN metrics and are left out of every statistic; ``diverged`` names
+    them by reason (``{reason: case indices}``), and the printed table says so first."""
+
+    diverged: dict[str, np.ndarray]
+
+    def __init__(self, *args: Any, diverged: Optional[dict[str, np.ndarray]] = None, **kwargs: Any):
+        super().__init__(*args, **kwargs)
+        self.diverged = diverged or {}
 
     def __str__(self) -> str:
         head = f"  {'metric':<22} {'n':>5} {'mean':>11} {'std':>11} {'min':>11} {'p50':>11} {'p95':>11} {'max':>11}"
-        rows = [head]
+        rows = []
+        if self.diverged:
+            k = sum(v.size for v in self.diverged.values())
+            rows.append(
+                f"  left out of the statistics: {k} diverged case{'s' if k != 1 else ''} ("
+                + "; ".join(f"{name}: {v.size}" for name, v in self.diverged.items()) + ")"
+            )
+        rows.append(head)
         for k, s in self.items():
             if s["n"] == 0:
                 rows.append(f"  {k:<22} {0:>5}")
@@ -49,8 +65,9 @@ class Summary(dict):
 
 
 def summarize(metrics: Metrics, columns: tuple[str, ...] = SUMMARY_COLUMNS) -> Summary:
-    """Statistics over the cases with a finite value (a diverged case has NaN metrics)."""
-    out = Summary()
+    """Statistics over the cases with a finite value (a diverged case has NaN metrics and is
+    named in ``Summary.diverged``)."""
+    out = Summary(diverged=diverged_cases(metrics))
     for k in columns:
         v = np.asarray(metrics[k], dtype=float)
         v = v[np.isfinite(v)]
@@ -131,7 +148,7 @@ class MonteCarloResult:
         lines = [
             f"{self.scenario.name}: {n} cases, seed {self.seed}, {self.scenario.t_final:g} s at dt = "
             f"{self.scenario.dt:g} s ({self.scenario.integrator})",
-            f"  diverged: {int(np.sum(m['diverged']))} of {n}",
+            f"  diverged: {describe_diverged(m)}",
             str(self.summary()),
         ]
         fe = np.abs(m["final_error"])
@@ -236,11 +253,10 @@ def monte_carlo(
         if bar:
             bar.close()
     result = _concat(parts)
-    diverged = np.flatnonzero(result.metrics["diverged"])
-    if diverged.size:
+    if result.metrics["diverged"].any():
         warnings.warn(
-            f"{diverged.size} of {n} cases diverged (cases {diverged[:10].tolist()}); they are flagged in "
-            "metrics['diverged']",
+            f"{describe_diverged(result.metrics)}; they are flagged in metrics['diverged'] (why: "
+            "metrics['diverged_reason']) and left out of the summary's statistics",
             DivergenceWarning,
             stacklevel=2,
         )

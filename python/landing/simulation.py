@@ -19,6 +19,30 @@ from landing.reference import Reference
 __all__ = ["Metrics", "SimulationResult", "simulate_batch", "simulate"]
 
 
+DIVERGENCE_REASONS: tuple[str, ...] = tuple(_core.DIVERGENCE_REASONS)
+"""Names of the codes in ``metrics["diverged_reason"]`` (index 0: not diverged)."""
+
+
+def diverged_cases(metrics: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The indices of the diverged cases, by reason name (only the reasons that occur)."""
+    codes = np.atleast_1d(metrics["diverged_reason"])
+    return {DIVERGENCE_REASONS[c]: np.flatnonzero(codes == c) for c in np.unique(codes) if c != 0}
+
+
+def describe_diverged(metrics: Mapping[str, np.ndarray], shown: int = 10) -> str:
+    """"k of n cases diverged (reason: cases ...; ...)", or "0 of n"."""
+    n = np.atleast_1d(metrics["diverged"]).size
+    groups = diverged_cases(metrics)
+    k = sum(v.size for v in groups.values())
+    if k == 0:
+        return f"0 of {n}"
+    parts = []
+    for name, idx in groups.items():
+        listed = ", ".join(str(i) for i in idx[:shown]) + (", ..." if idx.size > shown else "")
+        parts.append(f"{name}: {idx.size} (cases {listed})")
+    return f"{k} of {n} cases diverged ({'; '.join(parts)})"
+
+
 class Metrics(Mapping[str, np.ndarray]):
     """Per-case figures of merit: a table of columns, one row per case.
 
@@ -44,8 +68,14 @@ class Metrics(Mapping[str, np.ndarray]):
     - ``touchdown_time``, ``touchdown_speed`` (N,), ``touchdown_position``,
       ``touchdown_velocity`` (N, D): first crossing of the surface, interpolated within the
       step; NaN if none (or the plant has no surface).
-    - ``diverged`` (N,) bool, ``diverged_time`` (N,): cases stopped because the state left the
-      model's domain. Their final errors and fuel are NaN.
+    - ``diverged`` (N,) bool, ``diverged_time`` (N,), ``diverged_reason`` (N,) uint8: cases
+      stopped before t_final, when and why. The reason codes index
+      :data:`landing.DIVERGENCE_REASONS` (0 ``none``; ``non_finite_command``: the law returned
+      NaN or infinity; ``command_out_of_range``: a command component beyond
+      ``landing.MAX_COMMAND`` = 1e100; ``non_finite_state``; ``out_of_domain``: the state left
+      the plant's domain, listed in docs/parameters.md; ``non_finite_metric``: a statistic
+      overflowed). Their final errors and fuel are NaN; no metric is infinite without the flag.
+      :meth:`Metrics.diverged_cases` groups them by reason.
 
     Columns are also attributes: ``res.metrics.fuel_used``.
     """
@@ -70,6 +100,10 @@ class Metrics(Mapping[str, np.ndarray]):
 
     def __dir__(self) -> list[str]:
         return sorted(set(super().__dir__()) | set(self._columns))
+
+    def diverged_cases(self) -> dict[str, np.ndarray]:
+        """The indices of the diverged cases, by reason name (only the reasons that occur)."""
+        return diverged_cases(self._columns)
 
     def row(self, case: int) -> dict[str, Any]:
         """The metrics of one case."""
@@ -99,7 +133,7 @@ class Metrics(Mapping[str, np.ndarray]):
                     lines.append(f"  {k:<22} mean {finite.mean():.6g}  min {finite.min():.6g}  max {finite.max():.6g}")
                 else:
                     lines.append(f"  {k:<22} (none)")
-        lines.append(f"  {'diverged':<22} {int(cols['diverged'].sum())} of {n}")
+        lines.append(f"  {'diverged':<22} {describe_diverged(self._columns)}")
         return "\n".join(lines)
 
 
@@ -288,12 +322,11 @@ def simulate_batch(
         diagnostics[name] = diag[:, :, offset:offset + width] if width == out["axes"] else diag[:, :, offset]
         offset += width
     metrics = Metrics(out["metrics"])
-    diverged = np.flatnonzero(metrics["diverged"])
-    if diverged.size:
-        shown = ", ".join(str(i) for i in diverged[:10]) + (", ..." if diverged.size > 10 else "")
+    if metrics["diverged"].any():
         warnings.warn(
-            f"{diverged.size} of {x.shape[0]} cases diverged (cases {shown}); they are stopped, "
-            "flagged in metrics['diverged'] and NaN from the divergence on",
+            f"{describe_diverged(metrics)}; they are stopped, flagged in metrics['diverged'] "
+            "(when: metrics['diverged_time'], why: metrics['diverged_reason']) and NaN from the "
+            "divergence on",
             DivergenceWarning,
             stacklevel=2,
         )

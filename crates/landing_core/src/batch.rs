@@ -11,7 +11,7 @@
 //! deterministic disturbance shared by every case is evaluated once per integrator stage for the
 //! whole batch ([`StageTable`]).
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 use rayon::prelude::*;
 
@@ -21,6 +21,7 @@ use crate::disturbance::Disturbance;
 use crate::kernel::{Avx2Laws, Avx512Laws};
 use crate::kernel::{BaselineLaws, Blocks, Level, LevelError};
 use crate::lanes::{Gather, Real};
+use crate::memory::{available_bytes, gib};
 use crate::metrics::CaseMetrics;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
@@ -86,8 +87,13 @@ pub enum BatchError {
     /// Cases of one batch that differ in what a block must share (a law's kind or variant, a
     /// switching function, a reference's kind, a network's size...).
     Shape { what: &'static str, case: usize },
-    /// The recording would not fit in memory.
-    Allocation { bytes: u128 },
+    /// The batch's output would not fit in memory: `bytes` needed, `available` left (when
+    /// known), of which `recording` bytes are the recorded trajectories.
+    Allocation {
+        bytes: u128,
+        recording: u128,
+        available: Option<u64>,
+    },
     /// The requested thread pool could not be built.
     ThreadPool(String),
     /// The requested instruction-set level cannot run here.
@@ -110,11 +116,26 @@ impl std::fmt::Display for BatchError {
                 "{what} of case {case} differs from case 0 in what every case of a batch shares \
                  (its kind, variant, switching function, network size or fuzzy system)"
             ),
-            Self::Allocation { bytes } => write!(
-                f,
-                "the recording needs {:.1} GiB; record fewer instants (record_every) or fewer cases",
-                *bytes as f64 / (1u64 << 30) as f64
-            ),
+            Self::Allocation {
+                bytes,
+                recording,
+                available,
+            } => {
+                write!(
+                    f,
+                    "the batch's output needs {:.2} GiB ({:.2} GiB of it the recording)",
+                    gib(*bytes),
+                    gib(*recording)
+                )?;
+                if let Some(a) = available {
+                    write!(f, " but {:.2} GiB of memory are available", gib(*a as u128))?;
+                }
+                write!(
+                    f,
+                    "; record fewer instants (a larger record_every, or 0 for final states \
+                     only) or run fewer cases per call (monte_carlo runs them in chunks)"
+                )
+            }
             Self::ThreadPool(e) => write!(f, "could not start the thread pool: {e}"),
             Self::Level(e) => write!(f, "{e}"),
             Self::Cancelled => write!(f, "the batch was cancelled"),
@@ -168,11 +189,28 @@ pub struct RunOptions<'a> {
     pub cancel: Option<&'a AtomicBool>,
 }
 
-fn nan_filled(len: usize) -> Result<Vec<f64>, BatchError> {
+/// The memory a batch's output takes, in bytes: the recording, the final states, the
+/// per-case metrics, and their conversion to one column per metric (about as large again),
+/// which the bindings make while the output is alive.
+pub fn output_bytes<const D: usize>(
+    cases: usize,
+    records: usize,
+    state_dim: usize,
+    diagnostic_dim: usize,
+) -> (u128, u128) {
+    let n = cases as u128;
+    let recording = n * records as u128 * (state_dim + D + diagnostic_dim) as u128 * 8;
+    let per_case = state_dim as u128 * 8 + 2 * std::mem::size_of::<CaseMetrics<D>>() as u128;
+    (recording + n * per_case, recording)
+}
+
+fn nan_filled(len: usize, bytes: u128, recording: u128) -> Result<Vec<f64>, BatchError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len)
         .map_err(|_| BatchError::Allocation {
-            bytes: len as u128 * 8,
+            bytes,
+            recording,
+            available: available_bytes(),
         })?;
     v.resize(len, f64::NAN);
     Ok(v)
@@ -336,26 +374,56 @@ fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result
     Ok(())
 }
 
+/// What runs the blocks: a level's lane kernel, or the width-1 instance of the same rollout.
+#[derive(Clone, Copy)]
+enum Kernel {
+    Lanes(Level),
+    Scalar,
+}
+
+/// Runs a block of one case with `f64` numbers: the width-1 instance of the generic rollout.
+#[inline(never)]
+fn run_block_scalar<const D: usize, P: PlantModel<D>>(
+    job: BlockJob<'_, '_, D, P>,
+) -> Result<(), Cancelled> {
+    run_block::<D, P, f64, BaselineLaws>(job)
+}
+
 /// Runs every case of the batch on the current rayon pool.
 fn run_here<const D: usize, P: PlantModel<D>>(
     batch: &Batch<D, P>,
     cfg: &SimConfig,
-    level: Level,
+    kernel: Kernel,
     cancel: &AtomicBool,
 ) -> Result<BatchOutput<D>, BatchError> {
     let n = batch.x0.len();
     let nx = P::STATE_DIM;
     let nd = batch.laws.get(0).diagnostic_width();
     let nr = cfg.n_records();
-    let total = (n as u128) * (nr as u128) * ((nx + D + nd) as u128) * 8;
-    if total > isize::MAX as u128 {
-        return Err(BatchError::Allocation { bytes: total });
+    // Refused before anything is allocated: Linux grants virtual memory freely and kills the
+    // process when the pages are touched, so a failed allocation is no protection.
+    let (bytes, recording) = output_bytes::<D>(n, nr, nx, nd);
+    let available = available_bytes();
+    if bytes > isize::MAX as u128 || available.is_some_and(|a| bytes > u128::from(a)) {
+        return Err(BatchError::Allocation {
+            bytes,
+            recording,
+            available,
+        });
     }
-    let mut states = nan_filled(n * nr * nx)?;
-    let mut controls = nan_filled(n * nr * D)?;
-    let mut diagnostics = nan_filled(n * nr * nd)?;
-    let mut final_state = nan_filled(n * nx)?;
-    let mut metrics = vec![CaseMetrics::new(); n];
+    let mut states = nan_filled(n * nr * nx, bytes, recording)?;
+    let mut controls = nan_filled(n * nr * D, bytes, recording)?;
+    let mut diagnostics = nan_filled(n * nr * nd, bytes, recording)?;
+    let mut final_state = nan_filled(n * nx, bytes, recording)?;
+    let mut metrics = Vec::new();
+    metrics
+        .try_reserve_exact(n)
+        .map_err(|_| BatchError::Allocation {
+            bytes,
+            recording,
+            available,
+        })?;
+    metrics.resize(n, CaseMetrics::new());
 
     let shared_disturbance =
         batch.disturbances.is_shared() && batch.disturbances.get(0).is_time_varying();
@@ -370,7 +438,10 @@ fn run_here<const D: usize, P: PlantModel<D>>(
         table: table.as_ref(),
         cancel,
     };
-    let w = level.lanes::<P::Blocks>();
+    let (w, level) = match kernel {
+        Kernel::Lanes(level) => (level.lanes::<P::Blocks>(), level),
+        Kernel::Scalar => (1, Level::Baseline),
+    };
     let blocks = n.div_ceil(w);
     let jobs: Vec<_> = chunks(&mut states, w * nr * nx, blocks)
         .into_iter()
@@ -394,7 +465,10 @@ fn run_here<const D: usize, P: PlantModel<D>>(
         .collect();
     jobs.into_par_iter()
         .with_max_len(1)
-        .try_for_each(|job| dispatch(level, job))
+        .try_for_each(|job| match kernel {
+            Kernel::Lanes(level) => dispatch(level, job),
+            Kernel::Scalar => run_block_scalar(job),
+        })
         .map_err(|Cancelled| BatchError::Cancelled)?;
 
     Ok(BatchOutput {
@@ -421,21 +495,39 @@ pub fn run<const D: usize, P: PlantModel<D>>(
     let level = Level::resolve(options.level)?;
     let never = AtomicBool::new(false);
     let cancel = options.cancel.unwrap_or(&never);
+    run_on(batch, cfg, Kernel::Lanes(level), options.threads, cancel)
+}
+
+fn run_on<const D: usize, P: PlantModel<D>>(
+    batch: &Batch<D, P>,
+    cfg: &SimConfig,
+    kernel: Kernel,
+    threads: Option<usize>,
+    cancel: &AtomicBool,
+) -> Result<BatchOutput<D>, BatchError> {
     if batch.x0.is_empty() {
-        return run_here(batch, cfg, level, cancel);
+        return run_here(batch, cfg, kernel, cancel);
     }
-    let result = match options.threads {
-        None => run_here(batch, cfg, level, cancel),
+    match threads {
+        None => run_here(batch, cfg, kernel, cancel),
         Some(k) => rayon::ThreadPoolBuilder::new()
             .num_threads(k)
             .build()
             .map_err(|e| BatchError::ThreadPool(e.to_string()))?
-            .install(|| run_here(batch, cfg, level, cancel)),
-    };
-    if cancel.load(Ordering::Relaxed) && result.is_ok() {
-        // finished before anyone looked: the output is complete and kept
+            .install(|| run_here(batch, cfg, kernel, cancel)),
     }
-    result
+}
+
+/// Runs every case alone with `f64` numbers: the width-1 instance of the same generic
+/// rollout the lane kernels run, which tests compare them with bit for bit. As slow as a
+/// scalar loop; not for production. The output's `level` is `Baseline`.
+pub fn run_scalar<const D: usize, P: PlantModel<D>>(
+    batch: &Batch<D, P>,
+    cfg: &SimConfig,
+    threads: Option<usize>,
+) -> Result<BatchOutput<D>, BatchError> {
+    check_shapes(batch)?;
+    run_on(batch, cfg, Kernel::Scalar, threads, &AtomicBool::new(false))
 }
 
 /// [`run`] with `threads` worker threads (`None`: all cores) at the best level.

@@ -13,6 +13,71 @@ pub struct Touchdown<const D: usize> {
     pub velocity: SVector<f64, D>,
 }
 
+/// Why a case was stopped before t_final.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum Divergence {
+    /// The law returned a NaN or infinite command.
+    NonFiniteCommand = 1,
+    /// A component of the applied command exceeded [`MAX_COMMAND`] in magnitude: beyond it the
+    /// command statistics (sums of u^2 over up to 2^40 periods) could overflow.
+    CommandOutOfRange = 2,
+    /// The state became NaN or infinite.
+    NonFiniteState = 3,
+    /// The state left the plant's domain ([`crate::plant::Plant::in_domain`]): no mass left,
+    /// beyond the plant's range, inside a singularity.
+    OutOfDomain = 4,
+    /// A metric accumulated over the run is not finite (a safety net: the bound on the command
+    /// should make this impossible).
+    NonFiniteMetric = 5,
+}
+
+/// Largest magnitude of a command component that a case may apply (see
+/// [`Divergence::CommandOutOfRange`]); 1e100 is far beyond any physical actuator, and its
+/// square summed over 2^40 periods is still finite.
+pub const MAX_COMMAND: f64 = 1e100;
+
+impl Divergence {
+    /// The reason codes' names, indexed by code (0: not diverged).
+    pub const NAMES: [&'static str; 6] = [
+        "none",
+        "non_finite_command",
+        "command_out_of_range",
+        "non_finite_state",
+        "out_of_domain",
+        "non_finite_metric",
+    ];
+
+    pub fn code(self) -> u8 {
+        self as u8
+    }
+
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+
+    pub fn from_code(code: u8) -> Option<Self> {
+        [
+            Self::NonFiniteCommand,
+            Self::CommandOutOfRange,
+            Self::NonFiniteState,
+            Self::OutOfDomain,
+            Self::NonFiniteMetric,
+        ]
+        .into_iter()
+        .find(|d| d.code() == code)
+    }
+}
+
+/// When and why a case was stopped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Diverged {
+    /// The control instant of a bad command, the end of the integrator step that left the
+    /// domain, or t_final for a metric found non-finite at the end.
+    pub time: f64,
+    pub reason: Divergence,
+}
+
 /// Per-case figures of merit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CaseMetrics<const D: usize> {
@@ -47,8 +112,9 @@ pub struct CaseMetrics<const D: usize> {
     /// The same share over all axes together.
     pub high_frequency_share_total: f64,
     pub touchdown: Option<Touchdown<D>>,
-    /// Time at which the state (or the command) stopped being admissible.
-    pub diverged_at: Option<f64>,
+    /// Set when the case was stopped before t_final: its metrics are those of the instant it
+    /// stopped (final errors and fuel NaN).
+    pub diverged: Option<Diverged>,
 }
 
 impl<const D: usize> CaseMetrics<D> {
@@ -67,8 +133,22 @@ impl<const D: usize> CaseMetrics<D> {
             high_frequency_share: SVector::repeat(f64::NAN),
             high_frequency_share_total: f64::NAN,
             touchdown: None,
-            diverged_at: None,
+            diverged: None,
         }
+    }
+}
+
+impl<const D: usize> CaseMetrics<D> {
+    /// Whether every accumulated statistic is finite (the ones that are NaN by definition, such
+    /// as the settle time of a case that does not settle, are not looked at).
+    pub fn accumulations_finite(&self) -> bool {
+        self.peak_command.is_finite()
+            && self.control_effort.is_finite()
+            && self.peak_command_axis.iter().all(|v| v.is_finite())
+            && self.iae.iter().all(|v| v.is_finite())
+            && self.command_variation.iter().all(|v| v.is_finite())
+            && !self.high_frequency_share.iter().any(|v| v.is_infinite())
+            && !self.high_frequency_share_total.is_infinite()
     }
 }
 

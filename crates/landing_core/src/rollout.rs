@@ -22,7 +22,9 @@ use crate::integrator::{IntegratorKind, Stage, StageDerivative};
 use crate::lanes::{
     Mask, Real, add, all_finite, div, dot, filled, norm, scale_by, select_vector, sub, zeros,
 };
-use crate::metrics::{CaseMetrics, CommandStats, HighPass, Touchdown};
+use crate::metrics::{
+    CaseMetrics, CommandStats, Diverged, Divergence, HighPass, MAX_COMMAND, Touchdown,
+};
 use crate::plant::Plant;
 use crate::reference::Reference;
 use crate::state::State;
@@ -196,8 +198,63 @@ impl SimConfig {
     }
 }
 
-/// How often (in control periods) a running block looks at the cancellation flag.
-const CANCEL_POLL: u64 = 64;
+/// How often (in integrator steps, rounded to whole control periods) a running block looks at
+/// the cancellation flag: a block of the heaviest plant takes well under a millisecond for 64
+/// steps, so a cancelled batch stops within milliseconds, and the atomic load costs nothing
+/// measurable.
+const CANCEL_POLL_STEPS: u64 = 64;
+
+/// When and why each lane stopped: NaN and 0 while it runs.
+struct Stops<R: Real> {
+    time: R,
+    reason: R,
+}
+
+impl<R: Real> Stops<R> {
+    fn new() -> Self {
+        Self {
+            time: R::splat(f64::NAN),
+            reason: R::zero(),
+        }
+    }
+
+    #[inline(always)]
+    fn mark(&mut self, lanes: R::Mask, t: f64, reason: Divergence) {
+        self.time = R::select(lanes, R::splat(t), self.time);
+        self.reason = R::select(lanes, R::splat(f64::from(reason.code())), self.reason);
+    }
+
+    fn lane(&self, i: usize) -> Option<Diverged> {
+        Divergence::from_code(self.reason.lane(i) as u8).map(|reason| Diverged {
+            time: self.time.lane(i),
+            reason,
+        })
+    }
+}
+
+/// The live lanes whose command is bad, marked in `stops` with the reason: non-finite, or a
+/// component beyond [`MAX_COMMAND`] in magnitude.
+#[inline(always)]
+fn bad_command<const D: usize, R: Real>(
+    live: R::Mask,
+    u: &SVector<R, D>,
+    t: f64,
+    stops: &mut Stops<R>,
+) -> R::Mask {
+    // |u_i| <= MAX is false for NaN too: one compare per axis in the common case
+    let limit = R::splat(MAX_COMMAND);
+    let mut ok = u[0].abs().simd_le(limit);
+    for i in 1..D {
+        ok = ok & u[i].abs().simd_le(limit);
+    }
+    let bad = live & !ok;
+    if bad.any() {
+        let non_finite = bad & !all_finite(u);
+        stops.mark(non_finite, t, Divergence::NonFiniteCommand);
+        stops.mark(bad & !non_finite, t, Divergence::CommandOutOfRange);
+    }
+    bad
+}
 
 /// Most values a law's diagnostics take per instant (checked when a batch is built).
 pub const MAX_DIAGNOSTIC_WIDTH: usize = 16;
@@ -431,7 +488,8 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
     let mut memory = K::start(law, &input);
     let advances = law.has_memory();
     let mut live = R::Mask::splat(true);
-    let mut diverged_at = nan;
+    let mut stops = Stops::<R>::new();
+    let poll_every = (CANCEL_POLL_STEPS / u64::from(cfg.substeps)).max(1);
     let mut touched = R::Mask::splat(false);
     let mut td_time = nan;
     let mut td_position = filled(nan);
@@ -452,14 +510,13 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
     let mut was_outside = R::Mask::splat(false);
 
     'periods: for k in 0..cfg.steps {
-        if k % CANCEL_POLL == 0 && cancel.load(Ordering::Relaxed) {
+        if k % poll_every == 0 && cancel.load(Ordering::Relaxed) {
             return Err(Cancelled);
         }
         let t = k as f64 * cfg.dt;
         let u = plant.actuate(&x, &K::command(law, &memory, &input));
-        let bad = live & !all_finite(&u);
+        let bad = bad_command(live, &u, t, &mut stops);
         if bad.any() {
-            diverged_at = R::select(bad, R::splat(t), diverged_at);
             stats.freeze(bad);
             live = live & !bad;
             if !live.any() {
@@ -518,9 +575,11 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
                     touched = touched | cross;
                 }
             }
-            let bad = live & !plant.admissible(&next);
+            let finite = next.all_finite();
+            let bad = live & !(finite & plant.in_domain(&next));
             if bad.any() {
-                diverged_at = R::select(bad, R::splat(tj + h), diverged_at);
+                stops.mark(bad & !finite, tj + h, Divergence::NonFiniteState);
+                stops.mark(bad & finite, tj + h, Divergence::OutOfDomain);
                 stats.freeze(bad);
                 live = live & !bad;
             }
@@ -536,8 +595,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
     let mut finished = live;
     if live.any() {
         let u = plant.actuate(&x, &K::command(law, &memory, &input));
-        let bad = live & !all_finite(&u);
-        diverged_at = R::select(bad, R::splat(cfg.t_final()), diverged_at);
+        let bad = bad_command(live, &u, cfg.t_final(), &mut stops);
         finished = live & !bad;
         if recording {
             record::<D, R, _, K>(
@@ -562,8 +620,16 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
                 velocity: SVector::from_fn(|c, _| td_velocity[c].lane(i)),
             });
         }
+        if finished.lane(i) && !m.accumulations_finite() {
+            // the safety net behind MAX_COMMAND: no non-finite statistic goes unflagged
+            m.diverged = Some(Diverged {
+                time: cfg.t_final(),
+                reason: Divergence::NonFiniteMetric,
+            });
+            continue;
+        }
         if !finished.lane(i) {
-            m.diverged_at = Some(diverged_at.lane(i));
+            m.diverged = stops.lane(i);
             continue;
         }
         for c in 0..nx {

@@ -7,6 +7,7 @@ use landing_core::SimConfig;
 use landing_core::batch::{Batch, PerCase, run_with_threads};
 use landing_core::control::{AnyLaw, FixedTimeMss, MssVariant};
 use landing_core::disturbance::Disturbance;
+use landing_core::metrics::Divergence;
 use landing_core::plant::MarsLander;
 use landing_core::reference::Reference;
 use landing_core::workloads::{mars_dispersed, mars_storm};
@@ -157,9 +158,13 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     let flags: Vec<bool> = out
         .metrics
         .iter()
-        .map(|m| m.diverged_at.is_some())
+        .map(|m| m.diverged.is_some())
         .collect();
     assert_eq!(flags, [false, false, true, false]);
+    // 1e200 m away, the law's powers of the error overflow in its first command
+    let stop = out.metrics[2].diverged.unwrap();
+    assert_eq!(stop.reason, Divergence::NonFiniteCommand);
+    assert_eq!(stop.time, 0.0);
     assert!(out.final_state[14..21].iter().all(|v| v.is_nan()));
     assert!(out.metrics[2].final_error.iter().all(|v| v.is_nan()));
     // the healthy cases equal a batch without the bad one
@@ -278,7 +283,7 @@ fn every_level_gives_the_same_bits() {
     );
     assert!(
         run(&mars, &cfg, &at(Level::Baseline)).unwrap().metrics[3]
-            .diverged_at
+            .diverged
             .is_some(),
         "the case with an absurd speed diverges"
     );

@@ -249,7 +249,7 @@ fn both_laws_bring_the_simplified_plant_to_rest() {
         run_on_simplified(ntsmc(), 150.0),
     ] {
         let m = &out.metrics[0];
-        assert!(m.diverged_at.is_none());
+        assert!(m.diverged.is_none());
         // from 1 degree to within 1 % of it, and at rest
         assert!(
             m.final_error.abs().max() < 0.01 * deg,

@@ -23,6 +23,7 @@ use landing_core::control::LAW_KINDS;
 use landing_core::gravity::G;
 use landing_core::integrator::IntegratorKind;
 use landing_core::kernel::Level;
+use landing_core::metrics::{Divergence, MAX_COMMAND};
 use landing_core::registry::{GRAVITY_KINDS, PLANT_KINDS};
 
 use fuzzy::FuzzySystem;
@@ -66,5 +67,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GRAVITY_KINDS", GRAVITY_KINDS.to_vec())?;
     m.add("KERNEL_LEVELS", Level::NAMES.to_vec())?;
     m.add("GRAVITATIONAL_CONSTANT", G)?;
+    m.add("DIVERGENCE_REASONS", Divergence::NAMES.to_vec())?;
+    m.add("MAX_COMMAND", MAX_COMMAND)?;
     Ok(())
 }

@@ -120,12 +120,19 @@ pub fn to_dict<'py, const D: usize>(
         "touchdown_speed",
         array1(py, col(&|i| td(i).map_or(nan, |t| t.velocity.norm()))),
     )?;
-    let diverged: Vec<bool> = m.iter().map(|c| c.diverged_at.is_some()).collect();
+    let diverged: Vec<bool> = m.iter().map(|c| c.diverged.is_some()).collect();
     metrics.set_item("diverged", PyArray1::from_vec(py, diverged))?;
     metrics.set_item(
         "diverged_time",
-        array1(py, col(&|i| m[i].diverged_at.unwrap_or(nan))),
+        array1(py, col(&|i| m[i].diverged.map_or(nan, |d| d.time))),
     )?;
+    // the codes of landing_core::metrics::Divergence (0: not diverged); the names are
+    // `_core.DIVERGENCE_REASONS`
+    let reasons: Vec<u8> = m
+        .iter()
+        .map(|c| c.diverged.map_or(0, |d| d.reason.code()))
+        .collect();
+    metrics.set_item("diverged_reason", PyArray1::from_vec(py, reasons))?;
 
     d.set_item("t", array1(py, out.times))?;
     d.set_item("states", array3(py, out.states, n, nr, out.state_dim)?)?;

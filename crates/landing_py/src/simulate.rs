@@ -2,6 +2,8 @@
 //! numpy arrays out.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
 use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -23,6 +25,45 @@ use crate::output;
 use crate::plants::Plant;
 use crate::signals::{Disturbance, Reference};
 use crate::table::Cases;
+
+/// Batches of fewer integrator steps than this (cases x periods x substeps) run on the calling
+/// thread and cannot be interrupted: they take milliseconds. Larger ones run on a scoped
+/// thread while the calling thread watches for signals ([`interruptible`]).
+const INTERRUPTIBLE_WORK: u128 = 1 << 17;
+
+/// How often the calling thread lets Python run its signal handlers during a batch.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Runs `job` on a scoped thread while this thread, every [`SIGNAL_POLL`], takes the GIL and
+/// lets Python run its signal handlers. When a handler raises (Ctrl-C: KeyboardInterrupt),
+/// `cancel` is raised, the batch stops at its blocks' next poll (milliseconds), and the
+/// handler's exception is returned; nothing of the batch is kept. Called without the GIL.
+fn interruptible<T: Send>(cancel: &AtomicBool, job: impl FnOnce() -> T + Send) -> PyResult<T> {
+    let watcher = std::thread::current();
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(move || {
+            let out = job();
+            watcher.unpark();
+            out
+        });
+        let mut raised = None;
+        while !worker.is_finished() {
+            std::thread::park_timeout(SIGNAL_POLL);
+            if raised.is_none() && !worker.is_finished() {
+                if let Err(e) = Python::attach(|py| py.check_signals()) {
+                    cancel.store(true, Ordering::Relaxed);
+                    raised = Some(e);
+                }
+            }
+        }
+        // the job catches its own panics, so the thread cannot have panicked
+        let out = worker.join().expect("the batch's panics are caught inside it");
+        match raised {
+            Some(e) => Err(e),
+            None => Ok(out),
+        }
+    })
+}
 
 /// Checks that a compiled table's case count suits a batch of `n` cases.
 fn check_cases(owner: &str, cases: &Cases, n: usize) -> Result<(), InputError> {
@@ -87,11 +128,22 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
             x0,
         };
         let layout = laws.get(0).diagnostic_layout();
-        let (cfg, options) = (self.cfg, self.options);
-        let result = self
-            .py
-            .detach(move || catch_unwind(AssertUnwindSafe(|| run(&batch, &cfg, &options))));
-        let out = match result {
+        let cfg = self.cfg;
+        let cancel = AtomicBool::new(false);
+        let options = RunOptions {
+            cancel: Some(&cancel),
+            ..self.options
+        };
+        let work = (n as u128) * u128::from(cfg.steps) * u128::from(cfg.substeps);
+        let result = self.py.detach(|| {
+            let job = || catch_unwind(AssertUnwindSafe(|| run(&batch, &cfg, &options)));
+            if work < INTERRUPTIBLE_WORK {
+                Ok(job())
+            } else {
+                interruptible(&cancel, job)
+            }
+        });
+        let out = match result? {
             Ok(Ok(out)) => out,
             Ok(Err(e)) => return Err(batch_error(e)),
             Err(panic) => return Err(internal_error(panic)),

@@ -25,6 +25,11 @@ use crate::params::{FromParams, ParamSource};
 
 pub type MarsState<R = f64> = SVector<R, 7>;
 
+/// Farthest a lander may be from the target, m (1e8 m, about 30 Mars radii: the plant's flat
+/// surface and uniform gravity are meaningless far before). Beyond it a case is stopped and
+/// flagged out of its domain.
+pub const MAX_RANGE: f64 = 1e8;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MarsLander<R = f64> {
     /// Specific impulse, s (225 s, seed reference [1]).
@@ -205,9 +210,12 @@ impl<R: Real> Plant<R, 3> for Prepared<R> {
         pack(&v, &a, mdot)
     }
 
+    /// Positive mass, and within [`MAX_RANGE`] of the target: the flat, uniform-gravity model
+    /// means nothing farther away.
     #[inline(always)]
-    fn admissible(&self, x: &MarsState<R>) -> R::Mask {
-        crate::lanes::all_finite(x) & x[6].simd_gt(R::zero())
+    fn in_domain(&self, x: &MarsState<R>) -> R::Mask {
+        let r2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+        x[6].simd_gt(R::zero()) & r2.simd_le(R::splat(MAX_RANGE * MAX_RANGE))
     }
 
     #[inline(always)]
@@ -245,8 +253,8 @@ impl<R: Real> Plant<R, 3> for MarsLander<R> {
         Prepared::new(self).derivative(t, x, u, d)
     }
 
-    fn admissible(&self, x: &MarsState<R>) -> R::Mask {
-        Prepared::new(self).admissible(x)
+    fn in_domain(&self, x: &MarsState<R>) -> R::Mask {
+        Prepared::new(self).in_domain(x)
     }
 
     fn mass(&self, x: &MarsState<R>) -> Option<R> {

@@ -21,7 +21,7 @@ pub use tether::{TetheredFlexible, TetheredSimplified};
 use nalgebra::SVector;
 
 use crate::error::{ParamError, Validate, require};
-use crate::lanes::{Gather, Real};
+use crate::lanes::{Gather, Mask, Real};
 use crate::state::State;
 
 /// The dynamics over lanes of cases.
@@ -69,11 +69,14 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
         self.derivative(t, x, u, d)
     }
 
-    /// Whether the model is defined at `x` (finite, positive mass, ...), per lane. A rollout
-    /// stops and flags a case as diverged when it is not.
+    /// Whether the finite state `x` is in the model's documented domain (positive mass,
+    /// within the plant's range, outside singularities), per lane; docs/parameters.md lists
+    /// each plant's. A rollout stops a case and flags it `OutOfDomain` when it is not (a
+    /// non-finite state is flagged `NonFiniteState` before this is asked). Every finite state
+    /// by default.
     #[inline(always)]
-    fn admissible(&self, x: &Self::State) -> R::Mask {
-        x.all_finite()
+    fn in_domain(&self, _x: &Self::State) -> R::Mask {
+        R::Mask::splat(true)
     }
 
     /// Mass, for plants that burn propellant (fuel used = m0 - m(t_final)).

@@ -455,10 +455,12 @@ impl<const N: usize, const S: usize, R: Real> Plant<R, 2> for TetheredFlexible<N
         self.chain_derivative(x, u, d)
     }
 
+    /// The first node must not sit on the main satellite: the tether's direction (the pitch
+    /// angle the laws control) is undefined there.
     #[inline(always)]
-    fn admissible(&self, x: &SVector<R, S>) -> R::Mask {
+    fn in_domain(&self, x: &SVector<R, S>) -> R::Mask {
         let zero = R::zero();
-        crate::lanes::all_finite(x) & !(x[0].simd_eq(zero) & x[1].simd_eq(zero))
+        !(x[0].simd_eq(zero) & x[1].simd_eq(zero))
     }
 }
 
