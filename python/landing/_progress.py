@@ -1,30 +1,59 @@
-"""A dependency-free progress bar for long campaigns (stderr, one line, redrawn in place)."""
+"""Progress of long work, wherever it is watched: a bar in terminals and notebooks (tqdm), and
+in logs (stderr not a terminal) one line every half minute instead of a bar redrawn in place,
+so that a campaign's log says how far it got."""
 
 from __future__ import annotations
 
 import sys
-import time
-from typing import TextIO
+from typing import Any, Optional, TextIO
+
+#: Seconds between two lines of progress in a log.
+LOG_INTERVAL = 30.0
+
+
+def _interactive(stream: TextIO) -> bool:
+    """A terminal or a notebook (where tqdm.auto draws a widget)."""
+    if "ipykernel" in sys.modules:
+        return True
+    isatty = getattr(stream, "isatty", None)
+    return bool(isatty and isatty())
+
+
+class _Lines:
+    """A stream for tqdm that turns its in-place redraws into whole lines (for logs)."""
+
+    def __init__(self, stream: TextIO):
+        self.stream = stream
+
+    def write(self, text: str) -> None:
+        line = text.replace("\r", "").strip()
+        if line:
+            self.stream.write(line + "\n")
+
+    def flush(self) -> None:
+        self.stream.flush()
 
 
 class ProgressBar:
-    def __init__(self, total: int, label: str = "", stream: TextIO = sys.stderr, width: int = 30):
-        self.total, self.label, self.stream, self.width = total, label, stream, width
-        self.done = 0
-        self.start = time.perf_counter()
+    """Counts cases done out of ``total``: ``update(k)`` after each chunk, ``close()`` at the
+    end (also on error)."""
+
+    def __init__(self, total: int, label: str = "", stream: Optional[TextIO] = None):
+        from tqdm.auto import tqdm
+
+        stream = stream if stream is not None else sys.stderr
+        options: dict[str, Any] = dict(total=total, desc=label or None, unit="case", smoothing=0.1)
+        if _interactive(stream):
+            self._bar = tqdm(file=stream, **options)
+        else:
+            # plain tqdm (no widget), one line per LOG_INTERVAL seconds
+            from tqdm import tqdm as plain
+
+            self._bar = plain(file=_Lines(stream), ascii=True, mininterval=LOG_INTERVAL,
+                              maxinterval=LOG_INTERVAL, ncols=100, **options)
 
     def update(self, n: int) -> None:
-        self.done += n
-        frac = self.done / self.total if self.total else 1.0
-        filled = int(round(frac * self.width))
-        elapsed = time.perf_counter() - self.start
-        eta = elapsed / frac - elapsed if frac > 0 else float("nan")
-        self.stream.write(
-            f"\r{self.label} [{'#' * filled}{'.' * (self.width - filled)}] "
-            f"{self.done}/{self.total} cases, {elapsed:5.1f} s elapsed, {eta:5.1f} s left"
-        )
-        self.stream.flush()
+        self._bar.update(n)
 
     def close(self) -> None:
-        self.stream.write("\n")
-        self.stream.flush()
+        self._bar.close()

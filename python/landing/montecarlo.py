@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import sys
 import warnings
 from dataclasses import dataclass
 from typing import Any, Optional
@@ -211,8 +210,8 @@ def monte_carlo(
         final states and metrics only.
     chunk_size : cases per batch (default: all at once, or about 2 % of them with a progress
         bar).
-    progress : show a progress bar (default: when stderr is a terminal and the campaign is
-        long).
+    progress : show progress on stderr, a bar in terminals and notebooks and a line every 30 s
+        in logs (default: when the campaign is long, more than 2e7 case-steps).
     check_bounds : check the run against the scenario's theoretical bounds, if any.
     """
     try:
@@ -225,7 +224,8 @@ def monte_carlo(
         raise ParameterError(f"scenario must be a landing.scenarios.Scenario, got {type(scenario).__name__}")
     work = n * scenario.t_final / scenario.dt
     if progress is None:
-        progress = sys.stderr.isatty() and work > 2e7
+        # wherever stderr goes: a bar in terminals and notebooks, a line every 30 s in logs
+        progress = work > 2e7
     if chunk_size is None:
         chunk_size = max(1, -(-n // 50)) if progress else n
     if chunk_size < 1:

@@ -223,6 +223,55 @@ def save_all(result: Result, folder: Union[str, Path], dpi: int = 120) -> list[P
     return written
 
 
+def standard_figures(result: Result, plant: Any = None, reference: Any = None) -> dict[str, Any]:
+    """The usual figures of a run or campaign for its plant, by name (what ``landing run``,
+    ``landing mc`` and ``landing report`` write): the Mars figures of :func:`save_all` for the
+    lander, tracking errors and commands for the small body and the double integrator, angles,
+    rates and commands for the tethered satellite. Nothing for a run that recorded nothing."""
+    from landing import plants
+
+    res, _ = _parts(result)
+    if res.t.size == 0:
+        return {}
+    if plant is None or isinstance(plant, plants.MarsLander):
+        makers: dict[str, Any] = {
+            "trajectories_3d": trajectories_3d,
+            "landing_sites": landing_sites,
+            "final_velocities": final_velocities,
+            "positions": positions,
+            "thrust": thrust,
+            "mass": mass,
+        }
+        if {"s1", "s2"} <= set(res.diagnostics):
+            makers["sliding_variables"] = sliding_variables
+        return {name: make(result) for name, make in makers.items()}
+    if isinstance(plant, plants.TetheredSatellite):
+        return {
+            "tether_angles": tether_angles(res, plant),
+            "tether_rates": tether_rates(res, plant),
+            "tether_commands": tether_commands(res),
+        }
+    figs = {"tracking_errors": tracking_errors(res, reference), "commands": commands(res)}
+    if reference is not None and res.states.shape[-1] >= 6:
+        figs["trajectory"] = trajectory_with_reference(res, reference)
+    return figs
+
+
+def save_figures(figures: Mapping[str, Any], folder: Union[str, Path], dpi: int = 120) -> list[Path]:
+    """Writes figures (name -> Figure) as ``folder/name.png`` and closes them."""
+    import matplotlib.pyplot as plt
+
+    out = Path(folder)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, fig in figures.items():
+        path = out / f"{name}.png"
+        fig.savefig(path, dpi=dpi)
+        plt.close(fig)
+        written.append(path)
+    return written
+
+
 # --- Comparisons of single-case runs (the asteroid and tether papers' figures) ---------------
 
 Labelled = Union[SimulationResult, "dict[str, SimulationResult]"]

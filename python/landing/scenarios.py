@@ -10,7 +10,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from typing import Any, Optional
+from typing import Any, Callable, Optional
 
 import numpy as np
 
@@ -25,6 +25,9 @@ from landing.simulation import SimulationResult, simulate, simulate_batch
 
 __all__ = [
     "Scenario",
+    "PRESETS",
+    "preset",
+    "write_preset_files",
     "MARS_FIXED_TIME_GAINS",
     "MARS_NOMINAL_STATE",
     "MARS_SUPER_TWISTING_C",
@@ -82,8 +85,32 @@ class Scenario:
     description: str = ""
 
     def replace(self, **changes: Any) -> "Scenario":
-        """A copy with some fields changed, e.g. ``s.replace(dt=1e-2)``."""
+        """A copy with some fields changed: ``s.replace(dt=1e-2)``. A dict given for a part
+        (plant, controller, reference, dispersion) changes some of its parameters and keeps the
+        others: ``s.replace(controller={"alpha1": 6.0})`` is
+        ``s.replace(controller=s.controller.replace(alpha1=6.0))``."""
+        names = {f.name for f in dataclasses.fields(self)}
+        for key, value in changes.items():
+            if key not in names:
+                raise ParameterError(f"Scenario.replace: {key!r} is not a field (the fields: {sorted(names)})")
+            current = getattr(self, key)
+            if isinstance(value, dict) and hasattr(current, "replace"):
+                changes[key] = current.replace(**value)
         return dataclasses.replace(self, **changes)
+
+    def to_toml(self) -> str:
+        """The scenario as a TOML file's text, which :func:`load` reads back (``landing show``
+        prints it)."""
+        from landing.scenario_files import scenario_to_toml
+
+        return scenario_to_toml(self)
+
+    @staticmethod
+    def load(spec: Any) -> "Scenario":
+        """A preset by name (:data:`PRESETS`) or a scenario TOML file by path."""
+        from landing.scenario_files import load_scenario
+
+        return load_scenario(spec)
 
     def run_options(self, **overrides: Any) -> dict[str, Any]:
         """The keyword arguments of :func:`landing.simulate_batch` this scenario stands for."""
@@ -430,3 +457,45 @@ def tether_monte_carlo(spread_deg: float = 10.0, law: str = "fntsmc", fidelity: 
         record_every=10,
     )
     return s.replace(**overrides)
+
+
+#: Every preset by name: ``landing list`` shows them, ``landing show NAME`` prints their TOML
+#: (shipped in ``landing/presets/``), and ``Scenario.load(NAME)`` reads it.
+PRESETS: dict[str, Callable[[], Scenario]] = {
+    "mars_nominal": mars_nominal,
+    "mars_super_twisting_printed": lambda: mars_super_twisting("printed"),
+    "mars_super_twisting_standard": lambda: mars_super_twisting("standard"),
+    "mars_monte_carlo": mars_monte_carlo,
+    "mars_thrust_limited": mars_thrust_limited,
+    **{f"seed000_{law}_{switch}": (lambda law=law, switch=switch: seed000_tracking(law, switch))
+       for law in SEED000_LAWS for switch in ("sign", "tanh")},
+    **{f"seed000_landing_{law}_tanh": (lambda law=law: seed000_landing(law, "tanh")) for law in SEED000_LAWS},
+    **{f"seed002_{law}": (lambda law=law: seed002_landing(law)) for law in SEED002_LAWS},
+    **{f"tether_{law}_{fidelity}": (lambda law=law, fidelity=fidelity: tether_comparison(law, fidelity))
+       for law in ("fntsmc", "ntsmc") for fidelity in ("flexible", "simplified")},
+    "tether_monte_carlo_fntsmc_10deg": tether_monte_carlo,
+}
+
+
+def preset(name: str) -> Scenario:
+    """The preset ``name`` (see :data:`PRESETS`), built by its Python function."""
+    if name not in PRESETS:
+        raise ParameterError(f"preset = {name!r} is not one of {sorted(PRESETS)}")
+    return PRESETS[name]()
+
+
+def write_preset_files(directory: Any = None) -> list[Any]:
+    """Writes every preset's TOML file (into the package's ``presets/`` by default); the
+    shipped files are made this way, and a test checks that they are up to date."""
+    from pathlib import Path
+
+    from landing.scenario_files import PRESET_DIR
+
+    out = Path(directory) if directory is not None else PRESET_DIR
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name in PRESETS:
+        path = out / f"{name}.toml"
+        path.write_text(preset(name).to_toml(), encoding="utf-8")
+        written.append(path)
+    return written

@@ -113,7 +113,12 @@ class MSSBounds:
 
     def __str__(self) -> str:
         def fmt(a: np.ndarray) -> str:
-            return np.array2string(np.asarray(a), precision=4, floatmode="maxprec")
+            a = np.asarray(a)
+            if a.ndim == 2:  # per case: the range over the cases, per axis
+                lo = np.array2string(a.min(axis=0), precision=4, floatmode="maxprec")
+                hi = np.array2string(a.max(axis=0), precision=4, floatmode="maxprec")
+                return f"{lo} to {hi} over {a.shape[0]} cases"
+            return np.array2string(a, precision=4, floatmode="maxprec")
 
         return (
             f"MSSBounds(theta1={self.theta1}, theta2={self.theta2}, ap_max={fmt(self.ap_max)})\n"
@@ -125,15 +130,26 @@ class MSSBounds:
         )
 
 
+def _axes_or_cases(value: Any, axes: int) -> np.ndarray:
+    """A law parameter as the core reads it: a scalar for every axis, ``(axes,)`` per axis,
+    ``(N,)`` or ``(N, 1)`` per case (a 1-D array of length ``axes`` is per axis), ``(N, axes)``
+    per case and axis. Returns ``(axes,)`` or ``(N, axes)``."""
+    g = np.asarray(value, dtype=float)
+    if g.ndim == 0:
+        return np.full(axes, float(g))
+    if g.ndim == 1:
+        return g if g.size == axes else np.repeat(g[:, None], axes, axis=1)
+    return np.broadcast_to(g, (g.shape[0], axes))
+
+
 def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2: float = 0.5) -> MSSBounds:
     """The bounds of seed 001 Theorems 2-4 for a FixedTimeMSS law (per axis), under a
     disturbance bounded by ``ap_max`` per axis (see :func:`disturbance_bound`)."""
     if not isinstance(law, FixedTimeMSS):
         raise ParameterError(f"mss_bounds takes a FixedTimeMSS law, got {type(law).__name__}")
     names = ("beta1", "q1", "beta2", "q2", "alpha1", "gamma1", "alpha2", "gamma2")
-    gains = [np.asarray(getattr(law, n), dtype=float) for n in names]
-    args = np.broadcast_arrays(*[np.broadcast_to(g, np.broadcast_shapes(g.shape, (3,))) if g.ndim <= 1 else g
-                                 for g in gains], np.asarray(ap_max, dtype=float))
+    gains = [_axes_or_cases(getattr(law, n), 3) for n in names]
+    args = np.broadcast_arrays(*gains, np.asarray(ap_max, dtype=float))
     shape = args[0].shape
     keys = ("t1", "t2", "s2_radius", "s2_time", "s1_radius", "s1_time", "printed_time", "settle_time")
     out = {k: np.empty(shape) for k in keys}

@@ -1,0 +1,5 @@
+"""``python -m landing``: the command line (see :mod:`landing.cli`)."""
+
+from landing.cli import console
+
+console()

@@ -1,0 +1,198 @@
+"""The ``landing`` command (also ``python -m landing``).
+
+    landing list                         the presets
+    landing show SCENARIO                a scenario as TOML (copy it, edit it, run it)
+    landing run SCENARIO                 the nominal case: metrics and figures
+    landing mc SCENARIO --cases N        a Monte Carlo campaign: report and figures
+    landing report DIR                   a stored campaign's report and figures
+    landing bounds SCENARIO              the theory's bounds for the scenario's law
+
+SCENARIO is a preset name or a TOML file. Exit codes: 0 success, 2 bad input (a bad file, key,
+value or argument), 1 any other failure. Errors are one line; ``--traceback`` shows the rest.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+import traceback
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+EXIT_OK = 0
+EXIT_FAILURE = 1
+EXIT_BAD_INPUT = 2
+
+
+def _scenario(spec: str) -> Any:
+    from landing.scenarios import Scenario
+
+    return Scenario.load(spec)
+
+
+def _figures(result: Any, scenario: Any, out: Optional[str], default: str) -> None:
+    if out == "":
+        return
+    from landing import plots
+
+    folder = Path(out or default)
+    figs = plots.standard_figures(result, scenario.plant, scenario.reference)
+    if not figs:
+        print("no figures: nothing was recorded (record_every = 0)")
+        return
+    written = plots.save_figures(figs, folder)
+    print(f"figures written to {folder}/: " + ", ".join(p.name for p in written))
+
+
+def cmd_list(args: argparse.Namespace) -> int:
+    from landing.scenarios import PRESETS, preset
+
+    width = max(len(n) for n in PRESETS)
+    for name in PRESETS:
+        print(f"{name:<{width}}  {preset(name).description}")
+    return EXIT_OK
+
+
+def cmd_show(args: argparse.Namespace) -> int:
+    sys.stdout.write(_scenario(args.scenario).to_toml())
+    return EXIT_OK
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    scenario = _scenario(args.scenario)
+    print(f"{scenario.name}: {scenario.description}")
+    start = time.perf_counter()
+    result = scenario.simulate(threads=args.threads)
+    print(f"one case, {scenario.t_final:g} s at dt = {scenario.dt:g} s, in {time.perf_counter() - start:.2f} s")
+    print(result.metrics)
+    _figures(result, scenario, args.out, f"figures/{scenario.name}")
+    return EXIT_OK
+
+
+def cmd_mc(args: argparse.Namespace) -> int:
+    import landing
+
+    scenario = _scenario(args.scenario)
+    kwargs: dict[str, Any] = dict(seed=args.seed, threads=args.threads, chunk_size=args.chunk_size)
+    if args.store is not None:
+        kwargs["store"] = args.store
+    if args.no_progress:
+        kwargs["progress"] = False
+    start = time.perf_counter()
+    mc = landing.monte_carlo(scenario, args.cases, **kwargs)
+    print(f"{args.cases} cases in {time.perf_counter() - start:.2f} s")
+    print(mc.report())
+    _figures(mc, scenario, args.out, f"figures/{scenario.name}")
+    return EXIT_OK
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    import landing
+
+    mc = landing.load(args.store)
+    print(mc.report())
+    _figures(mc, mc.scenario, args.out, str(Path(args.store) / "figures"))
+    return EXIT_OK
+
+
+def cmd_bounds(args: argparse.Namespace) -> int:
+    from landing import controllers, theory
+
+    scenario = _scenario(args.scenario)
+    law = scenario.controller
+    if isinstance(law, controllers.FixedTimeMSS):
+        bounds = scenario.bounds()
+        if bounds is None:
+            # no splitting constants given: the nominal (disturbance-free) bounds
+            bounds = theory.mss_bounds(law)
+        print(bounds)
+        return EXIT_OK
+    if isinstance(law, controllers.FixedTimeNTSMC):
+        tol = scenario.settle_tolerance if scenario.settle_tolerance is not None else 1e-6
+        print(theory.fntsmc_bounds(law, tol))
+        return EXIT_OK
+    print(f"{scenario.name}: the theory module has no bounds for {type(law).__name__} "
+          "(it has them for FixedTimeMSS and FixedTimeNTSMC)")
+    return EXIT_BAD_INPUT
+
+
+def parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="landing",
+        description="Simulate spacecraft landing and attitude control under sliding-mode and fuzzy laws.",
+        epilog="SCENARIO is a preset name (landing list) or a TOML file (landing show PRESET > mine.toml).",
+    )
+    ap.add_argument("--traceback", action="store_true", help="show the full traceback of an error")
+    sub = ap.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = sub.add_parser("list", help="list the presets")
+    p.set_defaults(run=cmd_list)
+
+    p = sub.add_parser("show", help="print a scenario as TOML")
+    p.add_argument("scenario", metavar="SCENARIO")
+    p.set_defaults(run=cmd_show)
+
+    figures_help = "folder for the figures (default figures/NAME); '' for none"
+    p = sub.add_parser("run", help="simulate the nominal case: metrics and figures")
+    p.add_argument("scenario", metavar="SCENARIO")
+    p.add_argument("--threads", type=int, default=None)
+    p.add_argument("--out", default=None, help=figures_help)
+    p.set_defaults(run=cmd_run)
+
+    p = sub.add_parser("mc", help="a Monte Carlo campaign: report and figures")
+    p.add_argument("scenario", metavar="SCENARIO")
+    p.add_argument("--cases", type=int, required=True)
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--store", default=None, help="campaign directory: written as chunks complete, resumed if present")
+    p.add_argument("--chunk-size", type=int, default=None)
+    p.add_argument("--threads", type=int, default=None)
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--out", default=None, help=figures_help)
+    p.set_defaults(run=cmd_mc)
+
+    p = sub.add_parser("report", help="report and figures of a stored campaign")
+    p.add_argument("store", metavar="DIR")
+    p.add_argument("--out", default=None, help="folder for the figures (default DIR/figures); '' for none")
+    p.set_defaults(run=cmd_report)
+
+    p = sub.add_parser("bounds", help="the theory's bounds for a scenario's law")
+    p.add_argument("scenario", metavar="SCENARIO")
+    p.set_defaults(run=cmd_bounds)
+    return ap
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Runs the command line; returns the exit code (the console script exits with it)."""
+    from landing.errors import LandingError, SimulationError
+
+    args = parser().parse_args(argv)  # exits with 2 on a bad command line
+    try:
+        return args.run(args)
+    except KeyboardInterrupt:
+        print("landing: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        # the reader went away (`landing list | head`): not an error of ours
+        sys.stdout = open(os.devnull, "w")  # noqa: SIM115 - keeps the exit flush quiet
+        return EXIT_OK
+    except Exception as exc:  # noqa: BLE001 - the command line reports every failure
+        # the library's input errors (a file, key, value or argument that breaks a rule) are
+        # LandingErrors; anything else, a failed run included, is a failure
+        bad_input = isinstance(exc, LandingError) and not isinstance(exc, SimulationError)
+        if args.traceback:
+            traceback.print_exc()
+        else:
+            what = "error" if bad_input else f"failed: {type(exc).__name__}"
+            print(f"landing: {what}: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT if bad_input else EXIT_FAILURE
+
+
+def console() -> None:
+    """Entry point of the ``landing`` console script."""
+    sys.exit(main())
+
+
+if __name__ == "__main__":  # pragma: no cover
+    console()

@@ -1,0 +1,397 @@
+"""Scenarios as TOML files: every preset ships as one, and a user's copy runs the same way.
+
+A file holds the scenario's own settings at the top level and one table per part::
+
+    name = "mars_nominal"
+    t_final = 60.0
+    dt = 0.001
+    x0 = [-2000.0, 1000.0, 1500.0, 100.0, -15.0, -75.0, 1905.0]
+
+    [plant]
+    kind = "MarsLander"
+    isp = 225.0
+
+    [controller]
+    kind = "FixedTimeMSS"
+    alpha1 = 4.89
+    ...
+
+``kind`` names the class in the part's module (``landing.plants``, ``landing.controllers``,
+``landing.reference``, ``landing.dispersions``, ``landing.disturbances``; a plant's ``gravity``
+table is a ``landing.gravity`` field, a law's ``system`` a ``landing.fuzzy.Mamdani``); the other
+keys are the class's parameters, as in Python. A disturbance of several components is an array
+of tables (``[[disturbance]]``). Numbers, per-axis lists and per-case lists of lists are
+written as in Python.
+
+A bad file is refused with a :class:`FileError` (a ``ParameterError``) naming the file, the key,
+the value and the rule. The presets' files are generated from the Python presets
+(:data:`landing.scenarios.PRESETS`) and a test checks that they agree.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import re
+import sys
+from pathlib import Path
+from types import ModuleType
+from typing import Any, Mapping, Optional, Union
+
+import numpy as np
+
+from landing import _core, controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
+from landing._table import Table
+from landing.errors import LandingError, ParameterError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python < 3.11 only
+    import tomli as tomllib
+
+__all__ = ["FileError", "scenario_to_dict", "scenario_to_toml", "scenario_from_dict", "load_scenario",
+           "preset_path", "PRESET_DIR"]
+
+#: Where the presets' TOML files ship (inside the package).
+PRESET_DIR = Path(__file__).parent / "presets"
+
+#: The part tables of a file and the module their ``kind`` is looked up in.
+SECTIONS: dict[str, ModuleType] = {
+    "plant": plants,
+    "controller": controllers,
+    "reference": reference,
+    "dispersion": dispersions,
+    "disturbance": disturbances,
+}
+
+#: Parameters that hold a nested configuration object, and its module.
+NESTED: dict[str, ModuleType] = {"gravity": gravity, "system": fuzzy}
+
+#: The scenario's own settings: key -> (rule, check). The parts are checked by their classes.
+_SETTINGS = ("name", "description", "x0", "t_final", "dt", "integrator", "substeps", "record_every",
+             "settle_tolerance", "chatter_cutoff", "theta")
+
+
+class FileError(ParameterError):
+    """A scenario file that cannot be read: the message names the file, the key, the value and
+    the rule."""
+
+
+# ---------------------------------------------------------------------------------------------
+# writing
+
+
+def _plain(value: Any) -> Any:
+    """A parameter value as TOML can hold it (lists of floats, ints, strings, booleans)."""
+    if isinstance(value, (bool, str, int)) and not isinstance(value, np.generic):
+        return value
+    if isinstance(value, (np.bool_,)):
+        return bool(value)
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, fuzzy.Mamdani):  # a Table, but not a dataclass
+        return _encode_mamdani(value)
+    if isinstance(value, Table):
+        return _encode_table(value)
+    if isinstance(value, (tuple, list)) and any(isinstance(v, str) for v in value):
+        return [_plain(v) for v in value]
+    arr = np.asarray(value, dtype=float)
+    return float(arr) if arr.ndim == 0 else arr.tolist()
+
+
+def _encode_mamdani(m: fuzzy.Mamdani) -> dict[str, Any]:
+    def variable(v: fuzzy.Variable) -> dict[str, Any]:
+        return {
+            "universe": [float(v.universe[0]), float(v.universe[1])],
+            "sets": {name: [str(s[0])] + [float(x) for x in s[1:]] for name, s in v.sets.items()},
+        }
+
+    return {
+        "kind": "Mamdani",
+        "resolution": int(m.resolution),
+        "inputs": [variable(v) for v in m.inputs],
+        "output": variable(m.output),
+        "rules": [[list(a), c] for a, c in m.rules],
+    }
+
+
+def _encode_table(obj: Table) -> dict[str, Any]:
+    out: dict[str, Any] = {"kind": type(obj).__name__}
+    for f in dataclasses.fields(obj):  # type: ignore[arg-type]
+        if not f.init:
+            continue
+        value = getattr(obj, f.name)
+        if value is None:
+            if f.default is not None:
+                raise ParameterError(
+                    f"{type(obj).__name__}: {f.name} = None cannot be written to a file (its default is "
+                    f"{f.default!r})"
+                )
+            continue  # None is the default: leaving the key out restores it
+        out[f.name] = _plain(value)
+    return out
+
+
+def scenario_to_dict(scenario: Any) -> dict[str, Any]:
+    """The scenario as the nested dict a TOML file holds."""
+    out: dict[str, Any] = {}
+    for key in _SETTINGS:
+        value = getattr(scenario, key)
+        if value is None:
+            continue
+        if key in ("name", "description", "integrator"):
+            out[key] = str(value)
+        elif key in ("substeps", "record_every"):
+            out[key] = int(value)
+        else:
+            out[key] = _plain(value)
+    out["plant"] = _encode_table(scenario.plant)
+    out["controller"] = _encode_table(scenario.controller)
+    if scenario.reference is not None:
+        out["reference"] = _encode_table(scenario.reference)
+    if scenario.dispersion is not None:
+        out["dispersion"] = _encode_table(scenario.dispersion)
+    d = scenario.disturbance
+    if d is not None:
+        parts = d.components() if isinstance(d, disturbances.Disturbance) else list(d)
+        out["disturbance"] = [_encode_table(p) for p in parts]
+    return out
+
+
+def scenario_to_toml(scenario: Any) -> str:
+    """The scenario as TOML text (what ``landing show`` prints and a store keeps)."""
+    header = f"# landing scenario{': ' + scenario.description if scenario.description else ''}\n"
+    return header + dumps(scenario_to_dict(scenario))
+
+
+def _key(k: str) -> str:
+    return k if re.fullmatch(r"[A-Za-z0-9_-]+", k) else json.dumps(k)
+
+
+def _value(v: Any) -> str:
+    """One TOML value: the restricted set this module writes (no dates)."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if math.isnan(v):
+            return "nan"
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        return repr(v)  # the shortest text that reads back as the same double
+    if isinstance(v, str):
+        return json.dumps(v)  # JSON's escapes are TOML basic-string escapes
+    if isinstance(v, list):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{_key(k)} = {_value(x)}" for k, x in v.items()) + " }"
+    raise TypeError(f"cannot write {v!r} to TOML")
+
+
+def _is_table_list(v: Any) -> bool:
+    return isinstance(v, list) and len(v) > 0 and all(isinstance(x, dict) for x in v)
+
+
+def _emit(table: Mapping[str, Any], path: list[str], lines: list[str]) -> None:
+    for k, v in table.items():
+        if not isinstance(v, dict) and not _is_table_list(v):
+            lines.append(f"{_key(k)} = {_value(v)}")
+    for k, v in table.items():
+        sub = path + [_key(k)]
+        if isinstance(v, dict):
+            lines.extend(["", f"[{'.'.join(sub)}]"])
+            _emit(v, sub, lines)
+        elif _is_table_list(v):
+            for item in v:
+                lines.extend(["", f"[[{'.'.join(sub)}]]"])
+                _emit(item, sub, lines)
+
+
+def dumps(d: Mapping[str, Any]) -> str:
+    """TOML text of a nested dict of the kinds :func:`scenario_to_dict` makes: plain values
+    first, then each table as a ``[section]`` and each list of tables as ``[[sections]]``, every
+    number written so that it reads back bit for bit."""
+    lines: list[str] = []
+    _emit(d, [], lines)
+    return "\n".join(lines) + "\n"
+
+
+# ---------------------------------------------------------------------------------------------
+# reading
+
+
+def _where(source: str, path: str) -> str:
+    return f"{source}: {path}" if path else source
+
+
+def _classes(module: ModuleType) -> dict[str, type]:
+    out = {}
+    for name in getattr(module, "__all__", dir(module)):
+        cls = getattr(module, name, None)
+        if isinstance(cls, type) and dataclasses.is_dataclass(cls) and issubclass(cls, Table):
+            out[name] = cls
+    return out
+
+
+def _kind(table: Mapping[str, Any], module: ModuleType, source: str, path: str) -> type:
+    known = _classes(module)
+    if "kind" not in table:
+        raise FileError(f"{_where(source, path)}: missing key 'kind' (one of {sorted(known)})")
+    kind = table["kind"]
+    if kind not in known:
+        raise FileError(f"{_where(source, path + '.kind')} = {kind!r} is not one of {sorted(known)}")
+    return known[kind]
+
+
+def _decode_mamdani(table: Mapping[str, Any], source: str, path: str) -> fuzzy.Mamdani:
+    allowed = {"kind", "resolution", "inputs", "output", "rules"}
+    for key in table:
+        if key not in allowed:
+            raise FileError(f"{_where(source, path + '.' + key)}: unknown key (Mamdani takes {sorted(allowed)})")
+    if table.get("kind") != "Mamdani":
+        raise FileError(f"{_where(source, path + '.kind')} = {table.get('kind')!r} is not 'Mamdani'")
+
+    def variable(t: Any, p: str) -> fuzzy.Variable:
+        if not isinstance(t, Mapping) or set(t) != {"universe", "sets"}:
+            raise FileError(f"{_where(source, p)}: a fuzzy variable is a table with 'universe' and 'sets'")
+        return fuzzy.Variable(tuple(t["universe"]), {k: tuple(v) for k, v in t["sets"].items()})
+
+    try:
+        inputs = [variable(t, f"{path}.inputs[{i}]") for i, t in enumerate(table.get("inputs", []))]
+        output = variable(table.get("output"), f"{path}.output")
+        rules = [(tuple(r[0]), r[1]) for r in table.get("rules", [])]
+        return fuzzy.Mamdani(inputs, output, rules, table.get("resolution", 401))
+    except FileError:
+        raise
+    except (LandingError, TypeError, ValueError, IndexError, KeyError) as exc:
+        raise FileError(f"{_where(source, path)}: {exc}") from None
+
+
+def _decode_value(value: Any, source: str, path: str) -> Any:
+    if isinstance(value, Mapping):
+        name = path.rsplit(".", 1)[-1]
+        if name in NESTED:
+            if NESTED[name] is fuzzy:
+                return _decode_mamdani(value, source, path)
+            return _decode_table(value, NESTED[name], source, path)
+        raise FileError(f"{_where(source, path)}: a table is not a valid value here")
+    return value
+
+
+def _decode_table(table: Any, module: ModuleType, source: str, path: str) -> Table:
+    if not isinstance(table, Mapping):
+        raise FileError(f"{_where(source, path)} = {table!r} must be a table with a 'kind'")
+    cls = _kind(table, module, source, path)
+    fields = {f.name for f in dataclasses.fields(cls) if f.init}
+    kwargs = {}
+    for key, value in table.items():
+        if key == "kind":
+            continue
+        if key not in fields:
+            raise FileError(
+                f"{_where(source, path + '.' + key)}: unknown key ({cls.__name__} takes {sorted(fields)})"
+            )
+        kwargs[key] = _decode_value(value, source, f"{path}.{key}")
+    try:
+        return cls(**kwargs)
+    except TypeError as exc:  # a required parameter missing
+        raise FileError(f"{_where(source, path)}: {exc}") from None
+    except LandingError as exc:
+        raise FileError(f"{_where(source, path)}: {exc}") from None
+
+
+def _number(d: Mapping[str, Any], key: str, source: str, rule: str, ok: Any) -> None:
+    if key not in d:
+        return
+    v = d[key]
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not ok(v):
+        raise FileError(f"{source}: {key} = {v!r} violates {rule}")
+
+
+def _check_settings(d: Mapping[str, Any], source: str) -> None:
+    for key in ("name", "description", "integrator"):
+        if key in d and not isinstance(d[key], str):
+            raise FileError(f"{source}: {key} = {d[key]!r} must be a string")
+    if "integrator" in d and d["integrator"] not in _core.INTEGRATORS:
+        raise FileError(f"{source}: integrator = {d['integrator']!r} is not one of {list(_core.INTEGRATORS)}")
+    finite_positive = lambda v: math.isfinite(v) and v > 0  # noqa: E731
+    _number(d, "t_final", source, "t_final > 0 and finite", finite_positive)
+    _number(d, "dt", source, "dt > 0 and finite", finite_positive)
+    _number(d, "settle_tolerance", source, "settle_tolerance >= 0 and finite", lambda v: math.isfinite(v) and v >= 0)
+    _number(d, "chatter_cutoff", source, "chatter_cutoff > 0 and finite", finite_positive)
+    for key, low in (("substeps", 1), ("record_every", 0)):
+        if key in d and (isinstance(d[key], bool) or not isinstance(d[key], int) or d[key] < low):
+            raise FileError(f"{source}: {key} = {d[key]!r} violates {key} an integer >= {low}")
+    if "theta" in d:
+        t = d["theta"]
+        if (not isinstance(t, list) or len(t) != 2
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0 < v < 1 for v in t)):
+            raise FileError(f"{source}: theta = {t!r} violates theta a pair of numbers in (0, 1)")
+
+
+def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Any:
+    """A :class:`~landing.scenarios.Scenario` from the nested dict of a file; ``source`` names
+    the file in error messages."""
+    from landing.scenarios import Scenario
+
+    allowed = set(_SETTINGS) | set(SECTIONS)
+    for key in d:
+        if key not in allowed:
+            raise FileError(f"{source}: {key}: unknown key (a scenario takes {sorted(allowed)})")
+    for key in ("name", "plant", "controller", "x0", "t_final", "dt"):
+        if key not in d:
+            raise FileError(f"{source}: missing key {key!r}")
+    _check_settings(d, source)
+    parts: dict[str, Any] = {}
+    for key, module in SECTIONS.items():
+        if key not in d:
+            continue
+        if key == "disturbance" and isinstance(d[key], list):
+            comps = [_decode_table(t, module, source, f"disturbance[{i}]") for i, t in enumerate(d[key])]
+            parts[key] = comps[0] if len(comps) == 1 else disturbances.Sum(comps)
+        else:
+            parts[key] = _decode_table(d[key], module, source, key)
+    plant = parts["plant"]
+    try:
+        x0 = np.asarray(d["x0"], dtype=float)
+    except (TypeError, ValueError):
+        raise FileError(f"{source}: x0 = {d['x0']!r} must be a list of numbers") from None
+    if x0.shape != (plant.state_dim,) or not np.all(np.isfinite(x0)):
+        raise FileError(
+            f"{source}: x0 = {d['x0']!r} violates x0 a list of {plant.state_dim} finite numbers "
+            f"({', '.join(plant.state_names)})"
+        )
+    settings = {k: d[k] for k in _SETTINGS if k in d and k not in ("x0", "theta")}
+    if "theta" in d:
+        settings["theta"] = tuple(float(v) for v in d["theta"])
+    for key in ("t_final", "dt", "settle_tolerance", "chatter_cutoff"):
+        if key in settings:
+            settings[key] = float(settings[key])
+    return Scenario(x0=x0, **settings, **parts)
+
+
+def preset_path(name: str) -> Path:
+    """The shipped TOML file of preset ``name``."""
+    return PRESET_DIR / f"{name}.toml"
+
+
+def load_scenario(spec: Union[str, Path]) -> Any:
+    """A scenario from a preset name (``landing.scenarios.PRESETS``) or a TOML file's path."""
+    from landing.scenarios import PRESETS
+
+    path = Path(spec)
+    if isinstance(spec, str) and spec in PRESETS and not path.exists():
+        path = preset_path(spec)
+    if not path.exists():
+        raise FileError(
+            f"{spec}: no such file, and not a preset (the presets: {', '.join(sorted(PRESETS))})"
+        )
+    try:
+        d = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise FileError(f"{path}: not valid TOML ({exc})") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise FileError(f"{path}: cannot be read ({exc})") from None
+    return scenario_from_dict(d, str(path))
