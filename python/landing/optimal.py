@@ -176,6 +176,7 @@ class FuelOptimalResult:
     slack_gap: float
     plant: Any = field(repr=False)
     glide_slope: Optional[float] = None
+    thrust_magnitude: Optional[tuple[float, float]] = None
 
     @property
     def nodes(self) -> int:
@@ -229,6 +230,7 @@ def fuel_optimal(
     nodes: int = 150,
     steps_per_node: int = 4,
     glide_slope: Optional[float] = None,
+    thrust_magnitude: Optional[tuple[float, float]] = None,
     tolerance: float = 1e-9,
     max_iterations: int = 3000,
     verbose: bool = False,
@@ -249,6 +251,10 @@ def fuel_optimal(
     glide_slope : if given, the angle in degrees above the horizontal the lander must stay
         above, as seen from the target: ``rz >= tan(angle) sqrt(rx^2 + ry^2 + 1 m^2)`` at every
         integration step before t_f (the softening keeps it smooth over the target).
+    thrust_magnitude : if given, ``(low, high)`` bounds on |F| in N besides the per-axis limit:
+        ``low <= |F| <= high`` throughout (an engine that cannot throttle below ``low`` nor
+        shut down, as in Acikmese and Ploen 2007, the seed's reference [1]; ``low = 0`` allows
+        coasting).
     tolerance, max_iterations : IPOPT's ``tol`` and ``max_iter``.
     verbose : print IPOPT's log.
 
@@ -286,6 +292,13 @@ def fuel_optimal(
         if x0[2] < tan_glide * math.sqrt(x0[0] ** 2 + x0[1] ** 2 + 1.0):
             raise ParameterError(f"fuel_optimal: x0 = {x0} lies below the glide slope of {angle} degrees")
 
+    if thrust_magnitude is not None:
+        try:
+            low, high = (float(b) for b in thrust_magnitude)
+        except (TypeError, ValueError) as exc:
+            raise ParameterTypeError(f"fuel_optimal: thrust_magnitude must be (low, high) in N, got {thrust_magnitude!r}") from exc
+        if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high):
+            raise ParameterError(f"fuel_optimal: thrust_magnitude = {thrust_magnitude!r} violates 0 <= low < high")
     fmax = np.array(model.thrust_limit)
     c = model.exhaust_velocity
     m0 = float(x0[6])
@@ -351,6 +364,10 @@ def fuel_optimal(
     opti.subject_to(G >= 0)
     opti.subject_to(ca.sum1(W ** 2) <= 1)
     opti.subject_to(G <= float(np.linalg.norm(fmax)) / f_scale)
+    if thrust_magnitude is not None:
+        opti.subject_to(opti.bounded(low / f_scale, G, high / f_scale))
+        if low > 0:  # |F| = Gamma: the direction is a unit vector
+            opti.subject_to(ca.sum1(W ** 2) >= 1)
     if free_final_time:
         opti.subject_to(opti.bounded(lo, T, hi))
         opti.set_initial(T, t_final)
@@ -410,4 +427,5 @@ def fuel_optimal(
         slack_gap=float(np.max(Gv - np.linalg.norm(Uv, axis=0))),
         plant=plant,
         glide_slope=glide_slope,
+        thrust_magnitude=None if thrust_magnitude is None else (low, high),
     )
