@@ -272,3 +272,13 @@ def test_glide_slope_is_honoured() -> None:
     assert res.success, res.status
     x = res.states_fine[:-1]
     assert np.all(x[:, 2] - math.tan(math.radians(20.0)) * np.sqrt(x[:, 0] ** 2 + x[:, 1] ** 2 + 1.0) >= -1e-6)
+
+
+def test_a_minimum_throttle_costs_fuel(nominal: optimal.FuelOptimalResult) -> None:
+    res = optimal.fuel_optimal(plants.MarsLander(thrust_limit=FMAX), X0, 30.0, nodes=30,
+                               thrust_magnitude=(10e3, 60e3))
+    assert res.success, res.status
+    mag = np.linalg.norm(res.thrust, axis=1)
+    assert mag.min() >= 10e3 * (1 - 1e-6) and mag.max() <= 60e3 * (1 + 1e-6)
+    # no coasting: at least 10 kN for 30 s, and more than the free-throttle optimum
+    assert res.fuel >= 10e3 * 30.0 / C_EXH and res.fuel > nominal.fuel
