@@ -6,7 +6,8 @@ records s1 = r and s2 every 50 ms. The entry time of a band is the first recorde
 which every case's every axis stays inside it to the end of the 60 s run. The bands: the seed's
 printed radii (26.5257 for s2, 23.8472 m for s1), and the radii eq. 39 and 31 give for the
 preset gains (`landing.theory.mss_bounds`, theta1 = 0.2, theta2 = 0.1). Also the first instant
-each case is inside (the median over cases), for the seed's figures read that way.
+each case is inside (the median over cases), for the seed's figures read that way; and where
+the cases first touch the ground (the landing-sites figure of examples/mars_monte_carlo.py).
 
     python examples/studies/mars_entry_times.py [--cases 300] [--seed 1]   (about 20 s on 2 cores)
 """
@@ -58,6 +59,12 @@ def main() -> None:
         label = f"{name} within {radius:.6g} {unit}" + (" (seed's radius)" if seed_time else " (eq. 39/31, preset)")
         print(f"{label:<44} {stay:25.2f} s {np.median(first):12.2f} / {np.max(first):6.2f} s   "
               + (f"{seed_time} s" if seed_time else "-"))
+    td = np.asarray(mc.metrics["touchdown_position"])[:, :2]
+    touched = np.all(np.isfinite(td), axis=1)
+    miss = np.abs(td[touched])
+    print(f"touchdown sites (first rz = 0 crossing, landing_sites.png): {touched.sum()} of {args.cases} cases; "
+          f"max abs(x) {miss[:, 0].max():.2f} m, max abs(y) {miss[:, 1].max():.2f} m, "
+          f"{int(np.sum(np.all(miss <= SEED_S1, axis=1)))} within the seed's {SEED_S1} m on both axes")
 
 
 if __name__ == "__main__":
