@@ -225,6 +225,22 @@ def test_tabulated_per_case_tables_match_single_runs() -> None:
         np.testing.assert_array_equal(batch.states[i], one.states)
 
 
+def test_tabulated_per_case_tables_give_the_same_bits_at_every_level() -> None:
+    """37 cases with their own tables (several blocks at every level, the last one partly
+    padding): a case's bits do not depend on the instruction-set level."""
+    from test_registry_and_kernels import LEVELS, assert_same_bits
+
+    rng = np.random.default_rng(4)
+    tables = rng.uniform(-3e4, 3e4, size=(37, 6, 3))
+    x0 = np.tile(X0, (37, 1)) + rng.uniform(-10.0, 10.0, (37, 7)) * [1, 1, 1, 1, 1, 1, 0]
+    law = controllers.Tabulated(force=tables, hold=3, after="hold")
+    runs = {level: landing.simulate_batch(plants.MarsLander(thrust_limit=25e3), law, x0, t_final=2.5, dt=0.1,
+                                          kernel=level, disturbance=disturbances.Sinusoid(amplitude=0.5, omega=1.0))
+            for level in LEVELS}
+    for level, res in runs.items():
+        assert_same_bits(runs["baseline"], res, f"tabulated at {level}")
+
+
 @pytest.mark.parametrize("kwargs, error, match", [
     (dict(force=[]), ParameterError, "at least one row"),
     (dict(force=[1.0, 2.0, 3.0]), ParameterError, "rows, axes"),

@@ -1,7 +1,7 @@
 """The offline fuel-optimal powered descent: the baseline of seed 001's fuel comparison.
 
-Seed 001 (Wang, Zhang, Guo et al., "Fixed-time multiple-sliding-surface guidance for Mars
-powered descent", section IV, Fig. 3 and 4) compares its guidance with an offline fuel-optimal
+Seed 001 ("Mars Powered Descent Phase Guidance Design Based on Fixed-time Stabilization
+Technique", section IV, Fig. 3 and 4) compares its guidance with an offline fuel-optimal
 trajectory computed with GPOPS for t_f = 30 s (212.9067 kg of fuel). :func:`fuel_optimal` solves
 the same problem on the simulator's own model (docs/reproduction-mars.md, "Fuel-optimal
 baseline"):

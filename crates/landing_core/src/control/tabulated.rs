@@ -1,9 +1,9 @@
 //! A tabulated open-loop force: the replay of an offline thrust profile.
 //!
-//! Seed 001 (Wang, Zhang, Guo et al., "Fixed-time multiple-sliding-surface guidance for Mars
-//! powered descent", section IV, Fig. 3 and 4) compares its guidance with an offline
+//! Seed 001 ("Mars Powered Descent Phase Guidance Design Based on Fixed-time Stabilization
+//! Technique", section IV, Fig. 3 and 4) compares its guidance with an offline
 //! fuel-optimal thrust profile flown open loop, with and without the disturbance
-//! `a_p = sin(t)` of its eq. 47. This law flies such a profile: row `j` of the table is a
+//! `a_p = sin(t)` per axis (Fig. 3(c), (d)). This law flies such a profile: row `j` of the table is a
 //! generalized force per axis (thrust, N, on the Mars lander), held for `hold` control periods
 //! (zero-order hold), so that at control instant `k` (t = k dt) the law commands
 //!
