@@ -8,12 +8,12 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = ["mars_nominal.py", "mars_monte_carlo.py", "mars_reproduction.py", "asteroid_seed000.py",
-           "asteroid_seed002.py", "tether_comparison.py", "tether_monte_carlo.py"]
+           "asteroid_seed002.py", "tether_comparison.py", "tether_monte_carlo.py", "mars_optimal.py"]
 # scripts that write figures, and how many at least
 FIGURES = {"mars_monte_carlo.py": 5, "asteroid_seed000.py": 5, "asteroid_seed002.py": 5, "tether_comparison.py": 3,
-           "tether_monte_carlo.py": 1}
+           "tether_monte_carlo.py": 1, "mars_optimal.py": 2}
 # arguments that keep a campaign short; the documented command runs it in full
-SHORT = {"tether_monte_carlo.py": ["--cases", "2"]}
+SHORT = {"tether_monte_carlo.py": ["--cases", "2"], "mars_optimal.py": ["--nodes", "40"]}
 
 
 @pytest.mark.parametrize("script", SCRIPTS)

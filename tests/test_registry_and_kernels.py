@@ -40,6 +40,7 @@ def classes(module: ModuleType) -> dict[str, type]:
 EXAMPLES = {
     **laws(inertia=1.0, blend_k=0.5),
     "open_loop": C.OpenLoop(),
+    "tabulated": C.Tabulated(force=[[1.0, 2.0, 3.0], [-1.0, 0.0, 1.0]], hold=2),
     "mars_lander": P.MarsLander(),
     "double_integrator": P.DoubleIntegrator(),
     "small_body": P.SmallBody(gravity=G.Harmonic2(), omega=1.65e-4),

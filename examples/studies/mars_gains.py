@@ -11,8 +11,8 @@ Required of a gain set:
   R4  under a_p = 20 sin t (seed eq. 47) the nominal case stays within the seed's 23.85 m
       per axis over the last 20 s of the run (seed Fig. 8, 10),
   R5  fixed-time bounds within ten times the seed's: T1 <= 745.78 s, T2 <= 308.22 s
-      (eq. 18, 26). The seed's own T1 = 74.578 s and T2 = 30.822 s cannot be had together
-      with R1 from the Table I state (docs/parameters.md gives the argument).
+      (eq. 18, 26). The seed's own T1 = 74.578 s and T2 = 30.822 s can be had with R1 and R2
+      but not with R3 and R4 (examples/studies/mars_seed_bounds.py, docs/parameters.md).
 Objective: the shortest nominal settle time (|r| within 1 m for good), the seed's
 "convergence" (Fig. 2(a)).
 

@@ -39,7 +39,13 @@ class Plant:
         they determine (the tethered satellite)."""
 
 class Law:
-    """A compiled controller table, read for 3 and for 2 axes."""
+    """A compiled controller table, read for 3 and for 2 axes.
+
+    Its ``kind`` is one of CONTROLLER_KINDS. Each kind reads the keys of its Python class's
+    fields, except ``tabulated`` (``landing.controllers.Tabulated``), whose table is
+    ``{"rows": [{"force": (axes,) or (N, axes)}, ...], "hold": whole number >= 1,
+    "after": "hold" | "zero"}``: one table per row, every case the same number of rows.
+    """
 
     def __init__(self, owner: str, table: Table) -> None: ...
     @property

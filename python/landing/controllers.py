@@ -12,6 +12,8 @@ import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
+import numpy as np
+
 from landing import _core
 from landing._table import ArrayLike, Table
 
@@ -27,6 +29,7 @@ __all__ = [
     "FuzzyVariableRate",
     "NTSMC",
     "FixedTimeNTSMC",
+    "Tabulated",
 ]
 
 
@@ -303,3 +306,47 @@ class FixedTimeNTSMC(Controller):
     rbf_width: ArrayLike = (5.9, 1.4)
 
     kind = "fixed_time_ntsmc"
+
+
+@dataclass(frozen=True, eq=False)
+class Tabulated(Controller):
+    """A tabulated open-loop force, held: the replay of an offline thrust profile
+    (:func:`landing.optimal.fuel_optimal`; seed 001 Fig. 3 flies its optimum this way).
+
+    Row ``j`` of ``force`` is a generalized force per axis (N on the Mars lander), held for
+    ``hold`` control periods: at control instant ``k`` (t = k dt) the law commands
+    ``force[k // hold] / M(x)``, M the plant's inertia (the lander's current mass), and the
+    actuator multiplies by the same M, so the applied force is the row (then clipped to the
+    actuator's limit). After the table the law holds the last row (``after="hold"``) or
+    commands zero (``after="zero"``, engine off).
+
+    Parameters
+    ----------
+    force : the table, shape (rows, axes), or (cases, rows, axes) for a table per case (every
+        case the same number of rows).
+    hold : control periods per row, a whole number >= 1 (the row period over the control
+        period of the run).
+    after : ``"hold"`` or ``"zero"``.
+    """
+
+    force: ArrayLike
+    hold: int = 1
+    after: Literal["hold", "zero"] = "zero"
+
+    kind = "tabulated"
+
+    def _table(self) -> dict[str, Any]:
+        from landing.errors import ParameterError, ParameterTypeError
+        from landing._table import as_float_array
+
+        force = as_float_array("Tabulated", "force", self.force)
+        if force.ndim not in (2, 3) or force.shape[-2] == 0:
+            raise ParameterError(
+                f"Tabulated: force has shape {force.shape}; it takes (rows, axes) or (cases, rows, axes) "
+                "with at least one row"
+            )
+        if isinstance(self.hold, bool) or not isinstance(self.hold, (int, float)):
+            raise ParameterTypeError(f"Tabulated: hold must be a whole number, got {self.hold!r}")
+        rows = [{"force": np.ascontiguousarray(force[j] if force.ndim == 2 else force[:, j, :])}
+                for j in range(force.shape[-2])]
+        return {"kind": self.kind, "rows": rows, "hold": np.asarray(float(self.hold)), "after": self.after}

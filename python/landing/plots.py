@@ -33,6 +33,8 @@ __all__ = [
     "tether_rates",
     "tether_commands",
     "tether_fixed_time",
+    "position_and_thrust",
+    "masses",
 ]
 
 AXES = ("x", "y", "z")
@@ -90,27 +92,40 @@ def _radius_box(ax, r: Optional[float]) -> None:
 
 
 def landing_sites(result: Result):
-    """Final positions on the XOY and XOZ planes (seed 001 Fig. 8(a), (b)), with the
-    theoretical s1 neighbourhood when the result carries bounds."""
+    """Touchdown sites: where each case first crosses rz = 0 from above (the ``touchdown_position``
+    metric, interpolated within the integrator step), on the XOY plane, with the theoretical s1
+    neighbourhood when the result carries bounds; and the touchdown speeds (seed 001 Fig. 8(a),
+    (c) read at touchdown). Cases that never touch the ground are counted in the title; the state
+    at t_final is not drawn (the lander flies on after touchdown, the simulator does not stop)."""
     res, bounds = _parts(result)
-    r = _batched(res.final_state, 2)[:, :3]
+    m = res.metrics
+    r = np.atleast_2d(np.asarray(m["touchdown_position"], dtype=float))[:, :3]
+    speed = np.atleast_1d(np.asarray(m["touchdown_speed"], dtype=float))
+    touched = np.all(np.isfinite(r), axis=1)
     radius = None if bounds is None else float(np.max(bounds.s1_radius))
-    fig = _figure(figsize=(11, 5))
-    for k, (j, name) in enumerate(((1, "y"), (2, "z"))):
-        ax = fig.add_subplot(1, 2, k + 1)
-        ax.scatter(r[:, 0], r[:, j], s=8)
-        ax.axhline(0, color="0.7", lw=0.5)
-        ax.axvline(0, color="0.7", lw=0.5)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel(f"{name} (m)")
-        ax.set_title(f"Final positions, XO{name.upper()} plane")
-        span = max(float(np.nanmax(np.abs(r[:, [0, j]]))), 1e-6) * 1.3
+    fig = _figure(figsize=(11, 5), layout="constrained")
+    ax = fig.add_subplot(1, 2, 1)
+    ax.scatter(r[touched, 0], r[touched, 1], s=8)
+    ax.axhline(0, color="0.7", lw=0.5)
+    ax.axvline(0, color="0.7", lw=0.5)
+    ax.set_xlabel("x at touchdown (m)")
+    ax.set_ylabel("y at touchdown (m)")
+    ax.set_title(f"Touchdown sites (first rz = 0 crossing), XOY plane\n"
+                 f"{int(touched.sum())} of {touched.size} cases touched down")
+    if touched.any():
+        span = max(float(np.nanmax(np.abs(r[touched][:, :2]))), 1e-6) * 1.3
         if radius is not None and radius < 20 * span:
             _radius_box(ax, radius)
             ax.legend(loc="upper right")
         elif radius is not None:
             ax.text(0.02, 0.02, f"theory: |s1| <= {radius:.4g} m (off the plot)", transform=ax.transAxes, fontsize=8)
-        ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax = fig.add_subplot(1, 2, 2)
+    if np.isfinite(speed).any():
+        ax.hist(speed[np.isfinite(speed)], bins=30, color="tab:green")
+    ax.set_xlabel("speed at touchdown (m/s)")
+    ax.set_ylabel("cases")
+    ax.set_title("Speed at the first rz = 0 crossing")
     return fig
 
 
@@ -479,4 +494,57 @@ def tether_fixed_time(worst: Mapping[str, Mapping[float, np.ndarray]], bound: An
         ax.set_ylabel(f"worst settle time of {sym} (s)")
         ax.set_title(f"Fixed-time property, {name}")
         ax.legend()
+    return fig
+
+
+# --- The fuel-optimal comparison (seed 001 Fig. 3 and 4) ----------------------------------------
+
+
+def position_and_thrust(results: Labelled, ground: bool = True):
+    """One row per labelled single-case run: position per axis (left) and thrust per axis
+    (right) against time (seed 001 Fig. 3: the optimum flown open loop without and with the
+    disturbance). The altitude's first crossing of zero is marked."""
+    runs = _labelled(results)
+    fig = _figure(figsize=(12, 3.3 * len(runs)), layout="constrained")
+    for row, (label, res) in enumerate(runs.items()):
+        ax = fig.add_subplot(len(runs), 2, 2 * row + 1)
+        for j in range(3):
+            ax.plot(res.t, res.states[:, j], label=f"r{AXES[j]}")
+        if ground:
+            ax.axhline(0, color="0.5", lw=0.6)
+        td = float(np.asarray(res.metrics["touchdown_time"]))
+        if np.isfinite(td):
+            ax.axvline(td, ls=":", color="tab:red", lw=1)
+            ax.text(td, ax.get_ylim()[1], f" rz = 0 at {td:.2f} s", color="tab:red", fontsize=8, va="top")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("position (m)")
+        ax.set_title(f"Position{': ' + label if label else ''}")
+        ax.legend(fontsize=8)
+        ax = fig.add_subplot(len(runs), 2, 2 * row + 2)
+        for j in range(3):
+            ax.step(res.t, res.controls[:, j] / 1e3, where="post", label=f"F{AXES[j]}")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("thrust (kN)")
+        ax.set_title(f"Thrust{': ' + label if label else ''}")
+        ax.legend(fontsize=8)
+    return fig
+
+
+def masses(results: Labelled, read_at: Optional[Mapping[str, float]] = None):
+    """Mass against time for labelled single-case runs (seed 001 Fig. 4), each labelled with
+    the fuel spent by ``read_at[label]`` (a time, e.g. the landing time; the end of the run if
+    not given)."""
+    runs = _labelled(results)
+    fig = _figure(figsize=(7, 4.5), layout="constrained")
+    ax = fig.add_subplot()
+    for label, res in runs.items():
+        m = res.states[:, res.state_names.index("m")]
+        t_read = res.t[-1] if read_at is None or label not in read_at else float(read_at[label])
+        m_read = float(np.interp(t_read, res.t, m))
+        (line,) = ax.plot(res.t, m, label=f"{label}: {m[0] - m_read:.2f} kg by {t_read:.2f} s")
+        ax.plot([t_read], [m_read], "o", color=line.get_color())
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("mass (kg)")
+    ax.set_title("Mass, fuel spent to landing")
+    ax.legend(fontsize=8)
     return fig

@@ -23,6 +23,7 @@ mod open_loop;
 mod pd_sliding;
 pub mod rbf;
 mod super_twisting;
+mod tabulated;
 
 pub use fast_terminal::{FastTerminalSmc, TerminalSurface};
 pub use fixed_time_mss::{FixedTimeMss, MssVariant};
@@ -34,6 +35,7 @@ pub use ntsmc::Ntsmc;
 pub use open_loop::OpenLoop;
 pub use pd_sliding::PdSlidingMode;
 pub use super_twisting::{SuperTwisting, SuperTwistingVariant};
+pub use tabulated::{AfterTable, Tabulated};
 
 use nalgebra::SVector;
 
@@ -256,4 +258,5 @@ laws! {
     FuzzyVariableRate => "fuzzy_variable_rate",
     Ntsmc => "ntsmc",
     FixedTimeNtsmc => "fixed_time_ntsmc",
+    Tabulated => "tabulated",
 }
