@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import sys
 import warnings
@@ -300,6 +301,39 @@ class _Assembly:
         )
 
 
+def _check_in_slices(result: SimulationResult, bounds: Any, step: int = 256) -> dict:
+    """``theory.check_mss`` a slice of cases at a time (its temporaries are as large as the
+    signals it reads: a slice keeps them small), the per-case arrays put back together."""
+    from landing.theory import check_mss
+
+    n = result.n_cases
+    parts = []
+    for a in range(0, n, step):
+        b = min(n, a + step)
+        view = SimulationResult(
+            t=result.t, states=None, controls=None, final_state=result.final_state[a:b],
+            diagnostics={k: v[a:b] for k, v in result.diagnostics.items()},
+            metrics=Metrics({k: v[a:b] for k, v in result.metrics.items()}),
+            state_names=result.state_names, control_names=result.control_names, kernel=result.kernel,
+        )
+        parts.append(check_mss(view, bounds))
+    if len(parts) == 1:
+        return parts[0]
+
+    def cat(arrays: Any) -> np.ndarray:
+        return np.concatenate([np.asarray(x) for x in arrays])
+
+    return {
+        name: dataclasses.replace(
+            first,
+            bound=cat(p[name].bound for p in parts),
+            measured=cat(p[name].measured for p in parts),
+            extra={k: cat(p[name].extra[k] for p in parts) for k in first.extra},
+        )
+        for name, first in parts[0].items()
+    }
+
+
 def _keep(keep: Union[str, Sequence[str]]) -> tuple[str, ...]:
     items = (keep,) if isinstance(keep, str) else tuple(keep)
     bad = [k for k in items if k not in SIGNALS]
@@ -344,9 +378,7 @@ def assemble_campaign(
     bounds = scenario.bounds()
     checks = None
     if check_bounds and bounds is not None and result.t.size and {"s1", "s2"} <= set(result.diagnostics):
-        from landing.theory import check_mss
-
-        checks = check_mss(result, bounds)
+        checks = _check_in_slices(result, bounds)
     return MonteCarloResult(scenario=scenario, seed=seed, x0=x0, result=result, bounds=bounds, checks=checks,
                             keep=keep, store=None if store is None else str(store.path))
 
