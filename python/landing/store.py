@@ -422,7 +422,8 @@ class CampaignStore:
             store = CampaignStore(path, key)
             store._write_manifest()
         prov["sessions"].append({"started": _now(), "machine": machine(), "threads": threads,
-                                 "kernel": None, "resumed_chunks": len(store.completed)})
+                                 "threads_used": threads or os.cpu_count(), "kernel": None,
+                                 "resumed_chunks": len(store.completed)})
         _write_json_atomic(prov_path, prov)
         return store
 
