@@ -190,6 +190,8 @@ def test_a_store_of_another_campaign_is_refused(tmp_path):
         landing.load(path, scenario=small().replace(dt=4e-3))
     with pytest.raises(ParameterError, match="not a preset's.*scenario="):
         landing.load(path)  # a modified preset cannot be rebuilt from its text
+    with pytest.raises(TypeError, match="store must be a directory path"):
+        landing.monte_carlo(s, 10, seed=3, store=7)
     (tmp_path / "other").mkdir()
     (tmp_path / "other" / "notes.txt").write_text("mine")
     with pytest.raises(ParameterError, match="not a campaign store"):

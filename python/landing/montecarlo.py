@@ -266,7 +266,12 @@ class _Assembly:
 
     def put(self, start: int, stop: int, part: SimulationResult) -> None:
         if self.first is None:
-            self.first = part
+            # the first chunk's time and names, not its arrays (they are copied in below)
+            self.first = SimulationResult(
+                t=part.t, states=None, controls=None, final_state=part.final_state[:0].copy(), diagnostics={},
+                metrics=Metrics({k: np.asarray(v)[:0].copy() for k, v in part.metrics.items()}),
+                state_names=part.state_names, control_names=part.control_names, kernel=part.kernel,
+            )
             if "states" in self.keep:
                 self.states = self._alloc(part.states)
             if "controls" in self.keep:

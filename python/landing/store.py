@@ -40,7 +40,7 @@ from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
-from landing.errors import ParameterError
+from landing.errors import ParameterError, ParameterTypeError
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray
@@ -620,6 +620,8 @@ def open_campaign_store(
     """The store of ``monte_carlo(..., store=path)``: created, or resumed when it holds this
     campaign. Without a chunk size a resumed store keeps its own and a new one takes
     ``max(1000, n / 50)`` cases per chunk (at most n)."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise ParameterTypeError(f"store must be a directory path (str or os.PathLike), got {path!r}")
     require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
     path = Path(path)
     if chunk_size is None:
