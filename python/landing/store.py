@@ -392,7 +392,8 @@ class CampaignStore:
                     "package version):\n  " + "\n  ".join(diffs)
                     + "\nuse another directory, or delete this one to start again"
                 )
-            manifest = json.loads((path / MANIFEST).read_text())
+            # no manifest yet: created, then stopped before anything completed
+            manifest = json.loads((path / MANIFEST).read_text()) if (path / MANIFEST).is_file() else {"chunks": []}
             store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]},
                                   manifest.get("layout", {}))
         else:
