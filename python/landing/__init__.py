@@ -33,6 +33,7 @@ def kernel_levels() -> list[str]:
 
 from landing import plots, scenarios, theory
 from landing.montecarlo import MonteCarloResult, monte_carlo
+from landing.store import load
 
 __all__ = [
     "__version__",
@@ -48,6 +49,7 @@ __all__ = [
     "scenarios",
     "theory",
     "monte_carlo",
+    "load",
     "MonteCarloResult",
     "simulate",
     "simulate_batch",

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import dataclasses
+import os
 import warnings
 from dataclasses import dataclass
-from typing import Any, Optional
+from typing import TYPE_CHECKING, Any, Callable, Optional, Sequence, Union
 
 import numpy as np
 
@@ -13,7 +15,15 @@ from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
 from landing.simulation import Metrics, SimulationResult, describe_diverged, diverged_cases
 
-__all__ = ["MonteCarloResult", "Summary", "monte_carlo"]
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray
+
+    from landing.store import CampaignStore
+
+__all__ = ["Bands", "MonteCarloResult", "Summary", "monte_carlo"]
+
+#: What ``monte_carlo(..., keep=...)`` may keep (metrics and final states are always kept).
+SIGNALS: tuple[str, ...] = ("states", "controls", "diagnostics")
 
 #: The per-case columns the summary describes.
 SUMMARY_COLUMNS = (
@@ -86,6 +96,27 @@ def summarize(metrics: Metrics, columns: tuple[str, ...] = SUMMARY_COLUMNS) -> S
 
 
 @dataclass(frozen=True, eq=False)
+class Bands:
+    """Percentiles of a recorded signal over the cases, at every recorded instant.
+
+    ``values[k]`` is the ``percentiles[k]``-th percentile, shape (T,) or (T, D) for a per-axis
+    signal; ``n`` (T,) counts the cases with a finite value at each instant (diverged cases are
+    NaN from their divergence on and left out). ``bands[50]`` is the median."""
+
+    signal: str
+    t: np.ndarray
+    percentiles: tuple[float, ...]
+    values: np.ndarray
+    n: np.ndarray
+
+    def __getitem__(self, percentile: float) -> np.ndarray:
+        try:
+            return self.values[self.percentiles.index(percentile)]
+        except ValueError:
+            raise KeyError(f"percentile {percentile!r} not among {self.percentiles}") from None
+
+
+@dataclass(frozen=True, eq=False)
 class MonteCarloResult:
     """A campaign: the scenario, the sampled initial states, the recorded runs (decimated),
     the per-case metrics, their statistics and the theory's bounds with their checks."""
@@ -96,6 +127,10 @@ class MonteCarloResult:
     result: SimulationResult
     bounds: Any = None
     checks: Optional[dict] = None
+    #: The recorded signals kept (``monte_carlo(..., keep=...)``).
+    keep: tuple[str, ...] = SIGNALS
+    #: The directory the campaign is stored in, if any.
+    store: Optional[str] = None
 
     @property
     def n_cases(self) -> int:
@@ -103,18 +138,19 @@ class MonteCarloResult:
 
     @property
     def metrics(self) -> Metrics:
-        return self.result.metrics
+        """Per-case metrics; ``.to_pandas()`` adds the seed and the initial states."""
+        return self.result.metrics._with_context(seed=self.seed, x0=self.x0)
 
     @property
     def t(self) -> np.ndarray:
         return self.result.t
 
     @property
-    def states(self) -> np.ndarray:
+    def states(self) -> Optional[np.ndarray]:
         return self.result.states
 
     @property
-    def controls(self) -> np.ndarray:
+    def controls(self) -> Optional[np.ndarray]:
         return self.result.controls
 
     @property
@@ -123,6 +159,43 @@ class MonteCarloResult:
 
     def summary(self) -> Summary:
         return summarize(self.metrics)
+
+    def bands(self, signal: str, percentiles: Sequence[float] = (5, 50, 95)) -> Bands:
+        """Per-instant percentiles over the cases of a recorded signal: a state or control
+        component by name (``"rz"``, ``"Fz"``) or a diagnostic (``"s1"``, per axis). NaN-aware:
+        a diverged case counts until it diverges."""
+        pct = tuple(float(p) for p in percentiles)
+        if not pct or not all(0.0 <= p <= 100.0 for p in pct):
+            raise ParameterError(f"percentiles = {percentiles!r} violates 0 <= p <= 100 (at least one)")
+        res = self.result
+        if res.states is not None and signal in res.state_names:
+            x = res.states[..., res.state_names.index(signal)]
+        elif res.controls is not None and signal in res.control_names:
+            x = res.controls[..., res.control_names.index(signal)]
+        elif signal in res.diagnostics:
+            x = res.diagnostics[signal]
+        else:
+            known = [*(res.state_names if res.states is not None else ()),
+                     *(res.control_names if res.controls is not None else ()), *res.diagnostics]
+            raise ParameterError(
+                f"signal = {signal!r} is not a recorded signal of this campaign (kept: {self.keep}); "
+                f"one of {known}"
+            )
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN instants give NaN
+            values = np.nanpercentile(x, pct, axis=0)
+        finite = np.isfinite(x)
+        n = finite.reshape(finite.shape[0], finite.shape[1], -1).all(axis=2).sum(axis=0)
+        return Bands(signal=signal, t=res.t, percentiles=pct, values=values, n=n)
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """An xarray Dataset of the campaign: the kept signals (case, time, component), the
+        final and initial states, every metric, with names, time (s) and units (see
+        :meth:`SimulationResult.to_xarray`). Needs ``pip install "landing[io]"``."""
+        from landing.store import result_dataset
+
+        return result_dataset(self.result, x0=self.x0, seed=self.seed,
+                              attrs={"scenario": self.scenario.name, "keep": list(self.keep)})
 
     def within_bounds(self) -> Optional[np.ndarray]:
         """Per case: s1 and s2 stay in their theoretical neighbourhoods from the bound times
@@ -172,20 +245,146 @@ class MonteCarloResult:
         return "\n".join(lines)
 
 
-def _concat(parts: list[SimulationResult]) -> SimulationResult:
+class _Assembly:
+    """A campaign's output, allocated once (from the first chunk's shapes) and filled chunk
+    by chunk: no list of parts, no concatenation of the whole at the end. Signals not kept are
+    never allocated."""
+
+    def __init__(self, n: int, keep: tuple[str, ...]):
+        self.n = n
+        self.keep = keep
+        self.first: Optional[SimulationResult] = None
+        self.states: Optional[np.ndarray] = None
+        self.controls: Optional[np.ndarray] = None
+        self.final_state: Optional[np.ndarray] = None
+        self.diagnostics: dict[str, np.ndarray] = {}
+        self.metrics: dict[str, np.ndarray] = {}
+
+    def _alloc(self, part: np.ndarray) -> np.ndarray:
+        return np.empty((self.n,) + part.shape[1:], dtype=part.dtype)
+
+    def put(self, start: int, stop: int, part: SimulationResult) -> None:
+        if self.first is None:
+            # the first chunk's time and names, not its arrays (they are copied in below)
+            self.first = SimulationResult(
+                t=part.t, states=None, controls=None, final_state=part.final_state[:0].copy(), diagnostics={},
+                metrics=Metrics({k: np.asarray(v)[:0].copy() for k, v in part.metrics.items()}),
+                state_names=part.state_names, control_names=part.control_names, kernel=part.kernel,
+            )
+            if "states" in self.keep:
+                self.states = self._alloc(part.states)
+            if "controls" in self.keep:
+                self.controls = self._alloc(part.controls)
+            if "diagnostics" in self.keep:
+                self.diagnostics = {k: self._alloc(v) for k, v in part.diagnostics.items()}
+            self.final_state = self._alloc(part.final_state)
+            self.metrics = {k: self._alloc(np.asarray(v)) for k, v in part.metrics.items()}
+        if self.states is not None:
+            self.states[start:stop] = part.states
+        if self.controls is not None:
+            self.controls[start:stop] = part.controls
+        for k, v in self.diagnostics.items():
+            v[start:stop] = part.diagnostics[k]
+        self.final_state[start:stop] = part.final_state
+        for k, v in self.metrics.items():
+            v[start:stop] = part.metrics[k]
+
+    def result(self) -> SimulationResult:
+        first = self.first
+        assert first is not None and self.final_state is not None
+        return SimulationResult(
+            t=first.t,
+            states=self.states,
+            controls=self.controls,
+            final_state=self.final_state,
+            diagnostics=self.diagnostics,
+            metrics=Metrics(self.metrics),
+            state_names=first.state_names,
+            control_names=first.control_names,
+            kernel=first.kernel,
+        )
+
+
+def _check_in_slices(result: SimulationResult, bounds: Any, step: int = 256) -> dict:
+    """``theory.check_mss`` a slice of cases at a time (its temporaries are as large as the
+    signals it reads: a slice keeps them small), the per-case arrays put back together."""
+    from landing.theory import check_mss
+
+    n = result.n_cases
+    parts = []
+    for a in range(0, n, step):
+        b = min(n, a + step)
+        view = SimulationResult(
+            t=result.t, states=None, controls=None, final_state=result.final_state[a:b],
+            diagnostics={k: v[a:b] for k, v in result.diagnostics.items()},
+            metrics=Metrics({k: v[a:b] for k, v in result.metrics.items()}),
+            state_names=result.state_names, control_names=result.control_names, kernel=result.kernel,
+        )
+        parts.append(check_mss(view, bounds))
     if len(parts) == 1:
         return parts[0]
-    first = parts[0]
-    return SimulationResult(
-        t=first.t,
-        states=np.concatenate([p.states for p in parts]),
-        controls=np.concatenate([p.controls for p in parts]),
-        final_state=np.concatenate([p.final_state for p in parts]),
-        diagnostics={k: np.concatenate([p.diagnostics[k] for p in parts]) for k in first.diagnostics},
-        metrics=Metrics({k: np.concatenate([p.metrics[k] for p in parts]) for k in first.metrics}),
-        state_names=first.state_names,
-        control_names=first.control_names,
-    )
+
+    def cat(arrays: Any) -> np.ndarray:
+        return np.concatenate([np.asarray(x) for x in arrays])
+
+    return {
+        name: dataclasses.replace(
+            first,
+            bound=cat(p[name].bound for p in parts),
+            measured=cat(p[name].measured for p in parts),
+            extra={k: cat(p[name].extra[k] for p in parts) for k in first.extra},
+        )
+        for name, first in parts[0].items()
+    }
+
+
+def _keep(keep: Union[str, Sequence[str]]) -> tuple[str, ...]:
+    items = (keep,) if isinstance(keep, str) else tuple(keep)
+    bad = [k for k in items if k not in SIGNALS]
+    if bad:
+        raise ParameterError(f"keep = {keep!r}: {bad[0]!r} is not one of {SIGNALS}")
+    return tuple(k for k in SIGNALS if k in items)  # canonical order, no repeats
+
+
+def assemble_campaign(
+    scenario: Scenario,
+    *,
+    n: int,
+    seed: int,
+    x0: np.ndarray,
+    chunk_size: int,
+    keep: tuple[str, ...],
+    run_chunk: Optional[Callable[[int, int], SimulationResult]],
+    store: Optional["CampaignStore"],
+    check_bounds: bool,
+    bar: Optional[ProgressBar] = None,
+) -> MonteCarloResult:
+    """Chunk by chunk into the preallocated output: a chunk the store holds is read, any other
+    is run (``run_chunk(start, stop)``) and, with a store, written to it as it completes."""
+    out = _Assembly(n, keep)
+    for index, start in enumerate(range(0, n, chunk_size)):
+        stop = min(n, start + chunk_size)
+        if store is not None and store.is_complete(index):
+            part = store.read_chunk(index)
+        else:
+            if run_chunk is None:  # pragma: no cover - load() checks completeness first
+                raise ParameterError(f"chunk {index} (cases {start}..{stop - 1}) is missing from the store")
+            part = run_chunk(start, stop)
+            if store is not None:
+                draws = (None if scenario.dispersion is None
+                         else scenario.dispersion.sample(stop - start, seed=seed, first_case=start))
+                store.write_chunk(index, start, stop, part, x0[start:stop], draws)
+        out.put(start, stop, part)
+        del part
+        if bar:
+            bar.update(stop - start)
+    result = out.result()
+    bounds = scenario.bounds()
+    checks = None
+    if check_bounds and bounds is not None and result.t.size and {"s1", "s2"} <= set(result.diagnostics):
+        checks = _check_in_slices(result, bounds)
+    return MonteCarloResult(scenario=scenario, seed=seed, x0=x0, result=result, bounds=bounds, checks=checks,
+                            keep=keep, store=None if store is None else str(store.path))
 
 
 def monte_carlo(
@@ -198,6 +397,8 @@ def monte_carlo(
     threads: Optional[int] = None,
     progress: Optional[bool] = None,
     check_bounds: bool = True,
+    keep: Union[str, Sequence[str]] = SIGNALS,
+    store: Union[str, "os.PathLike[str]", None] = None,
 ) -> MonteCarloResult:
     """Run ``n`` dispersed cases of ``scenario``.
 
@@ -212,8 +413,20 @@ def monte_carlo(
         bar).
     progress : show progress on stderr, a bar in terminals and notebooks and a line every 30 s
         in logs (default: when the campaign is long, more than 2e7 case-steps).
-    check_bounds : check the run against the scenario's theoretical bounds, if any.
+    check_bounds : check the run against the scenario's theoretical bounds, if any (needs the
+        diagnostics kept).
+    keep : the recorded signals kept, among ``"states"``, ``"controls"`` and ``"diagnostics"``
+        (default all); the others are dropped chunk by chunk. Metrics and final states are
+        always kept. The output is allocated once and filled chunk by chunk.
+    store : a directory to write the campaign to as each chunk completes (metrics, initial
+        states and draws as Parquet, trajectories as Zarr, a provenance record; see
+        :mod:`landing.store`), and to resume from: completed chunks are read back, not re-run,
+        and the result is the uninterrupted run's bit for bit. A store of another campaign
+        (scenario, seed, n, chunk_size, record settings) is refused. Without ``chunk_size`` a
+        new store is cut into ``max(1000, n / 50)``-case chunks and a resumed one keeps its own.
+        :func:`landing.load` reads it back. Needs ``pip install "landing[io]"``.
     """
+    chunk_given = chunk_size is not None
     try:
         n = int(n)
     except (TypeError, ValueError):
@@ -231,39 +444,42 @@ def monte_carlo(
     if chunk_size < 1:
         raise ParameterError(f"chunk_size = {chunk_size} violates chunk_size >= 1")
 
+    keep = _keep(keep)
     x0 = scenario.initial_states(n, seed=seed)
     opts = scenario.run_options()
     if record_every is not None:
         opts["record_every"] = record_every
+    campaign_store = None
+    if store is not None:
+        from landing.store import open_campaign_store
+
+        campaign_store = open_campaign_store(
+            store, scenario, seed=seed, n=n, x0=x0, keep=keep, record_every=opts["record_every"],
+            chunk_size=chunk_size if chunk_given else None, threads=threads, check_bounds=check_bounds,
+        )
+        chunk_size = campaign_store.key.chunk_size
     bar = ProgressBar(n, label=scenario.name) if progress else None
-    parts = []
     diverged_warnings = 0
+
+    def run_chunk(start: int, stop: int) -> SimulationResult:
+        nonlocal diverged_warnings
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", DivergenceWarning)
+            part = scenario.simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads, **opts)
+        diverged_warnings += sum(issubclass(w.category, DivergenceWarning) for w in caught)
+        return part
+
     try:
-        for start in range(0, n, chunk_size):
-            stop = min(n, start + chunk_size)
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always", DivergenceWarning)
-                parts.append(
-                    scenario.simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads, **opts)
-                )
-            diverged_warnings += sum(issubclass(w.category, DivergenceWarning) for w in caught)
-            if bar:
-                bar.update(stop - start)
+        mc = assemble_campaign(scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
+                               run_chunk=run_chunk, store=campaign_store, check_bounds=check_bounds, bar=bar)
     finally:
         if bar:
             bar.close()
-    result = _concat(parts)
-    if result.metrics["diverged"].any():
+    if mc.metrics["diverged"].any():
         warnings.warn(
-            f"{describe_diverged(result.metrics)}; they are flagged in metrics['diverged'] (why: "
+            f"{describe_diverged(mc.metrics)}; they are flagged in metrics['diverged'] (why: "
             "metrics['diverged_reason']) and left out of the summary's statistics",
             DivergenceWarning,
             stacklevel=2,
         )
-    bounds = scenario.bounds()
-    checks = None
-    if check_bounds and bounds is not None and result.t.size:
-        from landing.theory import check_mss
-
-        checks = check_mss(result, bounds)
-    return MonteCarloResult(scenario=scenario, seed=seed, x0=x0, result=result, bounds=bounds, checks=checks)
+    return mc

@@ -5,7 +5,7 @@ from __future__ import annotations
 import operator
 import warnings
 from dataclasses import dataclass
-from typing import Any, Iterator, Mapping, Optional, Union
+from typing import TYPE_CHECKING, Any, Iterator, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -15,6 +15,10 @@ from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
 from landing.plants import Plant
 from landing.reference import Reference
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray
 
 __all__ = ["Metrics", "SimulationResult", "simulate_batch", "simulate"]
 
@@ -109,18 +113,50 @@ class Metrics(Mapping[str, np.ndarray]):
         """The metrics of one case."""
         return {k: v[case] for k, v in self._columns.items()}
 
-    def to_pandas(self):  # pragma: no cover - optional dependency
-        """A pandas DataFrame, per-axis columns split into ``name_0``, ``name_1``..."""
-        import pandas as pd
+    def to_pandas(
+        self,
+        *,
+        axis_names: Optional[Sequence[str]] = None,
+        x0: Optional[np.ndarray] = None,
+        state_names: Optional[Sequence[str]] = None,
+        seed: Optional[int] = None,
+        first_case: int = 0,
+    ) -> "pandas.DataFrame":
+        """A pandas DataFrame, one row per case (index ``case``; a single case gives one row).
 
-        flat: dict[str, np.ndarray] = {}
-        for k, v in self._columns.items():
-            if v.ndim == 1:
-                flat[k] = v
-            else:
-                for j in range(v.shape[1]):
-                    flat[f"{k}_{j}"] = v[:, j]
-        return pd.DataFrame(flat)
+        Per-axis columns are split with the axis names, ``final_error_x`` ... (``_0``, ``_1``
+        ... when the axes have no names). The arguments default to what the result that made
+        these metrics knows (a :class:`SimulationResult` or a Monte Carlo campaign fills them):
+        ``seed`` adds a ``seed`` column, ``x0`` (N, n_state) the initial states as
+        ``x0_<state name>`` columns. Needs pandas (``pip install "landing[io]"``).
+        """
+        from landing.store import flat_columns, require_io
+
+        pd = require_io("pandas", what="Metrics.to_pandas")
+        ctx = self.__dict__.get("_context", {})
+        axis_names = tuple(axis_names if axis_names is not None else ctx.get("axis_names", ()))
+        x0 = x0 if x0 is not None else ctx.get("x0")
+        state_names = tuple(state_names if state_names is not None else ctx.get("state_names", ()))
+        seed = seed if seed is not None else ctx.get("seed")
+        first_case = first_case or int(ctx.get("first_case", 0))
+        flat = flat_columns(self._columns, axis_names)
+        n = len(next(iter(flat.values()))) if flat else 0
+        front: dict[str, np.ndarray] = {}
+        if seed is not None:
+            front["seed"] = np.full(n, int(seed), dtype=np.uint64)
+        if x0 is not None:
+            x = np.atleast_2d(np.asarray(x0))
+            names = state_names if len(state_names) == x.shape[1] else tuple(str(j) for j in range(x.shape[1]))
+            for j, name in enumerate(names):
+                front[f"x0_{name}"] = x[:, j]
+        index = pd.RangeIndex(first_case, first_case + n, name="case")
+        return pd.DataFrame({**front, **flat}, index=index)
+
+    def _with_context(self, **context: Any) -> "Metrics":
+        """The same columns, knowing what :meth:`to_pandas` adds (axis names, seed, x0)."""
+        out = Metrics(self._columns)
+        out.__dict__["_context"] = {**self.__dict__.get("_context", {}), **context}
+        return out
 
     def __repr__(self) -> str:
         cols = {k: np.atleast_1d(v) for k, v in self._columns.items()}
@@ -153,12 +189,14 @@ class SimulationResult:
         (N, T) for scalar ones (blending coefficients).
     metrics : per-case table, see :class:`Metrics`.
 
-    ``result[i]`` is case i alone, with the case axis dropped.
+    ``result[i]`` is case i alone, with the case axis dropped. A Monte Carlo campaign run with
+    ``keep=`` leaves out what it did not keep: ``states`` or ``controls`` are then None and
+    ``diagnostics`` is empty.
     """
 
     t: np.ndarray
-    states: np.ndarray
-    controls: np.ndarray
+    states: Optional[np.ndarray]
+    controls: Optional[np.ndarray]
     final_state: np.ndarray
     diagnostics: dict[str, np.ndarray]
     metrics: Metrics
@@ -167,9 +205,34 @@ class SimulationResult:
     #: The instruction-set level the batch ran at (the same bits at every level).
     kernel: str = ""
 
+    def __post_init__(self) -> None:
+        # the metrics know their axis names (and the initial states, when recorded) for to_pandas
+        context: dict[str, Any] = {"axis_names": self.axis_names, "state_names": self.state_names}
+        if self.states is not None and self.t.size and self.t[0] == 0.0:
+            context["x0"] = self.states[..., 0, :]
+        object.__setattr__(self, "metrics", self.metrics._with_context(**context))
+
     @property
     def n_cases(self) -> int:
         return int(self.final_state.shape[0]) if self.final_state.ndim == 2 else 1
+
+    @property
+    def axis_names(self) -> tuple[str, ...]:
+        """Names of the axes of the per-axis metrics and diagnostics (x, y, z for the
+        three-axis plants, the generalized coordinates' names otherwise)."""
+        from landing.store import axis_names
+
+        return axis_names(self.metrics, self.state_names)
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """An xarray Dataset: ``states`` (case, time, state), ``controls`` (case, time,
+        control), each diagnostic (case, time[, axis]), ``final_state`` (case, state) and every
+        metric (case[, axis]), with the time (s), component and axis names as coordinates and
+        units where known (a single case has no ``case`` dimension). Needs xarray
+        (``pip install "landing[io]"``)."""
+        from landing.store import result_dataset
+
+        return result_dataset(self)
 
     @property
     def diverged(self) -> np.ndarray:
@@ -183,8 +246,8 @@ class SimulationResult:
             raise TypeError("this result holds a single case")
         return SimulationResult(
             t=self.t,
-            states=self.states[case],
-            controls=self.controls[case],
+            states=None if self.states is None else self.states[case],
+            controls=None if self.controls is None else self.controls[case],
             final_state=self.final_state[case],
             diagnostics={k: v[case] for k, v in self.diagnostics.items()},
             metrics=Metrics({k: v[case] for k, v in self.metrics.items()}),
@@ -195,6 +258,8 @@ class SimulationResult:
 
     def state(self, name: str) -> np.ndarray:
         """One state component by name, e.g. ``res.state("rz")``: (N, T) or (T,)."""
+        if self.states is None:
+            raise ParameterError(f"state {name!r}: the states were not kept (keep=...)")
         return self.states[..., self.state_names.index(name)]
 
 

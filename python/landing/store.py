@@ -1,0 +1,687 @@
+"""Campaigns as data: a Monte Carlo campaign as a directory a user can keep, share and reopen.
+
+Layout of a store written by ``landing.monte_carlo(..., store=path)``::
+
+    path/
+      provenance.json         what ran: package version, the scenario as text, seed, n, chunk
+                              size, record settings, and per session the machine, threads,
+                              date and kernel level
+      manifest.json           the completed chunks (replaced atomically after each chunk's
+                              files are on disk) and the layout of the metric columns
+      chunks/metrics/part-000000.parquet   per-case metrics of chunk 0 (index ``case``;
+                              per-axis columns split with the axis names: final_error_x ...)
+      chunks/initial/part-000000.parquet   the chunk's initial states (x0_<state>) and
+                              dispersion draws (draw_<j>)
+      trajectories.zarr/      states (case, time, state), controls (case, time, control),
+                              diagnostics (case, time[, axis]) as kept, final_state (case,
+                              state); coordinates case, time (s), state, control, axis and the
+                              components' units; written chunk by chunk (region writes)
+
+``xarray.open_zarr(path / "trajectories.zarr")`` and ``pandas.read_parquet(path / "chunks" /
+"metrics")`` read it without this package; :func:`load` gives back the
+:class:`~landing.montecarlo.MonteCarloResult` bit for bit.
+
+Parquet, Zarr, xarray and pandas are the optional extra ``landing[io]``; nothing here imports
+them until a store or a conversion is asked for.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import datetime
+import hashlib
+import importlib
+import json
+import os
+import platform
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from landing.errors import ParameterError, ParameterTypeError
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray
+
+    from landing.montecarlo import MonteCarloResult
+    from landing.scenarios import Scenario
+    from landing.simulation import Metrics, SimulationResult
+
+__all__ = ["load", "require_io", "IO_PACKAGES", "STORE_FORMAT"]
+
+#: The optional packages of ``landing[io]``.
+IO_PACKAGES: tuple[str, ...] = ("pyarrow", "zarr", "xarray", "pandas")
+#: Version of the directory layout written here.
+STORE_FORMAT = 1
+
+PROVENANCE = "provenance.json"
+MANIFEST = "manifest.json"
+TRAJECTORIES = "trajectories.zarr"
+METRICS_DIR = Path("chunks") / "metrics"
+INITIAL_DIR = Path("chunks") / "initial"
+
+#: Signals a campaign may keep (``monte_carlo(..., keep=...)``).
+SIGNALS: tuple[str, ...] = ("states", "controls", "diagnostics")
+
+#: Units of the state and control components, by name (where known).
+UNITS: dict[str, str] = {
+    # Mars lander
+    "rx": "m", "ry": "m", "rz": "m", "vx": "m/s", "vy": "m/s", "vz": "m/s", "m": "kg",
+    "Fx": "N", "Fy": "N", "Fz": "N",
+    # small body
+    "x": "m", "y": "m", "z": "m", "ux": "m/s^2", "uy": "m/s^2", "uz": "m/s^2",
+    # tethered satellite
+    "phi": "rad", "theta": "rad", "phi_dot": "rad/s", "theta_dot": "rad/s", "thrust": "N", "torque": "N m",
+}
+
+#: Units of the metrics whose unit does not depend on the plant.
+METRIC_UNITS: dict[str, str] = {
+    "settle_time": "s", "touchdown_time": "s", "diverged_time": "s",
+    "fuel_used": "kg", "fuel_to_settle": "kg", "chattering_variation": "command units/s",
+}
+
+
+# --- optional imports ----------------------------------------------------------------------------
+
+
+def require_io(*names: str, what: str = "this") -> Any:
+    """Import the named optional packages (one module, or a tuple of them), or raise an
+    ImportError saying how to install them."""
+    modules = []
+    for name in names:
+        try:
+            modules.append(importlib.import_module(name))
+        except ImportError as e:
+            raise ImportError(
+                f"{what} needs {name.split('.')[0]}, part of the optional extra landing[io] "
+                f"({', '.join(IO_PACKAGES)}): pip install \"landing[io]\""
+            ) from e
+    return modules[0] if len(modules) == 1 else tuple(modules)
+
+
+# --- names, columns, units --------------------------------------------------------------------------
+
+
+def axis_names(metrics: Mapping[str, np.ndarray], state_names: Sequence[str]) -> tuple[str, ...]:
+    """x, y, z for three axes; the first state names (the generalized coordinates, e.g. phi and
+    theta) otherwise."""
+    if "final_error" not in metrics:
+        return ()
+    d = int(np.shape(metrics["final_error"])[-1]) if np.ndim(metrics["final_error"]) else 0
+    if d == 3:
+        return ("x", "y", "z")
+    if len(state_names) >= d:
+        return tuple(state_names[:d])
+    return tuple(str(j) for j in range(d))
+
+
+def _single_case(columns: Mapping[str, np.ndarray]) -> bool:
+    return np.ndim(columns["diverged"]) == 0 if "diverged" in columns else False
+
+
+def flat_columns(columns: Mapping[str, np.ndarray], axes: Sequence[str] = ()) -> dict[str, np.ndarray]:
+    """Per-case columns, the per-axis ones split into ``name_<axis>`` (one row for a single
+    case's scalar metrics)."""
+    single = _single_case(columns)
+    flat: dict[str, np.ndarray] = {}
+    for k, v in columns.items():
+        v = np.asarray(v)
+        if single:
+            v = v[None, ...]
+        if v.ndim == 1:
+            flat[k] = v
+            continue
+        names = axes if len(axes) == v.shape[1] else tuple(str(j) for j in range(v.shape[1]))
+        for j, a in enumerate(names):
+            flat[f"{k}_{a}"] = v[:, j]
+    return flat
+
+
+def metrics_layout(columns: Mapping[str, np.ndarray], axes: Sequence[str]) -> list[list[Any]]:
+    """[name, dtype, per-axis column names or None] of each metric (how to put the flat Parquet
+    columns back together)."""
+    out = []
+    for k, v in columns.items():
+        v = np.asarray(v)
+        if v.ndim == 1:
+            out.append([k, v.dtype.str, None])
+        else:
+            names = axes if len(axes) == v.shape[1] else tuple(str(j) for j in range(v.shape[1]))
+            out.append([k, v.dtype.str, [f"{k}_{a}" for a in names]])
+    return out
+
+
+def _units(names: Sequence[str]) -> list[str]:
+    return [UNITS.get(n, "") for n in names]
+
+
+def result_dataset(
+    result: "SimulationResult",
+    *,
+    x0: Optional[np.ndarray] = None,
+    seed: Optional[int] = None,
+    attrs: Optional[dict[str, Any]] = None,
+) -> "xarray.Dataset":
+    """The xarray Dataset of a result (see :meth:`SimulationResult.to_xarray`)."""
+    xr = require_io("xarray", what="to_xarray")
+    single = result.final_state.ndim == 1
+    case: tuple[str, ...] = () if single else ("case",)
+    axes = result.axis_names
+    coords: dict[str, Any] = {
+        "time": ("time", result.t, {"units": "s", "long_name": "control instant"}),
+        "state": ("state", list(result.state_names)),
+        "control": ("control", list(result.control_names)),
+        "state_units": ("state", _units(result.state_names)),
+        "control_units": ("control", _units(result.control_names)),
+    }
+    if axes:
+        coords["axis"] = ("axis", list(axes))
+    if not single:
+        coords["case"] = ("case", np.arange(result.n_cases))
+    data: dict[str, Any] = {}
+    if result.states is not None:
+        data["states"] = (case + ("time", "state"), result.states,
+                          {"long_name": "state at the recorded instants", "units_by": "state_units"})
+    if result.controls is not None:
+        data["controls"] = (case + ("time", "control"), result.controls,
+                            {"long_name": "command applied after saturation", "units_by": "control_units"})
+    for name, v in result.diagnostics.items():
+        dims = case + ("time",) + (("axis",) if v.ndim == len(case) + 2 else ())
+        data[name] = (dims, v, {"long_name": f"law diagnostic {name}"})
+    data["final_state"] = (case + ("state",), result.final_state,
+                           {"long_name": "state at t_final", "units_by": "state_units"})
+    if x0 is not None:
+        data["x0"] = (case + ("state",), x0, {"long_name": "initial state", "units_by": "state_units"})
+    for name, v in result.metrics.items():
+        v = np.asarray(v)
+        dims = case + (("axis",) if v.ndim == len(case) + 1 else ())
+        meta = {"long_name": f"metric {name}"}
+        if name in METRIC_UNITS:
+            meta["units"] = METRIC_UNITS[name]
+        data[name if name not in data else f"metric_{name}"] = (dims, v, meta)
+    ds_attrs = {"kernel": result.kernel}
+    if seed is not None:
+        ds_attrs["seed"] = int(seed)
+    ds_attrs.update(attrs or {})
+    return xr.Dataset(data, coords=coords, attrs=ds_attrs)
+
+
+# --- provenance ----------------------------------------------------------------------------------------
+
+
+def _scenario_text(scenario: "Scenario") -> str:
+    """The scenario as TOML in the provenance record (what a resumed run must match, and what
+    :func:`load` rebuilds the scenario from)."""
+    return scenario.to_toml()
+
+
+def _scenario_from_text(text: str) -> Optional["Scenario"]:
+    """The scenario back from its TOML text, or None when the text is not a scenario file."""
+    from landing.errors import LandingError
+    from landing.scenario_files import scenario_from_dict, tomllib
+
+    try:
+        return scenario_from_dict(tomllib.loads(text), "<the store's provenance.json>")
+    except (tomllib.TOMLDecodeError, LandingError):
+        return None
+
+
+def _now() -> str:
+    return datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+
+
+def _cpu_name() -> str:
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def machine() -> dict[str, Any]:
+    """The machine a session ran on: platform, CPU name, cores."""
+    return {
+        "platform": platform.platform(),
+        "python": platform.python_version(),
+        "cpu": _cpu_name(),
+        "cores": os.cpu_count(),
+    }
+
+
+@dataclass(frozen=True)
+class CampaignKey:
+    """What a store's chunks depend on: a resumed run must match every field."""
+
+    version: str
+    scenario: str
+    seed: int
+    n: int
+    chunk_size: int
+    record_every: int
+    keep: tuple[str, ...]
+    x0_sha256: str
+
+    @staticmethod
+    def of(scenario: "Scenario", *, seed: int, n: int, chunk_size: int, record_every: int,
+           keep: Sequence[str], x0: np.ndarray) -> "CampaignKey":
+        from landing import __version__
+
+        return CampaignKey(
+            version=__version__, scenario=_scenario_text(scenario), seed=int(seed), n=int(n),
+            chunk_size=int(chunk_size), record_every=int(record_every), keep=tuple(keep),
+            x0_sha256=hashlib.sha256(np.ascontiguousarray(x0, dtype=np.float64).tobytes()).hexdigest(),
+        )
+
+    def to_json(self) -> dict[str, Any]:
+        d = dataclasses.asdict(self)
+        d["keep"] = list(self.keep)
+        return d
+
+    @staticmethod
+    def from_json(d: Mapping[str, Any]) -> "CampaignKey":
+        return CampaignKey(**{**d, "keep": tuple(d["keep"])})
+
+    def differences(self, stored: "CampaignKey") -> list[str]:
+        """What differs, as "field: stored value there, this value here"."""
+        out = []
+        for f in dataclasses.fields(self):
+            mine, theirs = getattr(self, f.name), getattr(stored, f.name)
+            if mine == theirs:
+                continue
+            if f.name == "scenario":
+                out.append("scenario: the store's is\n" + _indent(theirs) + "\n  this one is\n" + _indent(mine))
+            elif f.name == "x0_sha256":
+                out.append("initial states: they differ from the store's")
+            else:
+                out.append(f"{f.name}: {theirs!r} in the store, {mine!r} here")
+        return out
+
+
+def _indent(text: str) -> str:
+    return "\n".join("    " + line for line in text.splitlines())
+
+
+# --- files ------------------------------------------------------------------------------------------
+
+
+def _fsync_file(path: Path) -> None:
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def _fsync_dir(path: Path) -> None:
+    try:
+        _fsync_file(path)
+    except OSError:  # directories cannot be opened for fsync on some systems
+        pass
+
+
+def _write_json_atomic(path: Path, data: Any) -> None:
+    """Write to a temporary name, make it durable, then rename over ``path``."""
+    tmp = path.with_name(f".{path.name}.tmp")
+    with open(tmp, "w") as f:
+        json.dump(data, f, indent=1, sort_keys=False)
+        f.write("\n")
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+    _fsync_dir(path.parent)
+
+
+def _part(index: int) -> str:
+    return f"part-{index:06d}.parquet"
+
+
+def _zarr_create(group: Any, name: str, shape: tuple[int, ...], chunks: tuple[int, ...], dtype: Any,
+                 dims: Sequence[str], attrs: Mapping[str, Any]) -> Any:
+    """An array with named dims, under zarr 2 or 3."""
+    if hasattr(group, "create_array"):  # zarr 3
+        fmt = getattr(getattr(group, "metadata", None), "zarr_format", 3)
+        kw: dict[str, Any] = {"dimension_names": list(dims)} if fmt == 3 else {}
+        arr = group.create_array(name, shape=shape, chunks=chunks, dtype=dtype, fill_value=np.nan, **kw)
+        if fmt != 3:
+            arr.attrs["_ARRAY_DIMENSIONS"] = list(dims)
+    else:  # zarr 2
+        arr = group.create_dataset(name, shape=shape, chunks=chunks, dtype=dtype, fill_value=np.nan)
+        arr.attrs["_ARRAY_DIMENSIONS"] = list(dims)
+    arr.attrs.update(dict(attrs))
+    return arr
+
+
+@dataclass
+class CampaignStore:
+    """A campaign's directory, open for writing and resuming (see the module's docstring)."""
+
+    path: Path
+    key: CampaignKey
+    completed: dict[int, dict[str, Any]] = field(default_factory=dict)
+    layout: dict[str, Any] = field(default_factory=dict)
+
+    # -- opening --
+
+    @staticmethod
+    def open(path: Union[str, os.PathLike], key: CampaignKey, *, threads: Optional[int], check_bounds: bool,
+             record_every: int) -> "CampaignStore":
+        """Open (resume) the campaign at ``path`` or create it; a store written by another
+        campaign is refused with what differs."""
+        require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
+        path = Path(path)
+        prov_path = path / PROVENANCE
+        if prov_path.exists():
+            prov = json.loads(prov_path.read_text())
+            stored = CampaignKey.from_json(prov["key"])
+            diffs = key.differences(stored)
+            if diffs:
+                raise ParameterError(
+                    f"store = '{path}' holds another campaign, so it cannot be resumed by this one "
+                    "(a store resumes only the same scenario, seed, n, chunk_size, record settings and "
+                    "package version):\n  " + "\n  ".join(diffs)
+                    + "\nuse another directory, or delete this one to start again"
+                )
+            # no manifest yet: created, then stopped before anything completed
+            manifest = json.loads((path / MANIFEST).read_text()) if (path / MANIFEST).is_file() else {"chunks": []}
+            store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]},
+                                  manifest.get("layout", {}))
+        else:
+            if path.exists() and (not path.is_dir() or any(path.iterdir())):
+                raise ParameterError(
+                    f"store = '{path}' exists and is not a campaign store (no {PROVENANCE}); "
+                    "give a new or empty directory"
+                )
+            (path / METRICS_DIR).mkdir(parents=True, exist_ok=True)
+            (path / INITIAL_DIR).mkdir(parents=True, exist_ok=True)
+            prov = {
+                "format": STORE_FORMAT,
+                "package": "landing",
+                "version": key.version,
+                "scenario": key.scenario,
+                "seed": key.seed,
+                "n": key.n,
+                "chunk_size": key.chunk_size,
+                "record_every": record_every,
+                "keep": list(key.keep),
+                "check_bounds": bool(check_bounds),
+                "created": _now(),
+                "sessions": [],
+                "key": key.to_json(),
+            }
+            _write_json_atomic(prov_path, prov)
+            store = CampaignStore(path, key)
+            store._write_manifest()
+        prov["sessions"].append({"started": _now(), "machine": machine(), "threads": threads,
+                                 "threads_used": threads or os.cpu_count(), "kernel": None,
+                                 "resumed_chunks": len(store.completed)})
+        _write_json_atomic(prov_path, prov)
+        return store
+
+    @property
+    def n_chunks(self) -> int:
+        return -(-self.key.n // self.key.chunk_size)
+
+    def is_complete(self, index: int) -> bool:
+        return index in self.completed
+
+    def _write_manifest(self) -> None:
+        chunks = [self.completed[i] for i in sorted(self.completed)]
+        _write_json_atomic(self.path / MANIFEST, {
+            "format": STORE_FORMAT,
+            "n": self.key.n,
+            "chunk_size": self.key.chunk_size,
+            "n_chunks": self.n_chunks,
+            "completed_cases": int(sum(c["stop"] - c["start"] for c in chunks)),
+            "complete": len(chunks) == self.n_chunks,
+            "updated": _now(),
+            "layout": self.layout,
+            "chunks": chunks,
+        })
+
+    def _note_kernel(self, kernel: str) -> None:
+        prov_path = self.path / PROVENANCE
+        prov = json.loads(prov_path.read_text())
+        session = prov["sessions"][-1]
+        if session.get("kernel") is None:
+            session["kernel"] = kernel
+            _write_json_atomic(prov_path, prov)
+
+    # -- trajectories --
+
+    def _zarr_group(self, mode: str) -> Any:
+        zarr = require_io("zarr", what="the campaign store")
+        return zarr.open_group(str(self.path / TRAJECTORIES), mode=mode)
+
+    def _create_trajectories(self, part: "SimulationResult") -> None:
+        """The Zarr store's arrays, for the whole campaign, from the first chunk's shapes; the
+        chunking along ``case`` is the campaign's (a divisor of it for large chunks), so each
+        campaign chunk writes whole Zarr chunks."""
+        zarr, xr = require_io("zarr", "xarray", what="the campaign store")
+        n, T = self.key.n, part.t.size
+        root = self.path / TRAJECTORIES
+        axes = part.axis_names
+        coords: dict[str, Any] = {
+            "case": ("case", np.arange(n, dtype=np.int64)),
+            "time": ("time", part.t, {"units": "s", "long_name": "control instant"}),
+            "state": ("state", list(part.state_names)),
+            "control": ("control", list(part.control_names)),
+            "state_units": ("state", _units(part.state_names)),
+            "control_units": ("control", _units(part.control_names)),
+        }
+        if axes:
+            coords["axis"] = ("axis", list(axes))
+        # Zarr format 2: its fixed-width strings and consolidated metadata are part of the
+        # format (zarr-python 3 still writes it; xarray reads either)
+        fmt = {"zarr_format": 2} if int(zarr.__version__.split(".")[0]) >= 3 else {}
+        xr.Dataset(coords=coords, attrs={"campaign": "landing Monte Carlo", "seed": self.key.seed,
+                                         "n": n}).to_zarr(str(root), mode="w", consolidated=False, **fmt)
+        group = zarr.open_group(str(root), mode="r+")
+        arrays: dict[str, tuple[tuple[int, ...], tuple[str, ...], dict[str, Any]]] = {
+            "final_state": ((len(part.state_names),), ("case", "state"),
+                            {"long_name": "state at t_final", "units_by": "state_units"}),
+        }
+        if "states" in self.key.keep:
+            arrays["states"] = ((T, len(part.state_names)), ("case", "time", "state"),
+                                {"long_name": "state at the recorded instants", "units_by": "state_units"})
+        if "controls" in self.key.keep:
+            arrays["controls"] = ((T, len(part.control_names)), ("case", "time", "control"),
+                                  {"long_name": "command applied after saturation", "units_by": "control_units"})
+        if "diagnostics" in self.key.keep:
+            for name, v in part.diagnostics.items():
+                arrays[name] = ((T,) + v.shape[2:], ("case", "time") + (("axis",) if v.ndim == 3 else ()),
+                                {"long_name": f"law diagnostic {name}"})
+        for name, (tail, dims, attrs) in arrays.items():
+            row_bytes = 8 * int(np.prod(tail, dtype=np.int64))
+            zc = self.key.chunk_size
+            while zc > 1 and zc * row_bytes > 64 * 2**20:  # keep Zarr chunks under 64 MiB
+                zc = next(d for d in range(zc - 1, 0, -1) if self.key.chunk_size % d == 0)
+            _zarr_create(group, name, (n,) + tail, (zc,) + tail, np.float64, dims, attrs)
+        zarr.consolidate_metadata(str(root))
+        self.layout = {
+            "arrays": list(arrays),
+            "diagnostics": [name for name in part.diagnostics if name in arrays],
+            "state_names": list(part.state_names),
+            "control_names": list(part.control_names),
+            "axis_names": list(axes),
+            "metrics": metrics_layout(part.metrics, axes),
+        }
+
+    # -- writing and reading chunks --
+
+    def write_chunk(self, index: int, start: int, stop: int, part: "SimulationResult", x0: np.ndarray,
+                    draws: Optional[np.ndarray]) -> None:
+        """Write chunk ``index`` (cases start..stop): Parquet files and the Zarr region, made
+        durable, then the manifest naming it complete."""
+        pa, pq = require_io("pyarrow", "pyarrow.parquet", what="the campaign store")
+        if not self.layout:
+            self._create_trajectories(part)
+        case = np.arange(start, stop, dtype=np.int64)
+        axes = tuple(self.layout["axis_names"])
+        files = []
+        metrics = {"case": case, **flat_columns(part.metrics, axes)}
+        initial: dict[str, np.ndarray] = {"case": case}
+        for j, name in enumerate(self.layout["state_names"]):
+            initial[f"x0_{name}"] = x0[:, j]
+        if draws is not None:
+            for j in range(draws.shape[1]):
+                initial[f"draw_{j}"] = draws[:, j]
+        for folder, columns in ((METRICS_DIR, metrics), (INITIAL_DIR, initial)):
+            target = self.path / folder / _part(index)
+            tmp = target.with_name(f".{target.name}.tmp")  # hidden from Parquet dataset readers
+            pq.write_table(pa.table(columns), str(tmp))
+            _fsync_file(tmp)
+            os.replace(tmp, target)
+            files.append(target)
+        group = self._zarr_group("r+")
+        signals = {"final_state": part.final_state, "states": part.states, "controls": part.controls,
+                   **part.diagnostics}
+        for name in self.layout["arrays"]:
+            arr = group[name]
+            arr[start:stop] = signals[name]  # a region write of whole Zarr chunks
+            zc = arr.chunks[0]
+            for i in range(start // zc, (stop - 1) // zc + 1):  # format 2 keys: "i.0.0"
+                chunk_file = self.path / TRAJECTORIES / name / ".".join([str(i)] + ["0"] * (arr.ndim - 1))
+                if chunk_file.exists():  # an all-NaN chunk is not written
+                    _fsync_file(chunk_file)
+        for folder in (METRICS_DIR, INITIAL_DIR):
+            _fsync_dir(self.path / folder)
+        self._note_kernel(part.kernel)
+        self.completed[index] = {"index": index, "start": start, "stop": stop, "kernel": part.kernel,
+                                 "written": _now()}
+        self._write_manifest()
+
+    def read_metrics(self, index: int) -> dict[str, np.ndarray]:
+        """Chunk ``index``'s metric columns, put back together (dtypes as written)."""
+        pq = require_io("pyarrow.parquet", what="the campaign store")
+        table = pq.read_table(str(self.path / METRICS_DIR / _part(index)))
+        out = {}
+        for name, dtype, parts in self.layout["metrics"]:
+            if parts is None:
+                out[name] = _column(table, name, dtype)
+            else:
+                out[name] = np.stack([_column(table, p, dtype) for p in parts], axis=1)
+        return out
+
+    def read_chunk(self, index: int) -> "SimulationResult":
+        """A completed chunk as the batch result it was (what was not kept is None/empty)."""
+        from landing.simulation import Metrics, SimulationResult
+
+        c = self.completed[index]
+        start, stop = c["start"], c["stop"]
+        group = self._zarr_group("r")
+        arrays = {name: group[name][start:stop] for name in self.layout["arrays"]}
+        return SimulationResult(
+            t=group["time"][:],
+            states=arrays.get("states"),
+            controls=arrays.get("controls"),
+            final_state=arrays["final_state"],
+            diagnostics={k: arrays[k] for k in self.layout["diagnostics"]},
+            metrics=Metrics(self.read_metrics(index)),
+            state_names=tuple(self.layout["state_names"]),
+            control_names=tuple(self.layout["control_names"]),
+            kernel=c["kernel"],
+        )
+
+    def read_initial(self) -> np.ndarray:
+        """The initial states of every completed chunk, (n, n_state), in case order."""
+        pq = require_io("pyarrow.parquet", what="the campaign store")
+        names = [f"x0_{s}" for s in self.layout["state_names"]]
+        x0 = np.full((self.key.n, len(names)), np.nan)
+        for index, c in self.completed.items():
+            table = pq.read_table(str(self.path / INITIAL_DIR / _part(index)), columns=names)
+            for j, name in enumerate(names):
+                x0[c["start"]:c["stop"], j] = _column(table, name, "<f8")
+        return x0
+
+
+def open_campaign_store(
+    path: Union[str, os.PathLike],
+    scenario: "Scenario",
+    *,
+    seed: int,
+    n: int,
+    x0: np.ndarray,
+    keep: Sequence[str],
+    record_every: int,
+    chunk_size: Optional[int],
+    threads: Optional[int],
+    check_bounds: bool,
+) -> CampaignStore:
+    """The store of ``monte_carlo(..., store=path)``: created, or resumed when it holds this
+    campaign. Without a chunk size a resumed store keeps its own and a new one takes
+    ``max(1000, n / 50)`` cases per chunk (at most n)."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise ParameterTypeError(f"store must be a directory path (str or os.PathLike), got {path!r}")
+    require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
+    path = Path(path)
+    if chunk_size is None:
+        prov_path = path / PROVENANCE
+        if prov_path.is_file():
+            chunk_size = int(json.loads(prov_path.read_text())["key"]["chunk_size"])
+        else:
+            chunk_size = min(n, max(1000, -(-n // 50)))
+    key = CampaignKey.of(scenario, seed=seed, n=n, chunk_size=chunk_size, record_every=record_every,
+                         keep=keep, x0=x0)
+    return CampaignStore.open(path, key, threads=threads, check_bounds=check_bounds, record_every=record_every)
+
+
+def _column(table: Any, name: str, dtype: str) -> np.ndarray:
+    return np.asarray(table.column(name).to_numpy(), dtype=np.dtype(dtype))
+
+
+# --- loading -----------------------------------------------------------------------------------------
+
+
+def load(path: Union[str, os.PathLike], *, scenario: Optional["Scenario"] = None) -> "MonteCarloResult":
+    """The campaign stored at ``path`` (by ``landing.monte_carlo(..., store=path)``), bit for bit
+    the result of the run that wrote it.
+
+    ``scenario`` is the campaign's scenario; it is checked against the stored one. Without it
+    the scenario is rebuilt from the stored text when it is a preset's. A store whose run was
+    interrupted is refused (re-run ``monte_carlo`` with the same ``store`` to complete it).
+    Needs ``pip install "landing[io]"``.
+    """
+    require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="landing.load")
+    from landing.montecarlo import assemble_campaign
+
+    path = Path(path)
+    prov_path = path / PROVENANCE
+    if not prov_path.is_file():
+        raise ParameterError(f"path = '{path}' is not a campaign store: it has no {PROVENANCE}")
+    prov = json.loads(prov_path.read_text())
+    key = CampaignKey.from_json(prov["key"])
+    text = key.scenario
+    if scenario is None:
+        scenario = _scenario_from_text(text)
+        if scenario is None:
+            raise ParameterError(
+                f"the scenario of the store at '{path}' cannot be rebuilt from its text (not a scenario "
+                f"file); pass it: landing.load(path, scenario=...). The stored scenario:\n{text}"
+            )
+    elif _scenario_text(scenario) != text:
+        raise ParameterError(
+            f"scenario = {scenario.name!r} is not the scenario of the store at '{path}': the store's is\n"
+            + _indent(text) + "\n  the one given is\n" + _indent(_scenario_text(scenario))
+        )
+    manifest = json.loads((path / MANIFEST).read_text())
+    store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]}, manifest.get("layout", {}))
+    if len(store.completed) != store.n_chunks:
+        raise ParameterError(
+            f"the campaign at '{path}' is incomplete ({manifest['completed_cases']} of {key.n} cases in "
+            f"{len(store.completed)} of {store.n_chunks} chunks); re-run landing.monte_carlo with "
+            "store= this path to complete it"
+        )
+    x0 = store.read_initial()
+    expected = CampaignKey.of(scenario, seed=key.seed, n=key.n, chunk_size=key.chunk_size,
+                              record_every=key.record_every, keep=key.keep, x0=x0)
+    if expected.x0_sha256 != key.x0_sha256:
+        raise ParameterError(f"the initial states stored at '{path}' do not match its provenance record")
+    return assemble_campaign(
+        scenario, n=key.n, seed=key.seed, x0=x0, chunk_size=key.chunk_size, keep=key.keep,
+        run_chunk=None, store=store, check_bounds=bool(prov.get("check_bounds", True)),
+    )
