@@ -163,3 +163,18 @@ def test_progress_reaches_logs_as_lines(capsys):
     err = capsys.readouterr().err
     lines = [l for l in err.splitlines() if "mars_monte_carlo" in l]
     assert lines and "40/40" in lines[-1] and "\r" not in err
+
+
+def test_mc_writes_a_store_that_report_reads_back(tmp_path, capsys):
+    pytest.importorskip("pyarrow")
+    pytest.importorskip("zarr")
+    text = preset("mars_monte_carlo").to_toml().replace("t_final = 60.0", "t_final = 1.0")
+    path = _write(tmp_path, text)
+    store = tmp_path / "campaign"
+    assert cli.main(["mc", str(path), "--cases", "6", "--seed", "5", "--store", str(store), "--out", ""]) == 0
+    first = capsys.readouterr().out
+    assert cli.main(["report", str(store), "--out", str(tmp_path / "figs")]) == 0
+    again = capsys.readouterr().out
+    report = first[first.index("mars_monte_carlo: 6 cases"):]
+    assert again.startswith(report.split("\n")[0]) and report.splitlines()[:12] == again.splitlines()[:12]
+    assert (tmp_path / "figs" / "landing_sites.png").exists()

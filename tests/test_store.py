@@ -85,7 +85,7 @@ def test_store_round_trip_is_bit_identical(tmp_path, reference_run):
     assert [(c["start"], c["stop"]) for c in manifest["chunks"]] == [(0, 7), (7, 14), (14, 20)]
     prov = json.loads((root / "provenance.json").read_text())
     assert prov["version"] == landing.__version__ and prov["seed"] == 3 and prov["n"] == 20
-    assert prov["chunk_size"] == 7 and prov["scenario"] == str(s)
+    assert prov["chunk_size"] == 7 and prov["scenario"] == s.to_toml()
     session = prov["sessions"][0]
     assert session["kernel"] == reference_run.result.kernel and session["kernel"] in landing.kernel_levels()
     assert session["machine"]["cores"] == os.cpu_count() and session["machine"]["cpu"]
