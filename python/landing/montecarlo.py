@@ -10,6 +10,7 @@ from typing import Any, Optional
 import numpy as np
 
 from landing._progress import ProgressBar
+from landing._args import boolean, integer
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
 from landing.simulation import Metrics, SimulationResult
@@ -198,21 +199,24 @@ def monte_carlo(
         long).
     check_bounds : check the run against the scenario's theoretical bounds, if any.
     """
-    try:
-        n = int(n)
-    except (TypeError, ValueError):
-        raise ParameterError(f"n must be an integer, got {n!r}") from None
-    if n < 1:
-        raise ParameterError(f"n = {n} violates n >= 1")
     if not isinstance(scenario, Scenario):
         raise ParameterError(f"scenario must be a landing.scenarios.Scenario, got {type(scenario).__name__}")
+    n = integer("n", n, minimum=1, cap="max_cases")
+    seed = integer("seed", seed, minimum=0, maximum=2**64 - 1)
+    if record_every is not None:
+        record_every = integer("record_every", record_every, minimum=0, maximum=2**63 - 1)
+    if chunk_size is not None:
+        chunk_size = integer("chunk_size", chunk_size, minimum=1, cap="max_cases")
+    if threads is not None:
+        threads = integer("threads", threads, minimum=1, cap="max_threads")
+    if progress is not None:
+        progress = boolean("progress", progress)
+    check_bounds = boolean("check_bounds", check_bounds)
     work = n * scenario.t_final / scenario.dt
     if progress is None:
         progress = sys.stderr.isatty() and work > 2e7
     if chunk_size is None:
         chunk_size = max(1, -(-n // 50)) if progress else n
-    if chunk_size < 1:
-        raise ParameterError(f"chunk_size = {chunk_size} violates chunk_size >= 1")
 
     x0 = scenario.initial_states(n, seed=seed)
     opts = scenario.run_options()
