@@ -11,6 +11,7 @@ import numpy as np
 
 from landing._progress import ProgressBar
 from landing._args import boolean, integer
+from landing._limits import require_memory
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
 from landing.simulation import Metrics, SimulationResult
@@ -173,6 +174,23 @@ def _concat(parts: list[SimulationResult]) -> SimulationResult:
     )
 
 
+def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunked: bool) -> int:
+    """Bytes a campaign's results take: the recorded states, commands and diagnostics of the
+    ``n`` cases plus their final states and metrics (twice when chunked: the chunks, then
+    their concatenation). An estimate from above of what the batches allocate."""
+    steps = round(scenario.t_final / scenario.dt)
+    if record_every == 0:
+        instants = 0
+    else:
+        instants = steps // record_every + 1 + (steps % record_every != 0)
+    axes = scenario.plant.axes
+    widths = sum(w for _, w in scenario.controller._core.diagnostic_layout(axes))  # type: ignore[attr-defined]
+    per_instant = scenario.plant.state_dim + axes + widths
+    # final state plus about 40 metric columns, some per axis
+    per_case = instants * per_instant + scenario.plant.state_dim + 40 * (axes + 1)
+    return 8 * n * per_case * (2 if chunked else 1)
+
+
 def monte_carlo(
     scenario: Scenario,
     n: int,
@@ -217,6 +235,12 @@ def monte_carlo(
         progress = sys.stderr.isatty() and work > 2e7
     if chunk_size is None:
         chunk_size = max(1, -(-n // 50)) if progress else n
+    every = scenario.record_every if record_every is None else record_every
+    # the chunks' recordings, then their concatenation: refused up front if they cannot fit
+    require_memory(
+        f"monte_carlo({scenario.name!r}, n={n}): the recorded runs",
+        campaign_bytes(scenario, n, every, chunked=chunk_size < n),
+    )
 
     x0 = scenario.initial_states(n, seed=seed)
     opts = scenario.run_options()

@@ -253,6 +253,8 @@ class TetheredSatellite(Plant):
                 "they must broadcast together"
             ) from None
         shape = a[0].shape
+        if a[0].size == 0:
+            return np.empty(shape + (self.state_dim,))
         rows = np.ascontiguousarray(np.stack([v.reshape(-1) for v in a], axis=1))
         x = self._core.state_at(rows)  # type: ignore[attr-defined]
         return x.reshape(shape + (x.shape[-1],))

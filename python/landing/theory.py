@@ -527,7 +527,10 @@ def fntsmc_bounds(law: FixedTimeNTSMC, tol: Any, *, d_max: Any = 0.0, theta: flo
     d_max_a = real_array("d_max", d_max, finite=True, owner=owner)
     theta = real("theta", theta, owner=owner)
     d = real("d", d, owner=owner)
-    gains = _law_gains(law, _FNTSMC_GAINS, axes)
+    try:
+        gains = _law_gains(law, _FNTSMC_GAINS, axes)
+    except ValueError:
+        raise ParameterError(f"{owner}: axes = {axes} violates the law's gains having 1 or axes values") from None
     try:
         args = np.broadcast_arrays(*gains, tol_a, d_max_a)
     except ValueError:

@@ -40,7 +40,9 @@ fn axes3() -> impl Strategy<Value = [f64; 3]> {
 }
 
 /// The first (name, value) that breaks its rule, in the order the parameters are documented.
-fn first_violation(checks: &[(&'static str, &[f64], fn(f64) -> bool)]) -> Option<(&'static str, f64)> {
+fn first_violation(
+    checks: &[(&'static str, &[f64], fn(f64) -> bool)],
+) -> Option<(&'static str, f64)> {
     for (name, values, ok) in checks {
         for &v in *values {
             if !(v.is_finite() && ok(v)) {
@@ -182,7 +184,13 @@ fn the_limits_are_listed_once_by_name() {
     let names: Vec<&str> = LIMITS.iter().map(|(n, _)| *n).collect();
     assert_eq!(
         names,
-        ["max_cases", "max_steps", "max_substeps", "max_threads", "max_fuzzy_resolution"]
+        [
+            "max_cases",
+            "max_steps",
+            "max_substeps",
+            "max_threads",
+            "max_fuzzy_resolution"
+        ]
     );
     assert!(LIMITS.iter().all(|(_, v)| *v >= 1024));
 }

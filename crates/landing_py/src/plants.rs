@@ -136,7 +136,13 @@ impl PlantVisitor for StatesAt<'_> {
                     ));
                 }
                 Some(x) => {
-                    out.extend(x.map_err(|e| InputError::from(e).context(&format!("row {i}")))?)
+                    let x = x.map_err(|e| InputError::from(e).context(&format!("row {i}")))?;
+                    if x.iter().any(|v| !v.is_finite()) {
+                        return Err(InputError::value(format!(
+                            "coordinates[{i}] = {r:?} violates coordinates that give a finite state (angles and rates too large)"
+                        )));
+                    }
+                    out.extend(x)
                 }
             }
         }
