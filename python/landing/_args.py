@@ -20,7 +20,7 @@ import numpy as np
 from landing._limits import LIMITS
 from landing.errors import ParameterError, ParameterTypeError
 
-__all__ = ["integer", "real", "real_array", "boolean", "choice", "finite_array", "short"]
+__all__ = ["integer", "real", "real_array", "boolean", "choice", "finite_array", "pair", "short"]
 
 #: numpy dtype kinds that hold real numbers (bool, complex, strings, dates and objects do not).
 _REAL_KINDS = frozenset("iuf")
@@ -171,3 +171,15 @@ def choice(name: str, value: Any, options: Sequence[str], *, owner: Optional[str
     if value not in options:
         raise ParameterError(f"{p}{name} = {value!r} is not one of {tuple(options)}")
     return value
+
+
+def pair(name: str, value: Any, *, owner: Optional[str] = None) -> tuple[Any, Any]:
+    """``value`` as a pair of items (a tuple, list or 1-d array of length 2)."""
+    if not isinstance(value, (str, bytes)):
+        try:
+            items = tuple(value)
+        except TypeError:  # not iterable, or a 0-d array
+            items = None
+        if items is not None and len(items) == 2:
+            return items[0], items[1]
+    raise ParameterTypeError(f"{_prefix(owner)}{name} must be a pair of real numbers, got {short(value)}")

@@ -20,7 +20,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from landing import _core
-from landing._args import choice, integer, real, real_array, short
+from landing._args import choice, integer, pair, real, real_array, short
 from landing._table import ArrayLike, Table
 from landing.errors import ParameterError, ParameterTypeError
 
@@ -39,9 +39,7 @@ class Variable:
     sets: Mapping[str, tuple]
 
     def __post_init__(self) -> None:
-        u = self.universe
-        if isinstance(u, (str, bytes)) or not hasattr(u, "__len__") or len(u) != 2:
-            raise ParameterTypeError(f"Variable: universe must be a pair (lo, hi), got {short(u)}")
+        u = pair("universe", self.universe, owner="Variable")
         lo = real("universe[0]", u[0], owner="Variable")
         hi = real("universe[1]", u[1], owner="Variable")
         if not hi > lo:

@@ -15,7 +15,7 @@ from typing import Any, Optional
 import numpy as np
 
 from landing import _core, controllers, disturbances, dispersions, plants
-from landing._args import choice, integer, real, real_array, short
+from landing._args import choice, integer, pair, real, real_array, short
 from landing._limits import require_memory
 from landing.controllers import Controller
 from landing.dispersions import Dispersion
@@ -111,9 +111,7 @@ class Scenario:
             if getattr(self, name) is not None:
                 real(name, getattr(self, name), positive=True, owner=owner)
         if self.theta is not None:
-            if isinstance(self.theta, (str, bytes)) or not hasattr(self.theta, "__len__") or len(self.theta) != 2:
-                raise ParameterTypeError(f"{owner}: theta must be a pair (theta1, theta2), got {short(self.theta)}")
-            for i, v in enumerate(self.theta):
+            for i, v in enumerate(pair("theta", self.theta, owner=owner)):
                 t = real(f"theta[{i}]", v, owner=owner)
                 if not 0 < t < 1:
                     raise ParameterError(f"{owner}: theta[{i}] = {t:g} violates 0 < theta < 1")

@@ -39,10 +39,11 @@ fn axes3() -> impl Strategy<Value = [f64; 3]> {
     [value(), value(), value()]
 }
 
+/// A parameter's name, its values and its documented rule.
+type Check<'a> = (&'static str, &'a [f64], fn(f64) -> bool);
+
 /// The first (name, value) that breaks its rule, in the order the parameters are documented.
-fn first_violation(
-    checks: &[(&'static str, &[f64], fn(f64) -> bool)],
-) -> Option<(&'static str, f64)> {
+fn first_violation(checks: &[Check<'_>]) -> Option<(&'static str, f64)> {
     for (name, values, ok) in checks {
         for &v in *values {
             if !(v.is_finite() && ok(v)) {
