@@ -83,7 +83,7 @@ def arrays(draw: Any, max_dims: int = 3, max_side: int = 5) -> np.ndarray:
                                       min_size=int(np.prod(shape)), max_size=int(np.prod(shape)))),
                         dtype=object).reshape(shape)
     if dtype == "U3":
-        return draw(hnp.arrays(np.dtype("U3"), shape, elements=st.text(max_size=3)))
+        return draw(hnp.arrays(np.dtype("U3"), shape, elements=st.text(alphabet="ab1.e-", max_size=3)))
     if dtype in (np.float64, np.float32):
         elements = st.floats(allow_nan=True, allow_infinity=True, width=32 if dtype is np.float32 else 64)
     elif dtype is np.int64:
@@ -519,6 +519,14 @@ def test_huge_counts_are_refused_without_allocating(monkeypatch: pytest.MonkeyPa
         tracemalloc.stop()
     assert peak < 2**20
     assert d.sample(1000).shape == (1000, 7)  # 56 kB fit
+    # broadcasting makes sizes too: 10^5 x 10^5 values from two vectors
+    column, row = np.zeros((10**5, 1)), np.zeros((1, 10**5))
+    with pytest.raises(MemoryError, match=r"fixed_time_bound over arrays of shape \(100000, 100000\) needs"):
+        theory.fixed_time_bound(column + 0.9, 0.9, row + 0.5, 1.1)
+    with pytest.raises(MemoryError, match=r"initial_state: states of shape \(100000, 100000, 4\) needs"):
+        plants.TetheredSatellite(fidelity="simplified").initial_state(column, row)
+    with pytest.raises(MemoryError, match=r"initial_state: states of shape \(100000, 100000, 7\) needs"):
+        plants.MarsLander.initial_state(np.zeros((10**5, 1, 3)), np.zeros((1, 10**5, 3)), 1000.0)
 
 
 def test_the_memory_check_states_size_and_availability() -> None:

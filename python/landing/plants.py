@@ -14,6 +14,7 @@ import numpy as np
 
 from landing import _core
 from landing._args import real, real_array
+from landing._limits import require_memory
 from landing._table import ArrayLike, Table
 from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
@@ -112,6 +113,7 @@ class MarsLander(Plant):
                 f"MarsLander.initial_state: position {r.shape}, velocity {v.shape} and mass {m.shape} "
                 "violate shapes that broadcast"
             ) from None
+        require_memory(f"MarsLander.initial_state: states of shape {shape + (7,)}", 8 * 7 * math.prod(shape))
         return np.concatenate(
             [np.broadcast_to(r, shape + (3,)), np.broadcast_to(v, shape + (3,)), np.broadcast_to(m, shape)[..., None]],
             axis=-1,
@@ -253,6 +255,9 @@ class TetheredSatellite(Plant):
                 "they must broadcast together"
             ) from None
         shape = a[0].shape
+        # the rows of angles, then the states
+        require_memory(f"{owner}: states of shape {shape + (self.state_dim,)}",
+                       8 * (4 + self.state_dim) * math.prod(shape))
         if a[0].size == 0:
             return np.empty(shape + (self.state_dim,))
         rows = np.ascontiguousarray(np.stack([v.reshape(-1) for v in a], axis=1))

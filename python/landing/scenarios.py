@@ -99,8 +99,11 @@ class Scenario:
             if not (isinstance(value, cls) or (optional and value is None)):
                 raise ParameterTypeError(f"{owner}: {name} must be {what}, got {short(value)}")
         x0 = real_array("x0", self.x0, finite=True, owner=owner)
-        if x0.ndim != 1:
-            raise ParameterError(f"{owner}: x0 has shape {x0.shape}; it takes one state (n_state,)")
+        if x0.shape != (self.plant.state_dim,):
+            raise ParameterError(
+                f"{owner}: x0 has shape {x0.shape}; it takes one state ({self.plant.state_dim},) "
+                f"of the plant ({', '.join(self.plant.state_names)})"
+            )
         real("t_final", self.t_final, positive=True, owner=owner)
         real("dt", self.dt, positive=True, owner=owner)
         compiled(self.disturbance)

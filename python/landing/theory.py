@@ -25,6 +25,7 @@ the double integrator's velocity is one run of the scalar law.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Optional
 
@@ -34,6 +35,7 @@ from landing import _core
 from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
 from landing.disturbances import DisturbanceLike, Sinusoid, compiled
 from landing._args import integer, real, real_array
+from landing._limits import require_memory
 from landing.errors import ParameterError, ParameterTypeError
 from landing.plants import DoubleIntegrator, Plant
 from landing.simulation import SimulationResult, simulate_batch
@@ -67,10 +69,12 @@ def _reals(owner: str, **args: Any) -> list[np.ndarray]:
     """Each argument as a finite float64 array (named in the error), checked to broadcast."""
     arrays = [real_array(name, value, finite=True, owner=owner) for name, value in args.items()]
     try:
-        np.broadcast_shapes(*[a.shape for a in arrays])
+        shape = np.broadcast_shapes(*[a.shape for a in arrays])
     except ValueError:
         shapes = ", ".join(f"{n} {a.shape}" for n, a in zip(args, arrays))
         raise ParameterError(f"{owner}: the shapes {shapes} violate shapes that broadcast together") from None
+    # the broadcast inputs and the results
+    require_memory(f"{owner} over arrays of shape {shape}", 8 * (len(arrays) + 2) * math.prod(shape))
     return arrays
 
 

@@ -40,6 +40,16 @@ fn variable(d: &Bound<'_, PyDict>, what: &str) -> Result<Variable, InputError> {
             }
         });
     }
+    // checked here too (Mamdani::new checks them again) so that the error names the variable
+    // and the set, not only the set's shape
+    for (j, set) in sets.iter().enumerate() {
+        set.validate().map_err(|e| {
+            InputError::value(format!(
+                "{what}: sets[{j}] {} = {} violates {}",
+                e.param, e.value, e.rule
+            ))
+        })?;
+    }
     Ok(Variable { lo, hi, sets })
 }
 

@@ -90,8 +90,15 @@ impl Reference {
                 Vec::with_capacity(t.len() * D),
                 Vec::with_capacity(t.len() * D),
             ];
-            for &ti in t {
+            for (i, &ti) in t.iter().enumerate() {
                 let pt = r.at(ti);
+                let values = [&pt.position, &pt.velocity, &pt.acceleration];
+                if values.iter().any(|v| v.iter().any(|x| !x.is_finite())) {
+                    // a cubic far before 0 overflows
+                    return Err(InputError::value(format!(
+                        "t[{i}] = {ti} violates times at which the reference is finite"
+                    )));
+                }
                 out[0].extend_from_slice(pt.position.as_slice());
                 out[1].extend_from_slice(pt.velocity.as_slice());
                 out[2].extend_from_slice(pt.acceleration.as_slice());
