@@ -640,3 +640,30 @@ def test_the_limits_come_from_the_core() -> None:
     assert LIMITS["max_steps"] == 2**40  # the horizon rule t_final / dt <= 2^40 documented with it
     # the presets stay within the caps with room to spare
     assert plants.TetheredSatellite(nodes=16).substeps_for(0.01) < LIMITS["max_substeps"] // 100
+
+
+def test_every_binding_entry_point_runs_under_the_panic_guard() -> None:
+    """Each #[pyfunction] and #[pymethods] item of the binding starts its body with
+    ``guard(...)`` (directly, or through analysis.rs's ``check``, which calls it), so that the
+    test above holds for all of them, including ones added later."""
+    import pathlib
+    import re
+
+    src = pathlib.Path(__file__).resolve().parents[1] / "crates" / "landing_py" / "src"
+    if not src.is_dir():
+        pytest.skip("the binding's sources are not here")
+    unguarded, seen = [], 0
+    for path in sorted(src.glob("*.rs")):
+        text = path.read_text()
+        bodies = [m.group(1) for m in re.finditer(r"\n#\[pyfunction\]\n[\s\S]*?\{\n(.*)\n", text)]
+        names = [m.group(1) for m in re.finditer(r"\n#\[pyfunction\]\n[\s\S]*?fn (\w+)", text)]
+        for block in re.finditer(r"#\[pymethods\]\nimpl \w+ \{([\s\S]*?)\n\}\n", text):
+            for m in re.finditer(r"\n    (?:pub )?fn (\w+)[\s\S]*?\{\n(.*)\n", block.group(1)):
+                names.append(m.group(1))
+                bodies.append(m.group(2))
+        for name, first in zip(names, bodies):
+            seen += 1
+            if "guard(" not in first and "check(" not in first:
+                unguarded.append(f"{path.name}: {name}")
+    assert seen >= 30, seen
+    assert not unguarded, unguarded
