@@ -13,6 +13,8 @@ CONTROLLER_KINDS: list[str]
 GRAVITY_KINDS: list[str]
 KERNEL_LEVELS: list[str]
 GRAVITATIONAL_CONSTANT: float
+#: The caps of landing_core::limits by name (docs/parameters.md, "Limits").
+LIMITS: dict[str, int]
 
 Table = dict[str, Any]
 Array = npt.NDArray[np.float64]
@@ -164,3 +166,6 @@ def fntsmc_bounds(
 ) -> dict[str, float]:
     """Sound fixed-time bounds of the seed-003 FNTSMC on one axis: ts, s_radius, td, e1_radius,
     inside_rate, t_inside, total."""
+
+def _panic_for_test() -> None:
+    """Test hook: panics inside a guarded entry point (raises SimulationError)."""
