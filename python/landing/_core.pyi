@@ -15,6 +15,8 @@ KERNEL_LEVELS: list[str]
 GRAVITATIONAL_CONSTANT: float
 #: The caps of landing_core::limits by name (docs/parameters.md, "Limits").
 LIMITS: dict[str, int]
+DIVERGENCE_REASONS: list[str]
+MAX_COMMAND: float
 
 Table = dict[str, Any]
 Array = npt.NDArray[np.float64]
@@ -116,6 +118,9 @@ def simulate_batch(
 
 def kernel_levels() -> list[str]:
     """The instruction-set levels this CPU supports, lowest first."""
+
+def available_memory() -> Optional[int]:
+    """Bytes of memory a new allocation can count on (None where the system does not say)."""
 
 def default_kernel() -> str:
     """The level a batch runs at unless told otherwise."""

@@ -22,15 +22,12 @@ LIMITS: Mapping[str, int] = MappingProxyType({str(k): int(v) for k, v in dict(_c
 
 
 def available_memory() -> Optional[int]:
-    """Bytes a new allocation can count on: ``MemAvailable`` from /proc/meminfo on Linux, else
-    the total physical memory (``os.sysconf``); None when neither is known."""
-    try:
-        with open("/proc/meminfo", encoding="ascii") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        pass
+    """Bytes a new allocation can count on, as the core measures it for its own batches
+    (``landing_core::memory``: ``MemAvailable`` on Linux, or the room under the cgroup's memory
+    limit when smaller), else the total physical memory (``os.sysconf``); None when unknown."""
+    measured = _core.available_memory()
+    if measured is not None:
+        return int(measured)
     try:
         pages = os.sysconf("SC_PHYS_PAGES")
         page_size = os.sysconf("SC_PAGE_SIZE")

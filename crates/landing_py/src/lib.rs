@@ -41,6 +41,13 @@ fn kernel_levels() -> PyResult<Vec<&'static str>> {
     guard(|| Ok(Level::supported().into_iter().map(Level::name).collect()))
 }
 
+/// Bytes of memory a new allocation can count on, as the core measures it before a batch
+/// (None where the system does not say).
+#[pyfunction]
+fn available_memory() -> PyResult<Option<u64>> {
+    guard(|| Ok(landing_core::memory::available_bytes()))
+}
+
 /// The level a batch runs at unless told otherwise (`LANDING_KERNEL`, else the best).
 #[pyfunction]
 fn default_kernel() -> PyResult<&'static str> {
@@ -81,6 +88,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fuzzy::variable_rate_system_table, m)?)?;
     m.add_function(wrap_pyfunction!(kernel_levels, m)?)?;
     m.add_function(wrap_pyfunction!(default_kernel, m)?)?;
+    m.add_function(wrap_pyfunction!(available_memory, m)?)?;
     m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     analysis::register(m)?;
     m.add("INTEGRATORS", IntegratorKind::NAMES.to_vec())?;
