@@ -1,6 +1,6 @@
 """Seed 001, nominal case (Table I): the fixed-time multiple-sliding-surface guidance lands the
 Mars lander. Prints fuel, landing state and peak thrust beside the seed's printed figures, for
-the preset gains (docs/parameters.md) and for the SPEC section 6 reconstruction, which
+the preset gains (docs/parameters.md) and for the reconstruction from the printed bounds, which
 reproduces the seed's bounds T1 = 74.578 s and T2 = 30.822 s but not its other figures.
 
     python examples/mars_nominal.py
@@ -39,7 +39,7 @@ def report(title: str, scenario: landing.scenarios.Scenario) -> None:
 def main() -> None:
     report("Preset gains (tuning study)", landing.scenarios.mars_nominal())
     law = landing.controllers.FixedTimeMSS(**RECONSTRUCTION)
-    report("SPEC section 6 reconstruction", landing.scenarios.mars_nominal(controller=law))
+    report("reconstruction from the printed bounds", landing.scenarios.mars_nominal(controller=law))
 
 
 if __name__ == "__main__":

@@ -47,7 +47,7 @@ def nominal() -> None:
 
 def bounds() -> None:
     print("\nFixed-time bounds (eq. 18, 26)")
-    line("T1, T2 with the SPEC section 6 reconstruction",
+    line("T1, T2 with the reconstruction from the printed bounds",
          f"{theory.fixed_time_bound(0.8, 0.95, 0.4, 1.05):.4f} s, {theory.fixed_time_bound(0.9, 0.9, 0.5, 1.1):.4f} s",
          "74.5780 s, 30.8217 s")
     b = scenarios.mars_monte_carlo().bounds()

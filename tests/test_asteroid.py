@@ -1,4 +1,4 @@
-"""The asteroid papers' claims (SPEC 7), on the presets of landing.scenarios."""
+"""The asteroid papers' claims, on the presets of landing.scenarios."""
 
 import numpy as np
 import pytest

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import SPEC_GAINS, dispersed
+from conftest import RECONSTRUCTED_GAINS, dispersed
 
 MC = dict(t_final=3.0, dt=0.001, record_every=100)
 
@@ -72,13 +72,13 @@ def test_seed_changes_the_noise_and_only_the_noise(ftmss):
 def test_per_case_gains_equal_separate_runs():
     x0 = dispersed(4)
     alpha2 = np.array([0.3, 0.5, 0.7, 0.9])
-    gains = dict(SPEC_GAINS, alpha2=alpha2)
+    gains = dict(RECONSTRUCTED_GAINS, alpha2=alpha2)
     isp = np.array([200.0, 225.0, 250.0, 300.0])
     plant = landing.plants.MarsLander(thrust_limit=50_000.0, isp=isp)
     batch = landing.simulate_batch(plant, landing.controllers.FixedTimeMSS(**gains), x0,
                                    disturbance=storm(), seed=3, **MC)
     for i in range(4):
-        law = landing.controllers.FixedTimeMSS(**dict(SPEC_GAINS, alpha2=alpha2[i]))
+        law = landing.controllers.FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, alpha2=alpha2[i]))
         alone = landing.simulate(landing.plants.MarsLander(thrust_limit=50_000.0, isp=isp[i]), law, x0[i],
                                  disturbance=storm(), seed=3, first_case=i, **MC)
         assert alone.states.tobytes() == batch.states[i].tobytes()
@@ -89,9 +89,9 @@ def test_per_case_gains_equal_separate_runs():
 def test_per_axis_gains_per_case():
     x0 = dispersed(2)
     beta1 = np.array([[0.8, 0.8, 0.8], [0.7, 0.8, 0.9]])
-    law = landing.controllers.FixedTimeMSS(**dict(SPEC_GAINS, beta1=beta1))
+    law = landing.controllers.FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, beta1=beta1))
     batch = landing.simulate_batch(limited(), law, x0, **MC)
-    alone = landing.simulate(limited(), landing.controllers.FixedTimeMSS(**dict(SPEC_GAINS, beta1=(0.7, 0.8, 0.9))),
+    alone = landing.simulate(limited(), landing.controllers.FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, beta1=(0.7, 0.8, 0.9))),
                              x0[1], first_case=1, **MC)
     assert alone.final_state.tobytes() == batch.final_state[1].tobytes()
 

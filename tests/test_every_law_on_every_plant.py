@@ -1,4 +1,4 @@
-"""Every law runs on every plant (SPEC 5: "every one available on every compatible plant").
+"""Every law runs on every plant ("every one available on every compatible plant").
 
 Three-axis plants: from a 10 m offset each law brings the plant to its target. Gains are
 moderate and shared, with two physical exceptions: the super-twisting gains are in force units

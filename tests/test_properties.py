@@ -41,7 +41,7 @@ from landing import (
 )
 from landing._limits import LIMITS, available_memory, require_memory
 from landing.errors import LandingError, ParameterError, ParameterTypeError, SimulationError
-from conftest import NOMINAL, SPEC_GAINS
+from conftest import NOMINAL, RECONSTRUCTED_GAINS
 
 #: Examples per property (LANDING_PROPERTY_EXAMPLES=2000 for a long search).
 EXAMPLES = int(os.environ.get("LANDING_PROPERTY_EXAMPLES", "100"))
@@ -195,7 +195,7 @@ def test_simulate_batch_needs_configuration_objects(plant: Any, controller: Any)
 def _required(cls: type) -> dict[str, Any]:
     """Valid values for the fields a class has no default for."""
     if cls is controllers.FixedTimeMSS:
-        return dict(SPEC_GAINS)
+        return dict(RECONSTRUCTED_GAINS)
     if cls is controllers.PDSlidingMode:
         return dict(lambda_=1.0, k=1.0)
     if cls in (controllers.FastTerminalSMC, controllers.FuzzyFastTerminalSMC):
@@ -383,7 +383,7 @@ def test_theory_time_helpers(t: Any, signal: Any, tol: Any) -> None:
 @FAST
 @given(ap_max=ANY, theta1=SCALARS, tol=ANY, d_max=ANY, axes=st.one_of(st.integers(-1, 4), SCALARS))
 def test_theory_bounds_of_laws(ap_max: Any, theta1: Any, tol: Any, d_max: Any, axes: Any) -> None:
-    law = controllers.FixedTimeMSS(**SPEC_GAINS)
+    law = controllers.FixedTimeMSS(**RECONSTRUCTED_GAINS)
     valid_or_refused(lambda: theory.mss_bounds(law, ap_max, theta1), "ap_max", "theta1")
     valid_or_refused(lambda: theory.fntsmc_bounds(controllers.FixedTimeNTSMC(), tol, d_max=d_max, axes=axes),
                      "tol", "d_max", "axes")
@@ -610,7 +610,7 @@ def test_fuzzy_resolution_beyond_its_cap() -> None:
     (lambda: theory.fixed_time_bound(0.9, np.nan, 0.5, 1.1), ParameterError, "e1 = nan violates finite values"),
     (lambda: theory.fixed_time_bound([0.9, 0.8], [0.9, 0.8, 0.7], 0.5, 1.1), ParameterError, "broadcast"),
     (lambda: theory.min_final_time("a", 0.0, 1.0), ParameterTypeError, "r0 must be a real"),
-    (lambda: theory.mss_bounds(controllers.FixedTimeMSS(**SPEC_GAINS), ap_max=[1.0, 2.0]), ParameterError,
+    (lambda: theory.mss_bounds(controllers.FixedTimeMSS(**RECONSTRUCTED_GAINS), ap_max=[1.0, 2.0]), ParameterError,
      r"ap_max has shape \(2,\)"),
     (lambda: theory.disturbance_bound(None, axes=4), ParameterError, r"axes = 4 violates axes in \(2, 3\)"),
     (lambda: scenarios.tether_monte_carlo(True), ParameterTypeError, "spread_deg must be a real number"),

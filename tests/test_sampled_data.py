@@ -1,10 +1,10 @@
-"""The zero-order-hold semantics of SPEC section 2, against a hand computation in numpy."""
+"""The zero-order-hold semantics (README.md, "Semantics"), against a hand computation in numpy."""
 
 import numpy as np
 import pytest
 
 import landing
-from conftest import G_MARS, SPEC_GAINS
+from conftest import G_MARS, RECONSTRUCTED_GAINS
 
 AREA = np.array([6.0, 7.5, 8.7])
 
@@ -13,7 +13,7 @@ def sig(x, a):
     return np.sign(x) * np.abs(x) ** a
 
 
-def eq25(r, v, drift, g=SPEC_GAINS):
+def eq25(r, v, drift, g=RECONSTRUCTED_GAINS):
     """Seed 001 eq. 25 as printed, written independently of the core."""
     b1, b2, q1, q2 = g["beta1"], g["beta2"], g["q1"], g["q2"]
     s2 = v + b1 * sig(r, q1) + b2 * sig(r, q2)

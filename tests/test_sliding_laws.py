@@ -1,4 +1,4 @@
-"""Laws 1-5 (SPEC 5) against hand recursions on a double integrator.
+"""Laws 1-5 (docs/parameters.md) against hand recursions on a double integrator.
 
 On q'' = u with the command held over each period (and a fixed target), one period maps
 (e, e') to (e + dt e' + dt^2 u / 2, e' + dt u) exactly, so a law's sequence of sliding
@@ -86,7 +86,7 @@ def test_fuzzy_fast_terminal_smc_blends_as_printed():
 
 @pytest.mark.parametrize("epsilon", [0.0, 0.05])
 def test_integral_exponential_reaching_law(epsilon):
-    """With the integral advanced once per period (SPEC 2), a fixed target and q'' = u, one
+    """With the integral advanced once per period, a fixed target and q'' = u, one
     period gives exactly s(k+1) = s(k) - dt (k s(k) + epsilon sgn(s(k)))."""
     c1, c2, gain = np.array([0.5, 1.0, 2.0]), np.array([1.0, 1.5, 3.0]), np.array([0.8, 0.3, 1.1])
     law = controllers.IntegralExponentialReaching(c1=c1, c2=c2, k=gain, epsilon=epsilon)

@@ -42,7 +42,7 @@ def test_inertia_orbit_and_torque_limit():
     # a 500 km circular orbit: 94.6 min
     assert 2 * math.pi / plant.orbital_rate / 60 == pytest.approx(94.6, abs=0.05)
     info = plant._info()
-    assert info["torque_limit"] == pytest.approx(0.1 * 1.0 / 2)  # thrust times a/2 (SPEC 3.3)
+    assert info["torque_limit"] == pytest.approx(0.1 * 1.0 / 2)  # thrust times a/2
     assert TetheredSatellite(torque_limit=0.2)._info()["torque_limit"] == 0.2
     assert TetheredSatellite(thrust_limit=None)._info()["torque_limit"] == math.inf
 

@@ -1,5 +1,5 @@
 """Seed 001's bounds: the printed numbers, and each formula against a simulation of the law
-it speaks about (SPEC section 6)."""
+it speaks about."""
 
 import numpy as np
 import pytest
@@ -8,13 +8,13 @@ import landing
 from landing import theory
 from landing.controllers import FixedTimeMSS, OpenLoop
 from landing.plants import DoubleIntegrator
-from conftest import SPEC_GAINS
+from conftest import RECONSTRUCTED_GAINS
 
 
 def test_the_reconstructed_gains_give_the_seed_bounds():
     assert round(theory.fixed_time_bound(0.8, 0.95, 0.4, 1.05), 4) == 74.5780
     assert round(theory.fixed_time_bound(0.9, 0.9, 0.5, 1.1), 4) == 30.8217
-    b = theory.mss_bounds(FixedTimeMSS(**SPEC_GAINS))
+    b = theory.mss_bounds(FixedTimeMSS(**RECONSTRUCTED_GAINS))
     np.testing.assert_allclose(b.t1, 74.578022, atol=1e-6)
     np.testing.assert_allclose(b.t2, 30.821670, atol=1e-6)
 
@@ -26,7 +26,7 @@ def test_practical_formulas_against_their_definitions():
     assert theory.practical_time_bound(c1, e1, c2, e2, th) == pytest.approx(theory.fixed_time_bound(c1, e1, c2, e2) / th)
     r = theory.practical_radius(c1, e1, c2, e2, d, th)
     assert r == pytest.approx(min((d / ((1 - th) * c1)) ** (1 / e1), (d / ((1 - th) * c2)) ** (1 / e2)))
-    b = theory.mss_bounds(FixedTimeMSS(**SPEC_GAINS), ap_max=d, theta1=th, theta2=0.1)
+    b = theory.mss_bounds(FixedTimeMSS(**RECONSTRUCTED_GAINS), ap_max=d, theta1=th, theta2=0.1)
     np.testing.assert_allclose(b.s2_radius, r)
     np.testing.assert_allclose(b.s1_radius, theory.practical_radius(0.8, 0.95, 0.4, 1.05, r, 0.1))
     np.testing.assert_allclose(b.settle_time, b.s2_time + b.s1_time)
@@ -34,9 +34,9 @@ def test_practical_formulas_against_their_definitions():
 
 
 def test_bounds_broadcast_over_per_case_gains():
-    law = FixedTimeMSS(**dict(SPEC_GAINS, alpha1=[0.5, 0.9, 2.0]))
+    law = FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, alpha1=[0.5, 0.9, 2.0]))
     assert theory.mss_bounds(law).t2.shape == (3,)  # read per axis
-    law = FixedTimeMSS(**dict(SPEC_GAINS, alpha1=np.array([[0.5], [0.9], [2.0], [4.0]])))
+    law = FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, alpha1=np.array([[0.5], [0.9], [2.0], [4.0]])))
     t2 = theory.mss_bounds(law).t2
     assert t2.shape == (4, 3) and np.all(np.diff(t2[:, 0]) < 0)
 
@@ -78,7 +78,7 @@ def test_practical_bound_holds_in_simulation(theta):
 def test_the_first_reaching_law_on_the_real_guidance():
     """Exact FixedTimeMSS on a double integrator, started on s2 = 0: s1 follows eq. 16 and
     reaches 1e-6 within T1, for any distance."""
-    law = FixedTimeMSS(**SPEC_GAINS, variant="exact")
+    law = FixedTimeMSS(**RECONSTRUCTED_GAINS, variant="exact")
     r0 = np.array([[-8000.0, -6000.0, -4000.0], [-2000.0, -1000.0, 1e5]])
     sig = lambda x, a: np.sign(x) * np.abs(x) ** a  # noqa: E731
     v0 = -0.8 * sig(r0, 0.95) - 0.4 * sig(r0, 1.05)

@@ -7,11 +7,11 @@ import pytest
 
 import landing
 from landing import controllers, disturbances, plants, reference
-from conftest import NOMINAL, SPEC_GAINS
+from conftest import NOMINAL, RECONSTRUCTED_GAINS
 
 
 def gains(**kw):
-    return dict(SPEC_GAINS, **kw)
+    return dict(RECONSTRUCTED_GAINS, **kw)
 
 
 CONSTRUCTION = [
@@ -123,7 +123,7 @@ def test_simulate_takes_one_state():
 
 
 def test_configurations_are_compiled_once_and_frozen():
-    law = controllers.FixedTimeMSS(**SPEC_GAINS)
+    law = controllers.FixedTimeMSS(**RECONSTRUCTED_GAINS)
     with pytest.raises(dataclasses.FrozenInstanceError):
         law.q2 = 0.5
     # a change is a new object, validated like one
@@ -133,7 +133,7 @@ def test_configurations_are_compiled_once_and_frozen():
     # an array handed in is copied and read-only: changing the caller's array afterwards cannot
     # make the object disagree with what the core compiled
     alpha1 = np.array([0.9, 0.8, 0.7])
-    law = controllers.FixedTimeMSS(**{**SPEC_GAINS, "alpha1": alpha1})
+    law = controllers.FixedTimeMSS(**{**RECONSTRUCTED_GAINS, "alpha1": alpha1})
     alpha1[0] = -1.0
     assert law.alpha1[0] == 0.9 and not law.alpha1.flags.writeable
     assert not run(controller=law).metrics["diverged"].any()

@@ -1,4 +1,4 @@
-"""Control laws (SPEC section 5).
+"""Control laws.
 
 Every law runs in the Rust core and works on any plant with the right number of axes: gains
 are per axis (a scalar applies to every axis) and may be given per case to sweep them in one
@@ -113,7 +113,7 @@ class OpenLoop(Controller):
 
 @dataclass(frozen=True, eq=False)
 class PDSlidingMode(Controller):
-    """PD sliding mode, the seed-000 baseline (SPEC 5 law 1): ``s = e' + lambda e``,
+    """PD sliding mode, the seed-000 baseline: ``s = e' + lambda e``,
     ``u = u_eq - k switch(s)``, the equivalent control from s' = 0 with the plant's model.
 
     Parameters (per axis, or per case)
@@ -138,7 +138,7 @@ class PDSlidingMode(Controller):
 
 @dataclass(frozen=True, eq=False)
 class FastTerminalSMC(Controller):
-    """Fast terminal sliding mode (seed 000 eq. 6, 14, 19; SPEC 5 law 2):
+    """Fast terminal sliding mode (seed 000 eq. 6, 14, 19):
     ``s = e' + alpha e + beta sig^(p/q)(e)``, ``u = u_eq - k switch(s)``.
 
     Parameters
@@ -164,7 +164,7 @@ class FastTerminalSMC(Controller):
 
 @dataclass(frozen=True, eq=False)
 class FuzzyFastTerminalSMC(Controller):
-    """Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22; SPEC 5 law 3):
+    """Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22):
     ``u = a(D) u_eq + b(D) u_s`` with ``a = exp(-n D)``, ``b = 1 - exp(-m D)`` and D the
     distance of the state to the surface, ``D_i = s_i / sqrt(1 + alpha_i^2)``.
     Records the blend (a, b, D) as scalar diagnostics.
@@ -188,8 +188,7 @@ class FuzzyFastTerminalSMC(Controller):
 
 @dataclass(frozen=True, eq=False)
 class IntegralExponentialReaching(Controller):
-    """Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12; SPEC 5
-    law 4) in the stable form ``s = -sigma' - int(c1 sigma + c2 sigma')``:
+    """Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12) in the stable form ``s = -sigma' - int(c1 sigma + c2 sigma')``:
     ``u = q_ref'' - drift - c1 sigma - c2 sigma' + k s + epsilon switch(s)``, so that
     ``s' = -k s - epsilon sgn(s)`` and, on s = 0, ``sigma'' + c2 sigma' + c1 sigma = 0``.
     (The seed's printed surface gives unstable sliding dynamics.)
@@ -207,7 +206,7 @@ class IntegralExponentialReaching(Controller):
 
 @dataclass(frozen=True, eq=False)
 class FuzzyVariableRate(Controller):
-    """Fuzzy variable-rate reaching law (seed 002 sec. 2.3; SPEC 5 law 5): the surface of
+    """Fuzzy variable-rate reaching law (seed 002 sec. 2.3): the surface of
     :class:`IntegralExponentialReaching`, with ``epsilon sgn(s)`` replaced by
     ``ku F(ke s, kec s')``, F the Mamdani system (by default the seed's 5x5 rules,
     :func:`landing.fuzzy.variable_rate_system`) and s' the backward difference of s over the

@@ -1,4 +1,4 @@
-"""Lumped unknown disturbances: generalized accelerations the laws do not see (SPEC 3.1).
+"""Lumped unknown disturbances: generalized accelerations the laws do not see.
 
 Components add up: pass a list (``disturbance=[Constant(...), Sinusoid(...)]``) or write
 ``Constant(...) + Sinusoid(...)``. Deterministic parts are evaluated at every integrator stage;

@@ -1,4 +1,4 @@
-"""Fuzzy inference (SPEC 5 law 5): a general Mamdani engine evaluated by the Rust core.
+"""Fuzzy inference: a general Mamdani engine evaluated by the Rust core.
 
 Min for AND and implication, max for aggregation, centroid defuzzification on a sampled output
 universe: scikit-fuzzy's conventions (the tests compare with it). Inputs outside a universe are

@@ -1,4 +1,4 @@
-"""Gravity fields of small bodies (SPEC 3.2). Sign convention: the potential U is positive for a
+"""Gravity fields of small bodies. Sign convention: the potential U is positive for a
 point mass (U = +mu/r) and the field is its gradient, g = grad U, so gravity always attracts.
 
 Each field evaluates in the Rust core: ``field.acceleration(r)`` and ``field.potential(r)``

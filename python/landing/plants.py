@@ -1,4 +1,4 @@
-"""Plants: the dynamics a batch integrates (SPEC section 3).
+"""Plants: the dynamics a batch integrates.
 
 A plant holds physical parameters only; any numeric parameter may be given per case (an array
 with one entry per case of the batch, or ``(N, 3)`` for per-axis ones).
@@ -65,7 +65,7 @@ class Plant(Table):
 
 @dataclass(frozen=True, eq=False)
 class MarsLander(Plant):
-    """Mars powered descent (seed 001, SPEC 3.1).
+    """Mars powered descent (seed 001).
 
     State ``[rx, ry, rz, vx, vy, vz, m]`` in an inertial frame at the target, z up; the
     command is the engine force ``F = m a`` (N), clipped per axis to ``thrust_limit``.
@@ -137,7 +137,7 @@ class DoubleIntegrator(Plant):
 @dataclass(frozen=True, eq=False)
 class SmallBody(Plant):
     """A probe near a small body, in the body's frame rotating at ``omega`` about z (seeds 000
-    and 002, SPEC 3.2). State ``[x, y, z, vx, vy, vz]``; the command is a control acceleration
+    and 002). State ``[x, y, z, vx, vy, vz]``; the command is a control acceleration
     (m/s^2), clipped per axis to ``acceleration_limit`` (None: none).
 
     ``x'' - 2 omega y' - omega^2 x = g_x + u_x + d_x``, ``y'' + 2 omega x' - omega^2 y = g_y + u_y + d_y``,
@@ -161,7 +161,7 @@ class SmallBody(Plant):
 
 @dataclass(frozen=True, eq=False)
 class TetheredSatellite(Plant):
-    """The space-tethered satellite in its orbital plane (seed 003, SPEC 3.3).
+    """The space-tethered satellite in its orbital plane (seed 003).
 
     Generalized coordinates ``q = (phi, theta)``: the in-plane angle of the line from the main
     satellite to the sub-satellite's centre (from nadir) and the sub-satellite's attitude, both
@@ -192,7 +192,7 @@ class TetheredSatellite(Plant):
         centre.
     orbit_altitude : altitude of the main satellite's circular orbit, m (seed: 500 km).
     thrust_limit : limit on the thrust, N (seed: 0.1); None for none.
-    torque_limit : limit on the torque, N m; None for ``thrust_limit * side / 2`` (SPEC 3.3).
+    torque_limit : limit on the torque, N m; None for ``thrust_limit * side / 2``.
     nodes : tether nodes of the flexible model, one of 2, 4, 8, 16 (each is its own compiled
         state size); 8 is within 0.01 s of 16 on the seed comparison (docs/parameters.md).
     tether_density, axial_stiffness, axial_damping : the tether's linear density (kg/m), EA (N)

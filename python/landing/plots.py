@@ -1,4 +1,4 @@
-"""Figures: each function takes a result and returns a matplotlib Figure (SPEC section 8).
+"""Figures: each function takes a result and returns a matplotlib Figure.
 
 They accept a :class:`~landing.SimulationResult` (one case or a batch) or a
 :class:`~landing.MonteCarloResult`; a campaign's theoretical bounds, if any, are drawn.

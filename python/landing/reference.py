@@ -1,4 +1,4 @@
-"""Reference trajectories the laws track (SPEC section 4)."""
+"""Reference trajectories the laws track."""
 
 from __future__ import annotations
 

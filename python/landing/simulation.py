@@ -1,4 +1,4 @@
-"""Batched rollouts: :func:`simulate_batch` and :func:`simulate` (SPEC section 8)."""
+"""Batched rollouts: :func:`simulate_batch` and :func:`simulate`."""
 
 from __future__ import annotations
 
@@ -282,7 +282,7 @@ def simulate_batch(
     threads: Optional[int] = None,
     kernel: Optional[str] = None,
 ) -> SimulationResult:
-    """Simulate N cases of ``plant`` under ``controller`` in parallel (SPEC section 2 semantics).
+    """Simulate N cases of ``plant`` under ``controller`` in parallel (the semantics in README.md).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Convergence bounds of the fixed-time laws, and their checks against simulation (SPEC 6).
+"""Convergence bounds of the fixed-time laws, and their checks against simulation.
 
 The formulas are computed by the Rust core (``landing_core::theory``) and broadcast here over
 arrays. Every bound comes with a check that simulates the system it speaks about and reports

@@ -1,7 +1,7 @@
 //! Dispersions of initial states: the random part of a Monte Carlo campaign.
 //!
 //! Case i's sample depends only on (seed, i): component j takes draw j of the case's
-//! dispersion stream (SPEC section 2), so a campaign gives the same cases whatever the batch
+//! dispersion stream, so a campaign gives the same cases whatever the batch
 //! size, chunking or thread count.
 
 use crate::error::{ParamError, require};

@@ -1,8 +1,8 @@
-//! Lumped unknown disturbances (SPEC 3.1: a_p of seed 001 eq. 30 and 47).
+//! Lumped unknown disturbances (a_p of seed 001 eq. 30 and 47).
 //!
 //! The disturbance is a generalized acceleration added to q'' by the plant; the laws never see
 //! it. Deterministic parts are evaluated at each integrator stage's time; the random part is
-//! drawn once per control period from the case's counter-based stream and held (SPEC 2).
+//! drawn once per control period from the case's counter-based stream and held.
 
 use nalgebra::SVector;
 

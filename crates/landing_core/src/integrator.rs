@@ -1,4 +1,4 @@
-//! Fixed-step integrators (SPEC section 2).
+//! Fixed-step integrators.
 //!
 //! An integrator advances `x' = f(t, x)` by one step `h`; the rollout calls it `substeps` times
 //! per control period with the command held. The derivative is asked for at a [`Stage`] of the

@@ -4,7 +4,7 @@
 //! [`control::ControlLaw`], [`integrator::Integrator`]. A batch is dispatched once on its plant,
 //! law and integrator to a monomorphised rollout ([`rollout::rollout`]) that runs on fixed-size
 //! nalgebra types without heap allocation per step; [`batch::run`] runs the cases on rayon.
-//! The sampled-data semantics are those of SPEC section 2.
+//! The sampled-data semantics are those README.md states ("Semantics").
 
 pub mod batch;
 pub mod control;
@@ -17,8 +17,8 @@ pub mod integrator;
 pub mod kernel;
 pub mod lanes;
 pub mod limits;
-pub mod memory;
 pub mod math;
+pub mod memory;
 pub mod metrics;
 pub mod params;
 pub mod plant;

@@ -1,4 +1,4 @@
-//! Scalar conventions shared by every law (SPEC section 2), over [`Real`] lanes.
+//! Scalar conventions shared by every law, over [`Real`] lanes.
 
 use crate::lanes::{Gather, Real};
 use crate::params::{FromParams, ParamSource};

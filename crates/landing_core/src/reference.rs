@@ -1,4 +1,4 @@
-//! Reference trajectories the laws track (SPEC section 4).
+//! Reference trajectories the laws track.
 
 use nalgebra::SVector;
 
@@ -23,8 +23,8 @@ pub struct RefPoint<const D: usize, R = f64> {
 /// The kind is shared by the lanes of a block; the coefficients are per lane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Reference<const D: usize, R = f64> {
-    /// A fixed target state: the law drives q to `position` and q' to `velocity` (SPEC 4:
-    /// seed 001 uses r_d = 0, v_d = 0).
+    /// A fixed target state: the law drives q to `position` and q' to `velocity` (seed
+    /// 001 uses r_d = 0, v_d = 0).
     Constant {
         position: SVector<R, D>,
         velocity: SVector<R, D>,

@@ -1,4 +1,4 @@
-//! Counter-based random numbers (SPEC section 2).
+//! Counter-based random numbers.
 //!
 //! Every random draw is a pure function of `(seed, stream, case, counter)`: Philox4x64-10
 //! (Salmon et al., "Parallel random numbers: as easy as 1, 2, 3", SC 2011) with the key

@@ -1,4 +1,4 @@
-//! A block of cases in lockstep, sampled-data (SPEC section 2).
+//! A block of cases in lockstep, sampled-data.
 //!
 //! At each control instant t_k = k dt the law reads x_k and the reference at t_k; the command
 //! is actuated (scaled, saturated) and held over [t_k, t_k + dt); the law's memory is advanced;

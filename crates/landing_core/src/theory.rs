@@ -1,4 +1,4 @@
-//! Convergence bounds of the fixed-time laws (seed 001 section II and III; SPEC section 6).
+//! Convergence bounds of the fixed-time laws (seed 001 sections II and III; docs/reproduction-mars.md).
 //!
 //! Every bound here is checked against simulation by `landing.theory` in Python.
 

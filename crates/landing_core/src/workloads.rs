@@ -1,4 +1,4 @@
-//! The reference workloads of SPEC section 10, shared by the criterion benches, the profiling
+//! The benchmark workloads W1-W6 (BENCHMARKS.md), shared by the criterion benches, the profiling
 //! example and the tests, so that all of them measure and check the same thing.
 
 use nalgebra::{SVector, Vector3};
@@ -22,9 +22,9 @@ pub const MARS_NOMINAL: [f64; 7] = [-2000.0, 1000.0, 1500.0, 100.0, -15.0, -75.0
 /// Seed 001 Table II standard deviations.
 pub const MARS_TABLE2_SD: [f64; 7] = [100.0, 100.0, 100.0, 10.0, 10.0, 10.0, 20.0];
 
-/// The fixed-time gains SPEC section 6 reconstructs from the seed's bounds
+/// The fixed-time gains reconstructed from seed 001's printed bounds (docs/parameters.md)
 /// (T1 = 74.5780 s, T2 = 30.8217 s).
-pub fn spec_fixed_time_gains(variant: MssVariant) -> FixedTimeMss<3> {
+pub fn reconstructed_fixed_time_gains(variant: MssVariant) -> FixedTimeMss<3> {
     FixedTimeMss {
         beta1: Vector3::repeat(0.8),
         beta2: Vector3::repeat(0.4),
@@ -62,7 +62,7 @@ pub fn mars_storm() -> Disturbance<3> {
         .expect("one sinusoid fits")
 }
 
-/// W1/W2: fixed-time guidance with the SPEC gains on `cases` dispersed cases, drag, 50 kN per
+/// W1/W2: fixed-time guidance with the reconstructed gains on `cases` dispersed cases, drag, 50 kN per
 /// axis, the dust storm.
 pub fn mars_w1(cases: usize, seed: u64) -> Batch<3, MarsLander> {
     Batch {
@@ -70,7 +70,7 @@ pub fn mars_w1(cases: usize, seed: u64) -> Batch<3, MarsLander> {
             thrust_limit: Vector3::repeat(50_000.0),
             ..Default::default()
         }),
-        laws: PerCase::shared(spec_fixed_time_gains(MssVariant::Printed).into()),
+        laws: PerCase::shared(reconstructed_fixed_time_gains(MssVariant::Printed).into()),
         references: PerCase::shared(Reference::default()),
         disturbances: PerCase::shared(mars_storm()),
         x0: mars_dispersed(cases, seed),

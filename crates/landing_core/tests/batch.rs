@@ -38,7 +38,7 @@ fn batch(x0: Vec<MarsState>, laws: PerCase<AnyLaw<3>>) -> Batch<3, MarsLander> {
 fn results_do_not_depend_on_the_thread_count() {
     let b = batch(
         dispersed(37),
-        PerCase::shared(spec_gains(MssVariant::Printed).into()),
+        PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
     );
     let cfg = SimConfig::new(2.0, 0.001, 2, 50, 9).unwrap();
     let one = run_with_threads(&b, &cfg, Some(1)).unwrap();
@@ -64,7 +64,7 @@ fn a_case_is_the_same_alone_or_in_a_batch() {
     let laws: Vec<_> = (0..6)
         .map(|i| FixedTimeMss {
             alpha1: Vector3::repeat(0.5 + 0.1 * i as f64),
-            ..spec_gains(MssVariant::Printed)
+            ..reconstructed_gains(MssVariant::Printed)
         })
         .collect();
     let cfg = SimConfig::new(1.0, 0.001, 1, 100, 3).unwrap();
@@ -107,7 +107,7 @@ fn chunks_of_a_campaign_reproduce_it() {
     let whole = run_with_threads(
         &batch(
             x0.clone(),
-            PerCase::shared(spec_gains(MssVariant::Printed).into()),
+            PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
         ),
         &cfg,
         None,
@@ -117,7 +117,7 @@ fn chunks_of_a_campaign_reproduce_it() {
     for (start, end) in [(0, 3), (3, 4), (4, 10)] {
         let part = batch(
             x0[start..end].to_vec(),
-            PerCase::shared(spec_gains(MssVariant::Printed).into()),
+            PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
         );
         pieces.extend(
             run_with_threads(&part, &cfg.with_first_case(start as u64), Some(1))
@@ -130,7 +130,7 @@ fn chunks_of_a_campaign_reproduce_it() {
     let wrong = run_with_threads(
         &batch(
             x0[3..4].to_vec(),
-            PerCase::shared(spec_gains(MssVariant::Printed).into()),
+            PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
         ),
         &cfg,
         None,
@@ -147,7 +147,7 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     x0[2] = mars_state([1e200, 0.0, 1500.0], [0.0, 0.0, 0.0], 1905.0);
     let mut b = batch(
         x0.clone(),
-        PerCase::shared(spec_gains(MssVariant::Printed).into()),
+        PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
     );
     let limited = *b.plants.get(0);
     let mut plants = vec![limited; 4];
@@ -155,11 +155,7 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     b.plants = PerCase::from_vec(plants);
     let cfg = SimConfig::new(1.0, 0.01, 1, 10, 0).unwrap();
     let out = run_with_threads(&b, &cfg, Some(2)).unwrap();
-    let flags: Vec<bool> = out
-        .metrics
-        .iter()
-        .map(|m| m.diverged.is_some())
-        .collect();
+    let flags: Vec<bool> = out.metrics.iter().map(|m| m.diverged.is_some()).collect();
     assert_eq!(flags, [false, false, true, false]);
     // 1e200 m away, the law's powers of the error overflow in its first command
     let stop = out.metrics[2].diverged.unwrap();
@@ -173,7 +169,7 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
     let ref_out = run_with_threads(
         &batch(
             clean,
-            PerCase::shared(spec_gains(MssVariant::Printed).into()),
+            PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
         ),
         &cfg,
         Some(1),
@@ -196,7 +192,7 @@ fn a_diverging_case_is_flagged_and_spoils_nothing() {
 fn recording_keeps_every_kth_instant_and_the_last() {
     let b = batch(
         dispersed(2),
-        PerCase::shared(spec_gains(MssVariant::Printed).into()),
+        PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
     );
     let cfg = SimConfig::new(1.0, 0.1, 1, 3, 0).unwrap();
     assert_eq!(
@@ -262,7 +258,7 @@ fn every_level_gives_the_same_bits() {
         .map(|i| {
             FixedTimeMss {
                 alpha1: Vector3::repeat(0.5 + 0.05 * i as f64),
-                ..spec_gains(MssVariant::Printed)
+                ..reconstructed_gains(MssVariant::Printed)
             }
             .into()
         })
@@ -323,7 +319,7 @@ fn a_case_does_not_depend_on_its_lane_or_its_block_mates() {
                 .map(|i| {
                     FixedTimeMss {
                         beta1: Vector3::repeat(0.7 + 0.01 * i as f64),
-                        ..spec_gains(MssVariant::Printed)
+                        ..reconstructed_gains(MssVariant::Printed)
                     }
                     .into()
                 })

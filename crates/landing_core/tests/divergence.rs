@@ -4,10 +4,10 @@
 use landing_core::SimConfig;
 use landing_core::batch::{Batch, PerCase, run_with_threads};
 use landing_core::control::{AnyLaw, OpenLoop, PdSlidingMode};
-use landing_core::math::Switch;
 use landing_core::disturbance::Disturbance;
 use landing_core::gravity::PointMass;
 use landing_core::integrator::IntegratorKind;
+use landing_core::math::Switch;
 use landing_core::metrics::{Divergence, MAX_COMMAND};
 use landing_core::plant::{MarsLander, SmallBody};
 use landing_core::reference::Reference;
@@ -146,7 +146,10 @@ fn a_law_cancelling_a_singular_gravity_gives_a_non_finite_command() {
     let cfg = SimConfig::new(1.0, 0.5, 1, 0, 0).unwrap();
     let out = run_with_threads(&b, &cfg, Some(1)).unwrap();
     let stop = out.metrics[0].diverged.unwrap();
-    assert_eq!((stop.reason, stop.time), (Divergence::NonFiniteCommand, 0.0));
+    assert_eq!(
+        (stop.reason, stop.time),
+        (Divergence::NonFiniteCommand, 0.0)
+    );
 }
 
 #[test]

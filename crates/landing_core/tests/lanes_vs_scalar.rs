@@ -5,7 +5,9 @@
 use landing_core::batch::{Batch, PerCase, RunOptions, run, run_scalar};
 use landing_core::control::{AnyLaw, MssVariant};
 use landing_core::plant::PlantModel;
-use landing_core::workloads::{eros_w3, eros_w5, mars_w1, spec_fixed_time_gains, tether_w6};
+use landing_core::workloads::{
+    eros_w3, eros_w5, mars_w1, reconstructed_fixed_time_gains, tether_w6,
+};
 use landing_core::{BatchOutput, Level, SimConfig};
 use nalgebra::Vector3;
 use proptest::prelude::*;
@@ -56,7 +58,7 @@ proptest! {
         let variant = if exact { MssVariant::Exact } else { MssVariant::Printed };
         let laws: Vec<AnyLaw<3>> = (0..n)
             .map(|i| {
-                let mut g = spec_fixed_time_gains(variant);
+                let mut g = reconstructed_fixed_time_gains(variant);
                 g.alpha1 = Vector3::repeat(alpha1 + 0.01 * i as f64);
                 g.q1 = Vector3::repeat(q1);
                 g.into()

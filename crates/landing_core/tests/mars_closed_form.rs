@@ -57,7 +57,7 @@ fn touchdown_is_the_interpolated_first_crossing() {
     assert!((td.time - t_star).abs() < 1e-5, "{} vs {t_star}", td.time);
     assert!((td.velocity[2] - (-10.0 - G * t_star)).abs() < 1e-3);
     assert!(td.position[2].abs() < 1e-9);
-    // integration goes on past the crossing (SPEC 3.1)
+    // integration goes on past the crossing
     assert!(final_state(&out, 0)[2] < -100.0);
 }
 
@@ -131,7 +131,7 @@ fn one_step_zero_order_hold_by_hand() {
     let cfg = SimConfig::new(dt, dt, 1, 1, 0).unwrap();
     let out = run_one(
         plant,
-        spec_gains(MssVariant::Printed),
+        reconstructed_gains(MssVariant::Printed),
         Euler,
         x0,
         Disturbance::none(),
@@ -156,7 +156,7 @@ fn one_step_zero_order_hold_by_hand() {
     let held = final_state(
         &run_one(
             plant,
-            spec_gains(MssVariant::Printed),
+            reconstructed_gains(MssVariant::Printed),
             Euler,
             x0,
             Disturbance::none(),
@@ -168,7 +168,7 @@ fn one_step_zero_order_hold_by_hand() {
     let fast = final_state(
         &run_one(
             plant,
-            spec_gains(MssVariant::Printed),
+            reconstructed_gains(MssVariant::Printed),
             Euler,
             x0,
             Disturbance::none(),
@@ -184,7 +184,7 @@ fn exact_variant_obeys_the_second_reaching_law() {
     // Along a trajectory of the exact variant, ds2/dt = -alpha1 sig^g1(s2) - alpha2 sig^g2(s2)
     // (up to the sampling); the printed variant drops the s2-coupling terms, so it does not.
     let plant = no_drag();
-    let law = spec_gains(MssVariant::Exact);
+    let law = reconstructed_gains(MssVariant::Exact);
     let dt = 1e-4;
     let x0 = mars_state([-20.0, 10.0, 15.0], [1.0, -0.5, -0.75], 1905.0);
     let cfg = SimConfig::new(0.5, dt, 1, 1, 0).unwrap();
@@ -203,7 +203,7 @@ fn exact_variant_obeys_the_second_reaching_law() {
         worst
     };
     let exact = residual(law);
-    let printed = residual(spec_gains(MssVariant::Printed));
+    let printed = residual(reconstructed_gains(MssVariant::Printed));
     assert!(exact < 2e-3, "exact variant residual {exact}");
     assert!(printed > 0.05, "printed variant residual {printed}");
 }
@@ -232,6 +232,6 @@ fn law_input_drift_is_the_modelled_acceleration() {
         inertia: plant.inertia(&x),
     };
     // at the target with zero rate, the fixed-time law only cancels the drift
-    let a = spec_gains(MssVariant::Printed).command(&(), &input);
+    let a = reconstructed_gains(MssVariant::Printed).command(&(), &input);
     assert_eq!(a, -d);
 }

@@ -24,8 +24,8 @@ use landing_core::control::LAW_KINDS;
 use landing_core::gravity::G;
 use landing_core::integrator::IntegratorKind;
 use landing_core::kernel::Level;
-use landing_core::metrics::{Divergence, MAX_COMMAND};
 use landing_core::limits::LIMITS;
+use landing_core::metrics::{Divergence, MAX_COMMAND};
 use landing_core::registry::{GRAVITY_KINDS, PLANT_KINDS};
 
 use errors::guard;

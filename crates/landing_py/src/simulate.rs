@@ -58,7 +58,9 @@ fn interruptible<T: Send>(cancel: &AtomicBool, job: impl FnOnce() -> T + Send) -
             }
         }
         // the job catches its own panics, so the thread cannot have panicked
-        let out = worker.join().expect("the batch's panics are caught inside it");
+        let out = worker
+            .join()
+            .expect("the batch's panics are caught inside it");
         match raised {
             Some(e) => Err(e),
             None => Ok(out),

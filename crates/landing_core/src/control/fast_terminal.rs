@@ -1,4 +1,4 @@
-//! Fast terminal sliding mode (seed 000 eq. 6, 14, 19; SPEC 5 law 2).
+//! Fast terminal sliding mode (seed 000 eq. 6, 14, 19).
 //!
 //! ```text
 //! s = e' + alpha e + beta sig^(p/q)(e)                                   (eq. 6)

@@ -1,4 +1,4 @@
-//! Fixed-time multiple-sliding-surface guidance (seed 001, eq. 15-25; SPEC 5 law 6).
+//! Fixed-time multiple-sliding-surface guidance (seed 001, eq. 15-25).
 //!
 //! ```text
 //! s1 = q - q_ref                                                  (eq. 15)

@@ -1,5 +1,5 @@
 //! Fixed-time nonsingular terminal sliding mode with RBF compensation (seed 003 eq. 19-24;
-//! SPEC 5 law 9), the seed's "FNTSMC".
+//! ), the seed's "FNTSMC".
 //!
 //! ```text
 //! s   = e2 + K1 zeta1(e1) + K2 zeta2(e1)                                        (eq. 20)
@@ -17,7 +17,7 @@
 //! minus the plant's modelled drift (both zero on the tethered satellite).
 //!
 //! The weights are the law's memory, advanced once per control period by forward Euler after
-//! the command (SPEC 2). Gamma is `gamma I` per axis; each axis has its own network
+//! the command. Gamma is `gamma I` per axis; each axis has its own network
 //! (`rbf.rs`), initially zero. The seed does not print Gamma, the centres, widths or node count:
 //! they come from examples/studies/tether_rbf.py (docs/parameters.md).
 //!

@@ -1,4 +1,4 @@
-//! Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22; SPEC 5 law 3).
+//! Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22).
 //!
 //! ```text
 //! u = a(D) u_eq + b(D) u_s,   a = exp(-N D),   b = 1 - exp(-M D)          (eq. 20, 22)

@@ -1,4 +1,4 @@
-//! Fuzzy variable-rate reaching law (seed 002 sec. 2.3; SPEC 5 law 5).
+//! Fuzzy variable-rate reaching law (seed 002 sec. 2.3).
 //!
 //! The integral surface of law 4, with the switching term eps sgn(s) replaced by the output of
 //! a Mamdani system whose inputs are s and s' (5 sets each on [-5, 5]) and whose output lies on

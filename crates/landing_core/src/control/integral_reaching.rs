@@ -1,5 +1,5 @@
-//! Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12; SPEC 5
-//! law 4), in the stable form SPEC section 5 fixes.
+//! Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12), in a stable
+//! form (docs/parameters.md, "Asteroid landing").
 //!
 //! With sigma = q - q_ref, the seed's surface s = -q' + int(q_ref'' + c1 sigma + c2 sigma')
 //! gives s = 0 => sigma'' = +c1 sigma + c2 sigma', unstable for c1, c2 > 0. The stable form is
@@ -11,7 +11,7 @@
 //!
 //! so that s' = -k s - eps sgn(s) (plus the disturbance) and, on s = 0,
 //! sigma'' + c2 sigma' + c1 sigma = 0. The plant's modelled acceleration is -(A1 r + A2 r' + G)
-//! cancelled; the integral I is advanced once per control period (SPEC 2).
+//! cancelled; the integral I is advanced once per control period.
 
 use nalgebra::SVector;
 

@@ -1,11 +1,11 @@
-//! Control laws (SPEC section 5).
+//! Control laws.
 //!
 //! A law reads the tracking errors and the plant's model at a control instant and returns a
 //! commanded generalized acceleration `a`, meaning `q'' = drift + a + d` with `drift` the
 //! plant's modelled acceleration and `d` the unknown disturbance. The plant's actuator turns
 //! `a` into thrust, torque or control acceleration. Laws with internal states (integrators,
 //! adaptive weights) keep them in their `Memory`, advanced once per control period by forward
-//! Euler after the command is computed (SPEC 2).
+//! Euler after the command is computed.
 //!
 //! Every law is written once over [`Real`] lanes (see [`crate::lanes`]). The registry at the end
 //! of this file lists each law once, with its name at the Python boundary; it generates

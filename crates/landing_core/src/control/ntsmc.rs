@@ -1,5 +1,5 @@
 //! Conventional nonsingular terminal sliding mode (seed 003, the baseline at the end of its
-//! section 4, printed as eq. 47/48; SPEC 5 law 8).
+//! section 4, printed as eq. 47/48).
 //!
 //! ```text
 //! s = e1 + (1/beta) sig^(gamma/alpha)(e2)

@@ -1,4 +1,4 @@
-//! PD sliding mode, the seed-000 baseline (SPEC 5 law 1): `s = e' + lambda e`,
+//! PD sliding mode, the seed-000 baseline: `s = e' + lambda e`,
 //! `u = u_eq - k switch(s)` with the equivalent control from s' = 0 and the plant model.
 
 use nalgebra::SVector;

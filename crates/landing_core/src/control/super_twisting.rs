@@ -1,4 +1,4 @@
-//! Super-twisting guidance (seed 001, eq. 46; SPEC 5 law 7), the seed's baseline.
+//! Super-twisting guidance (seed 001, eq. 46), the seed's baseline.
 //!
 //! `Printed` is eq. 46 with s = q - q_ref:
 //! ```text

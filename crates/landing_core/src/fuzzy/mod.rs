@@ -1,4 +1,4 @@
-//! Fuzzy logic: membership functions and a general Mamdani inference engine (SPEC 5 law 5).
+//! Fuzzy logic: membership functions and a general Mamdani inference engine.
 
 mod mamdani;
 mod membership;

@@ -1,4 +1,4 @@
-//! Second-degree spherical harmonics (seed 002 eq. 2-4; SPEC 3.2).
+//! Second-degree spherical harmonics (seed 002 eq. 2-4).
 
 use nalgebra::Vector3;
 

@@ -1,4 +1,4 @@
-//! Gravity fields. Sign convention (SPEC 3.2): the potential U is positive for a point mass
+//! Gravity fields. Sign convention: the potential U is positive for a point mass
 //! (U = +mu/r), and the field is its gradient, g = grad U, so gravity always attracts.
 //!
 //! Every field is generic over its number type (see [`crate::lanes`]): `PointMass` is one

@@ -1,4 +1,4 @@
-//! Two mass points (seed 000 eq. 2, sign fixed: gravity attracts; SPEC 3.2).
+//! Two mass points (seed 000 eq. 2, sign fixed: gravity attracts).
 
 use nalgebra::Vector3;
 

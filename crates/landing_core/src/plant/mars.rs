@@ -1,4 +1,4 @@
-//! Mars powered descent (seed 001 section III.A, SPEC 3.1).
+//! Mars powered descent (seed 001 section III.A).
 //!
 //! State `[rx, ry, rz, vx, vy, vz, m]` in the inertial frame at the target (crossrange,
 //! downrange, altitude with z up):

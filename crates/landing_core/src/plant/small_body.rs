@@ -1,4 +1,4 @@
-//! A probe near a small body, in the body's rotating frame (seeds 000 and 002; SPEC 3.2).
+//! A probe near a small body, in the body's rotating frame (seeds 000 and 002).
 //!
 //! State `[x, y, z, vx, vy, vz]`, rotation rate omega about z:
 //!

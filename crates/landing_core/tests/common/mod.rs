@@ -9,7 +9,7 @@ use landing_core::error::Validate;
 use landing_core::integrator::IntegratorKind;
 use landing_core::plant::MarsLander;
 use landing_core::reference::Reference;
-use landing_core::workloads::{MARS_NOMINAL, spec_fixed_time_gains};
+use landing_core::workloads::{MARS_NOMINAL, reconstructed_fixed_time_gains};
 use nalgebra::SVector;
 
 pub type MarsState = SVector<f64, 7>;
@@ -23,9 +23,9 @@ pub fn nominal() -> MarsState {
     MarsState::from(MARS_NOMINAL)
 }
 
-/// The reconstructed gains of SPEC section 6.
-pub fn spec_gains(variant: MssVariant) -> FixedTimeMss<3> {
-    spec_fixed_time_gains(variant)
+/// The gains reconstructed from seed 001's printed bounds (docs/parameters.md).
+pub fn reconstructed_gains(variant: MssVariant) -> FixedTimeMss<3> {
+    reconstructed_fixed_time_gains(variant)
 }
 
 pub fn run_one(

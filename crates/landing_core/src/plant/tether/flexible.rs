@@ -1,7 +1,7 @@
 //! The flexible tethered satellite: the plant the seed-003 controllers are validated on.
 //!
 //! The seed's finite-element model (its eq. 1-8) is not reproducible from its text; this is a
-//! planar model of the same physics (SPEC 3.3), written in the orbital (Hill) frame of the
+//! planar model of the same physics, written in the orbital (Hill) frame of the
 //! main satellite's circular orbit, with the main satellite as its origin:
 //!
 //! - the tether is N lumped masses (the nodal-position discretisation: each node carries one

@@ -1,4 +1,4 @@
-//! The space-tethered satellite in its orbital plane (seed 003, SPEC 3.3): two fidelities that
+//! The space-tethered satellite in its orbital plane (seed 003): two fidelities that
 //! share one controller interface.
 //!
 //! Generalized coordinates `q = [phi, theta]`: `phi` is the in-plane angle of the line from the
@@ -12,7 +12,7 @@
 //! perpendicular to that line, towards increasing phi) and the attitude torque `u_theta`
 //! (N m), each saturated. The controller sees the inertia of seed eq. 17 in the actuators'
 //! units: `M = diag(mu L0, m_s a^2 / 6)` with the reduced mass `mu = m_m m_s / (m_m + m_s)`.
-//! The seed prints `M1 = mu L0`; SPEC 3.3 writes `mu L0^2`, the moment of inertia about the
+//! The seed prints `M1 = mu L0`; the dynamics give `mu L0^2`, the moment of inertia about the
 //! main satellite, which multiplies phi'' to give the thrust's moment `L0 u_phi`. Dividing that
 //! row by the lever arm `L0` gives the seed's `mu L0` and keeps `u_phi` a force, so the plant's
 //! `inertia` (q'' gains u_i / inertia_i) is the seed's M as printed: the 0.1 N limit then
