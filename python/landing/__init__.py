@@ -33,6 +33,7 @@ def kernel_levels() -> list[str]:
 
 from landing import plots, scenarios, theory
 from landing.montecarlo import MonteCarloResult, monte_carlo
+from landing.tune import TuneResult, tune
 
 __all__ = [
     "__version__",
@@ -49,6 +50,8 @@ __all__ = [
     "theory",
     "monte_carlo",
     "MonteCarloResult",
+    "tune",
+    "TuneResult",
     "simulate",
     "simulate_batch",
     "kernel_levels",
