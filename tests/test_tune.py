@@ -170,6 +170,20 @@ def test_interrupt_returns_the_best_so_far():
     assert r.best_feasible
 
 
+def test_several_setups():
+    """Two set-ups share the searched gains; expressions name their metrics by label. The
+    second set-up starts at 2 e0, so its IAE is twice the first's (linear loop)."""
+    s1 = _scenario()
+    s2 = _scenario(x0=np.array([2 * E0, 0.0, 0.0, 0.0, 0.0, 0.0]))
+    r = landing.tune({"near": s1, "far": s2}, GAINS, "mean(near.iae) + mean(far.iae)",
+                     ["max(far.peak_command) <= 0.8"], budget=240, seed=3, threads=1)
+    # IAE_near + IAE_far = 3 e0 (1/lam + 1/k) with k lam 2 e0 <= 0.8: the same optimum as above
+    assert r.best_gains["lambda_"] == pytest.approx(LAM_STAR, rel=0.05)
+    assert r.best_gains["k"] == pytest.approx(LAM_STAR, rel=0.05)
+    assert r.objective_values[r.best, 0] == pytest.approx(3 * IAE_STAR, rel=0.01)
+    assert r.scenario(setup="far").x0[0] == 2 * E0
+
+
 def test_bounds_in_expressions():
     s = landing.scenarios.mars_nominal(t_final=1.0, dt=0.01)
     r = landing.tune(s, {"beta1": (0.5, 2.0), "q1": (0.5, 0.9)}, "abs(t1 - 100)", budget=8, seed=0, threads=1)
@@ -180,7 +194,8 @@ def test_bounds_in_expressions():
 @pytest.mark.parametrize("expr, kind, fragment", [
     ("mean(fule_used)", "objective", "unknown name 'fule_used'"),
     ("__import__('os')", "objective", "unknown function '__import__'"),
-    ("mean(iae).real", "objective", "Attribute"),
+    ("mean(iae).real", "objective", "only NAME or SETUP.NAME"),
+    ("nominal.iae", "objective", "unknown name 'nominal.iae'"),
     ("fuel_used", "objective", "one number per candidate"),
     ("mean(iae) + t1", "objective", "FixedTimeMSS"),
     ("percentile(iae, 120)", "objective", "[0, 100]"),

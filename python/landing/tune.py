@@ -128,17 +128,20 @@ class Expression:
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise self._refuse(node, "only numbers are allowed as constants")
             return False
-        if isinstance(node, ast.Name):
-            if node.id in self._metrics:
-                self.names.add(node.id)
+        if isinstance(node, (ast.Name, ast.Attribute)):
+            key = _qualified(node)
+            if key is None:
+                raise self._refuse(node, "only NAME or SETUP.NAME may be named")
+            if key in self._metrics:
+                self.names.add(key)
                 return True
-            if node.id in self._bounds:
-                self.names.add(node.id)
+            if key in self._bounds:
+                self.names.add(key)
                 return False
-            if node.id in BOUND_NAMES:
-                raise self._refuse(node, f"the bound {node.id!r} is defined for FixedTimeMSS laws only")
+            if key.rpartition(".")[2] in BOUND_NAMES:
+                raise self._refuse(node, f"the bound {key!r} is defined for FixedTimeMSS laws only")
             raise self._refuse(
-                node, f"unknown name {node.id!r} (metrics: {', '.join(sorted(self._metrics))}; "
+                node, f"unknown name {key!r} (metrics: {', '.join(sorted(self._metrics))}; "
                 f"bounds: {', '.join(sorted(self._bounds)) or 'none for this law'})"
             )
         if isinstance(node, ast.BinOp):
@@ -184,8 +187,8 @@ class Expression:
     def _eval(self, node: ast.AST, env: Mapping[str, Any]) -> Any:
         if isinstance(node, ast.Constant):
             return float(node.value)
-        if isinstance(node, ast.Name):
-            return env[node.id]
+        if isinstance(node, (ast.Name, ast.Attribute)):
+            return env[_qualified(node)]
         if isinstance(node, ast.BinOp):
             return _BINOPS[type(node.op)](self._eval(node.left, env), self._eval(node.right, env))
         if isinstance(node, ast.UnaryOp):
@@ -215,6 +218,15 @@ class Expression:
 
     def __repr__(self) -> str:
         return f"Expression({self.text!r})"
+
+
+def _qualified(node: ast.AST) -> Optional[str]:
+    """``name`` or ``setup.name``; None for anything else."""
+    if isinstance(node, ast.Name):
+        return node.id
+    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):
+        return f"{node.value.id}.{node.attr}"
+    return None
 
 
 class _Callable:
@@ -260,7 +272,7 @@ class TuneResult:
 
     Attributes
     ----------
-    base : the scenario tuned (with its original gains).
+    base : the scenario tuned (with its original gains); the first set-up for several.
     gains : the searched gains' specifications.
     objectives, constraints : their texts (or callables' names).
     seed, cases, budget, popsize : the run's settings.
@@ -301,7 +313,8 @@ class TuneResult:
     interrupted: bool = False
     stop: str = ""
     elapsed: float = 0.0
-    extra: dict[str, Any] = field(default_factory=dict)
+    #: the other set-ups by label, when several were tuned together (``base`` is the first)
+    setups: dict[str, Scenario] = field(default_factory=dict)
 
     @property
     def n_evaluations(self) -> int:
@@ -341,10 +354,12 @@ class TuneResult:
             out.append(f"diverged cases ({self.diverged[i]:.0%})")
         return out
 
-    def scenario(self, index: Optional[int] = None) -> Scenario:
-        """The tuned scenario: the base with the best gains (or evaluation ``index``'s)."""
+    def scenario(self, index: Optional[int] = None, setup: Optional[str] = None) -> Scenario:
+        """The tuned scenario: the base (or set-up ``setup``) with the best gains (or evaluation
+        ``index``'s)."""
         g = self.best_gains if index is None else self.gains_of(index)
-        return self.base.replace(controller=g)
+        s = self.base if setup is None else self.setups[setup]
+        return s.replace(controller=g)
 
     def best_so_far(self) -> np.ndarray:
         """(generations,) the best objective (the first) among the feasible evaluations up to
@@ -562,7 +577,7 @@ def _probe_metric_names(scenario: Scenario) -> list[str]:
 
 
 def tune(
-    scenario: Scenario,
+    scenario: Union[Scenario, Mapping[str, Scenario]],
     gains: Mapping[str, Any],
     objective: Union[ObjectiveLike, Sequence[ObjectiveLike]],
     constraints: Sequence[ObjectiveLike] = (),
@@ -581,18 +596,22 @@ def tune(
 
     Parameters
     ----------
-    scenario : the set-up; its dispersion (if any) draws the K cases with ``seed``.
+    scenario : the set-up; its dispersion (if any) draws the K cases with ``seed``. Or several
+        set-ups by label, ``{"nominal": s1, "storm": s2}``, whose laws share the searched gains:
+        every candidate runs on each, and the expressions name their metrics and bounds
+        ``nominal.fuel_used``, ``storm.s1_radius`` (``t1``, ``t2``... alone: the first set-up's).
     gains : ``{name: (low, high)}`` or ``{name: (low, high, "log")}``, law parameters shared by
         every axis; the search runs in [0, 1] per gain (log10-mapped on a log scale), bounded
         by CMA-ES's boundary transformation.
     objective : an expression (module docstring) or a callable ``f(metrics, bounds) -> float``
-        (metrics: the candidate's K cases; bounds: a dict of the bound names, or None), or a
-        list of them (several objectives, every one minimised).
+        (metrics: the candidate's K cases, a dict of them by label for several set-ups; bounds:
+        a dict of the bound names, or None), or a list of them (several objectives, every one
+        minimised).
     constraints : expressions (one comparison each) or callables returning a margin that is
         met when <= 0. A candidate with a diverged case is infeasible.
     cases : K, the dispersed cases every candidate runs on (the same for all: common random
         numbers).
-    budget : the most candidate evaluations (each runs K cases).
+    budget : the most candidate evaluations (each runs K cases on every set-up).
     seed : seeds the cases (dispersion and random streams) and the search: the same seed gives
         the same evaluations and result, whatever ``threads``.
     optimizer : ``"cma"`` (the only one).
@@ -602,16 +621,28 @@ def tune(
     threads : worker threads of the batches (default: all cores).
     progress : show progress on stderr (default: when the run is long).
 
-    Each generation runs as one batch of popsize x K cases with per-case gains. When the
-    scenario's disturbance draws random numbers, the engine keys them by the case's index in
-    the batch, so one batch cannot give every candidate the same streams: then each candidate
-    runs as its own batch of K cases (same seed, same case indices).
+    Each generation runs as one batch of popsize x K cases per set-up, with per-case gains.
+    When a set-up's disturbance draws random numbers, the engine keys them by the case's index
+    in the batch, so one batch cannot give every candidate the same streams: then each
+    candidate runs as its own batch of K cases (same seed, same case indices).
 
     Ctrl-C between or during generations stops the search and returns what was done so far,
     with ``interrupted=True``.
     """
-    if not isinstance(scenario, Scenario):
-        raise ParameterError(f"scenario must be a landing.scenarios.Scenario, got {type(scenario).__name__}")
+    if isinstance(scenario, Scenario):
+        setups: dict[str, Scenario] = {"": scenario}
+    elif isinstance(scenario, Mapping) and scenario and all(isinstance(v, Scenario) for v in scenario.values()):
+        setups = {}
+        for label, s in scenario.items():
+            if not (isinstance(label, str) and label.isidentifier()):
+                raise ParameterError(f"scenario: the label {label!r} violates the rule: a Python identifier")
+            if type(s.controller) is not type(next(iter(scenario.values())).controller):
+                raise ParameterError(f"scenario[{label!r}]: every set-up must use the same law type")
+            setups[label] = s
+    else:
+        raise ParameterError(
+            f"scenario must be a landing.scenarios.Scenario or a dict of them by label, got {type(scenario).__name__}")
+    first = next(iter(setups.values()))
     if optimizer != "cma":
         raise ParameterError(f"optimizer = {optimizer!r} is not one of ('cma',)")
     try:
@@ -625,12 +656,18 @@ def tune(
         raise ParameterError(f"seed = {seed!r} violates 0 <= seed < 2**32 (an integer)")
     if popsize is not None and (isinstance(popsize, bool) or not isinstance(popsize, (int, np.integer)) or popsize < 2):
         raise ParameterError(f"popsize = {popsize!r} violates popsize an integer >= 2")
-    if not (isinstance(sigma0, (int, float)) and 0 < sigma0 <= 1):
+    if isinstance(sigma0, bool) or not (isinstance(sigma0, (int, float)) and 0 < sigma0 <= 1):
         raise ParameterError(f"sigma0 = {sigma0!r} violates 0 < sigma0 <= 1")
-    specs = _parse_gains(gains, scenario.controller)
+    specs = _parse_gains(gains, first.controller)
+    mss = isinstance(first.controller, controllers.FixedTimeMSS)
 
-    metric_names = _probe_metric_names(scenario)
-    bound_names = BOUND_NAMES if isinstance(scenario.controller, controllers.FixedTimeMSS) else ()
+    metric_names: list[str] = []
+    bound_names: list[str] = list(BOUND_NAMES) if mss else []
+    for label, s in setups.items():
+        prefix = f"{label}." if label else ""
+        metric_names += [prefix + m for m in _probe_metric_names(s)]
+        if mss and label:
+            bound_names += [prefix + b for b in BOUND_NAMES]
     objs_in = list(objective) if isinstance(objective, (list, tuple)) else [objective]
     if not objs_in:
         raise ParameterError("objective = [] must name at least one objective")
@@ -641,11 +678,11 @@ def tune(
         constraints = [constraints]  # type: ignore[list-item]
     cons = [(_Callable(c, "constraint") if callable(c) else Expression(c, metric_names, bound_names, "constraint"))
             for c in constraints]
-    need_bounds = any(isinstance(e, _Callable) or (e.names & set(BOUND_NAMES)) for e in [*objs, *cons])
+    need_bounds = mss and any(isinstance(e, _Callable) or any(n.rpartition(".")[2] in BOUND_NAMES for n in e.names)
+                              for e in [*objs, *cons])
 
-    x0_cases = scenario.initial_states(int(cases), seed=int(seed))
-    per_candidate_batches = _is_random(scenario.disturbance)
-    opts = scenario.run_options(record_every=0)
+    K = int(cases)
+    x0s = {label: s.initial_states(K, seed=int(seed)) for label, s in setups.items()}
     dim = len(specs)
     rng = np.random.default_rng(int(seed))
     copts: dict[str, Any] = {
@@ -657,7 +694,7 @@ def tune(
         copts["popsize"] = int(popsize)
     if start is not None:
         u0 = [specs[j].encode(float(start[g.name])) if g.name in start else 0.5 for j, g in enumerate(specs)]
-        u0 = list(np.clip(u0, 0.0, 1.0))
+        u0 = [float(u) for u in np.clip(u0, 0.0, 1.0)]
     else:
         u0 = [0.5] * dim
     if dim == 1:
@@ -679,14 +716,13 @@ def tune(
     stop = "budget"
     t0 = time.perf_counter()
     if progress is None:
-        progress = budget * cases * scenario.t_final / scenario.dt > 2e8
+        progress = budget * K * sum(s.t_final / s.dt for s in setups.values()) > 2e8
     bar = None
     if progress:
         from landing._progress import ProgressBar
 
-        bar = ProgressBar(int(budget), label=f"tuning {scenario.name}")
+        bar = ProgressBar(int(budget), label=f"tuning {first.name}")
         bar._bar.unit = "candidate"
-    K = int(cases)
     done = 0
     g = 0
     try:
@@ -698,32 +734,35 @@ def tune(
                 warnings.simplefilter("ignore")
                 us = es.ask()
             p = len(us)
-            if done + p > budget:
-                # the last generation is cut to the budget; CMA-ES is not told about it
-                us_eval = us[: budget - done]
-            else:
-                us_eval = us
-            U = np.asarray(us_eval, dtype=float)[:, :dim]
+            # the last generation is cut to the budget; CMA-ES is not told about it
+            U = np.asarray(us[: budget - done], dtype=float)[:, :dim]
             G = np.column_stack([specs[j].decode(U[:, j]) for j in range(dim)])
             P = G.shape[0]
-            metrics_list = _evaluate(scenario, specs, G, x0_cases, K, int(seed), opts, threads,
-                                     per_candidate_batches)
-            law_p = scenario.controller.replace(**{s.name: G[:, j] for j, s in enumerate(specs)}) \
-                if need_bounds else None
-            bounds = _bounds_for(scenario, law_p) if need_bounds else None
+            per_setup = {label: _evaluate(s, specs, G, x0s[label], K, int(seed), threads)
+                         for label, s in setups.items()}
+            bounds: dict[str, np.ndarray] = {}
+            if need_bounds:
+                for label, s in setups.items():
+                    law_p = s.controller.replace(**{sp.name: G[:, j] for j, sp in enumerate(specs)})
+                    b = _bounds_for(s, law_p) or {}
+                    if label:
+                        bounds.update({f"{label}.{k}": v for k, v in b.items()})
+                    if not bounds.keys() & set(BOUND_NAMES):
+                        bounds.update(b)
             o = np.full((P, len(objs)), np.nan)
             c = np.full((P, len(cons)), np.nan)
             div = np.zeros(P)
             viol = np.zeros(P)
             for i in range(P):
-                m = metrics_list[i]
-                b_i = None if bounds is None else {k: float(v[i]) for k, v in bounds.items()}
-                env: dict[str, Any] = dict(m.items())
-                if b_i is not None:
+                env: dict[str, Any] = {}
+                for label, ms in per_setup.items():
+                    env.update({(f"{label}.{k}" if label else k): v for k, v in ms[i].items()})
+                b_i = {k: float(v[i]) for k, v in bounds.items()} if need_bounds else None
+                if b_i:
                     env.update(b_i)
-                env["__metrics__"] = m
+                env["__metrics__"] = per_setup[""][i] if "" in per_setup else {k: v[i] for k, v in per_setup.items()}
                 env["__bounds__"] = b_i
-                div[i] = float(np.mean(m["diverged"]))
+                div[i] = float(np.mean(np.concatenate([ms[i]["diverged"] for ms in per_setup.values()])))
                 for j, e in enumerate(objs):
                     o[i, j] = e.value(env)
                     if not math.isfinite(o[i, j]):
@@ -760,7 +799,7 @@ def tune(
     if not xs:
         if interrupted:
             raise KeyboardInterrupt("tuning interrupted before its first generation completed")
-        raise ParameterError(f"budget = {budget} gave no evaluation")
+        raise ParameterError(f"budget = {budget} gave no evaluation")  # pragma: no cover
     X = np.vstack(xs)
     O = np.vstack(ov)
     C = np.vstack(cv) if cons else np.zeros((X.shape[0], 0))
@@ -779,26 +818,27 @@ def tune(
         else:
             best = int(np.lexsort((np.arange(X.shape[0]), V))[0])
     return TuneResult(
-        base=scenario, gains=specs, objectives=tuple(e.text for e in objs),
+        base=first, gains=specs, objectives=tuple(e.text for e in objs),
         constraints=tuple(e.text for e in cons), seed=int(seed), cases=K, budget=int(budget), popsize=lam,
         x=X, generation=np.concatenate(gens), objective_values=O, constraint_values=C,
         diverged=np.concatenate(dv), violation=V, feasible=F, best=best, front=front,
         interrupted=interrupted, stop=stop, elapsed=time.perf_counter() - t0,
+        setups={k: v for k, v in setups.items() if k},
     )
 
 
 def _evaluate(scenario: Scenario, specs: tuple[GainSpec, ...], G: np.ndarray, x0_cases: np.ndarray, K: int,
-              seed: int, opts: dict[str, Any], threads: Optional[int], per_candidate: bool) -> list[Metrics]:
-    """Every candidate (row of G) on the K cases; their metrics, one Metrics per candidate."""
+              seed: int, threads: Optional[int]) -> list[Metrics]:
+    """Every candidate (row of G) on the K cases of one set-up: one Metrics per candidate."""
     P = G.shape[0]
+    opts = scenario.run_options(record_every=0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DivergenceWarning)
-        if per_candidate:
+        if _is_random(scenario.disturbance):
             out = []
             for i in range(P):
                 law = scenario.controller.replace(**{s.name: float(G[i, j]) for j, s in enumerate(specs)})
-                res = _run(scenario, law, x0_cases, seed, opts, threads)
-                out.append(res.metrics)
+                out.append(_run(scenario, law, x0_cases, seed, opts, threads).metrics)
             return out
         law = scenario.controller.replace(
             **{s.name: _per_case(np.repeat(G[:, j], K), _column_shape(scenario.controller, s.name))
