@@ -241,3 +241,33 @@ def test_write_and_plots(constrained, tmp_path):
     assert fig.axes
     fig = landing.plots.tuning_front(constrained)
     assert fig.axes
+
+
+def test_command_line(tmp_path, capsys):
+    from landing.cli import main
+
+    config = tmp_path / "di.toml"
+    config.write_text(_scenario().to_toml() + """
+[tune]
+objective = "mean(iae)"
+constraints = ["max(peak_command) <= 0.4"]
+cases = 1
+budget = 120
+seed = 3
+
+[tune.gains]
+lambda_ = [0.2, 8.0, "log"]
+k = [0.2, 8.0, "log"]
+""")
+    out = tmp_path / "out"
+    assert main(["tune", str(config), "--out", str(out), "--no-progress", "--threads", "1"]) == 0
+    text = capsys.readouterr().out
+    assert "best gains: lambda_=" in text
+    tuned = landing.scenarios.Scenario.load(out / "tuned.toml")
+    assert tuned.controller.lambda_ * tuned.controller.k * E0 <= U * (1 + 1e-9)
+    assert tuned.controller.lambda_ == pytest.approx(LAM_STAR, rel=0.1)
+    assert any(out.glob("evaluations.*"))
+    # a bad [tune] key is refused as bad input (exit code 2) naming the file and the key
+    config.write_text(config.read_text().replace("budget = 120", "budgt = 120"))
+    assert main(["tune", str(config), "--no-progress"]) == 2
+    assert "tune.budgt" in capsys.readouterr().err

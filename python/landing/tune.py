@@ -723,6 +723,7 @@ def tune(
 
         bar = ProgressBar(int(budget), label=f"tuning {first.name}")
         bar._bar.unit = "candidate"
+        bar._bar.refresh()
     done = 0
     g = 0
     try:
