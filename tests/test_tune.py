@@ -78,6 +78,13 @@ def test_finds_a_one_gain_optimum():
     assert r.objective_values[r.best, 0] == pytest.approx(0.125, rel=5e-3)
 
 
+def test_the_start_is_evaluated_first():
+    r = landing.tune(_scenario(), GAINS, "mean(iae)", budget=12, seed=3, threads=1, popsize=6,
+                     start={"lambda_": 1.5, "k": 1.2})
+    np.testing.assert_allclose(r.x[0], [1.5, 1.2], rtol=1e-12)
+    assert r.objective_values[0, 0] == pytest.approx(E0 * (1 / 1.5 + 1 / 1.2), rel=5e-3)
+
+
 def test_constraints_are_honoured(constrained):
     r = constrained
     lam, k = r.x[:, 0], r.x[:, 1]

@@ -2,9 +2,16 @@
 
 Each generation's population of candidate gain sets runs as one batch (per-case gains): every
 candidate on the same K dispersed cases (common random numbers: the same initial states and the
-same random-stream case indices for every candidate). Objectives and constraints are written as
-small expressions over the per-case metrics (:class:`landing.Metrics` columns), their aggregates
-and the theory's bounds, or as Python callables.
+same random-stream case indices for every candidate; with a random disturbance, whose streams
+the engine keys by the case's index in its batch, each candidate runs as its own batch of the K
+cases instead). Several set-ups may share the gains (``{"nominal": s1, "storm": s2}``: one batch
+per set-up and generation; expressions name ``nominal.fuel_used``). Objectives and constraints
+are written as small expressions over the per-case metrics (:class:`landing.Metrics` columns),
+their aggregates and the theory's bounds, or as Python callables.
+
+The search runs in the unit cube, one coordinate per gain mapped linearly or log10-linearly onto
+its (low, high), kept inside by CMA-ES's boundary transformation; the seed drives CMA-ES's
+normal draws through a ``numpy.random.Generator`` of its own (no global state).
 
 The expression grammar (parsed with :mod:`ast`, then walked node by node; nothing is ``eval``-ed):
 
@@ -27,10 +34,10 @@ to one number each (``"max(peak_command) <= 40e3"``, ``"abs(t1 - 74.578) <= 1e-3
 Constraint handling: Deb's feasibility rules. A candidate is feasible when every constraint
 holds, no case diverged and its objectives are numbers. Within a generation feasible candidates
 rank before infeasible ones, feasible ones by objective (by Pareto layer, then crowding, for
-several objectives), infeasible ones by their total violation: the sum over constraints of
-``max(0, lhs - rhs) / max(|rhs|, 1e-300)`` (rhs = 0: the absolute amount), plus 1 per unit
-fraction of diverged cases and 1e6 per NaN constraint or objective. CMA-ES only uses the
-ranks, which are what it is told.
+several objectives), infeasible ones by their total violation: the sum over the broken constraints of the margin
+(``lhs - rhs`` for ``<``, ``<=``; ``rhs - lhs`` for ``>``, ``>=``) over ``|rhs|`` (1 where rhs
+is 0), plus the fraction of diverged cases, plus 1e6 per NaN constraint or objective. CMA-ES
+only uses the ranks, which are what it is told.
 
 Several objectives: CMA-ES ranks by non-dominated sorting; the result's front is the Pareto
 front of all feasible evaluations, not the output of a dedicated multi-objective algorithm.
@@ -617,7 +624,8 @@ def tune(
     optimizer : ``"cma"`` (the only one).
     popsize : candidates per generation (default: CMA-ES's 4 + 3 ln(number of gains)).
     sigma0 : initial step in the unit coordinates.
-    start : the initial mean's gains (default: the middle of the box).
+    start : the initial mean's gains (default: the middle of the box); the start itself is
+        one of the first generation's candidates.
     threads : worker threads of the batches (default: all cores).
     progress : show progress on stderr (default: when the run is long).
 
@@ -704,6 +712,9 @@ def tune(
         warnings.simplefilter("ignore")
         es = cma.CMAEvolutionStrategy(u0, float(sigma0), copts)
     lam = int(es.popsize)
+    if start is not None:
+        # the start itself is evaluated in the first generation (CMA-ES's injection)
+        es.inject([np.asarray(u0, dtype=float)], force=True)
 
     xs: list[np.ndarray] = []
     gens: list[np.ndarray] = []
