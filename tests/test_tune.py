@@ -129,6 +129,13 @@ def test_same_seed_same_result_whatever_the_threads():
     assert a.best == b.best and a.best_gains == b.best_gains
     c = landing.tune(s, GAINS, "mean(iae)", ["max(peak_command) <= 0.6"], threads=2, cases=4, budget=24, seed=12)
     assert not np.array_equal(a.x, c.x)
+    # without the noise a generation is one batch of popsize x K cases: the same again
+    quiet = s.replace(disturbance=None)
+    a = landing.tune(quiet, GAINS, "mean(iae)", ["max(peak_command) <= 0.6"], threads=1, **kw)
+    b = landing.tune(quiet, GAINS, "mean(iae)", ["max(peak_command) <= 0.6"], threads=2, **kw)
+    assert np.array_equal(a.x, b.x)
+    assert np.array_equal(a.objective_values, b.objective_values)
+    assert a.best_gains == b.best_gains
 
 
 def test_common_random_numbers_in_one_batch_and_per_candidate():
@@ -278,3 +285,17 @@ k = [0.2, 8.0, "log"]
     config.write_text(config.read_text().replace("budget = 120", "budgt = 120"))
     assert main(["tune", str(config), "--no-progress"]) == 2
     assert "tune.budgt" in capsys.readouterr().err
+
+
+def test_write_csv_without_pyarrow(constrained, tmp_path, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "pyarrow", None)  # import pyarrow raises ImportError
+    files = constrained.write(tmp_path)
+    csv = tmp_path / "evaluations.csv"
+    assert csv in files
+    rows = np.loadtxt(csv, delimiter=",", skiprows=1)
+    # generation, two gains, one objective, one constraint, diverged, violation, feasible
+    assert rows.shape == (constrained.n_evaluations, 8)
+    header = csv.read_text().splitlines()[0].split(",")
+    np.testing.assert_array_equal(rows[:, header.index("lambda_")], constrained.x[:, 0])
