@@ -34,6 +34,7 @@ def kernel_levels() -> list[str]:
 from landing import plots, scenarios, theory
 from landing.montecarlo import MonteCarloResult, monte_carlo
 from landing.store import load
+from landing.tune import TuneResult, tune
 
 __all__ = [
     "__version__",
@@ -51,6 +52,8 @@ __all__ = [
     "monte_carlo",
     "load",
     "MonteCarloResult",
+    "tune",
+    "TuneResult",
     "simulate",
     "simulate_batch",
     "kernel_levels",

@@ -6,6 +6,7 @@
     landing mc SCENARIO --cases N        a Monte Carlo campaign: report and figures
     landing report DIR                   a stored campaign's report and figures
     landing bounds SCENARIO              the theory's bounds for the scenario's law
+    landing tune CONFIG --out DIR        search a law's gains (a scenario file with a [tune] table)
 
 SCENARIO is a preset name or a TOML file. Exit codes: 0 success, 2 bad input (a bad file, key,
 value or argument), 1 any other failure. Errors are one line; ``--traceback`` shows the rest.
@@ -118,6 +119,78 @@ def cmd_bounds(args: argparse.Namespace) -> int:
     return EXIT_BAD_INPUT
 
 
+def _tune_config(path: str) -> tuple[Any, dict[str, Any]]:
+    """A tuning file: a scenario TOML file with a ``[tune]`` table (gains, objective,
+    constraints, cases, budget, seed, popsize, sigma0), or a ``[tune]`` table alone whose
+    ``scenario`` key names a preset or another scenario file."""
+    from landing.scenario_files import FileError, scenario_from_dict, tomllib
+    from landing.scenarios import Scenario
+
+    file = Path(path)
+    if not file.exists():
+        raise FileError(f"{path}: no such file")
+    try:
+        d = tomllib.loads(file.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise FileError(f"{path}: not valid TOML ({exc})") from None
+    spec = d.pop("tune", None)
+    if not isinstance(spec, dict):
+        raise FileError(f"{path}: missing the [tune] table (gains, objective, constraints, cases, budget, seed)")
+    allowed = {"scenario", "gains", "objective", "constraints", "cases", "budget", "seed", "popsize", "sigma0"}
+    for key in spec:
+        if key not in allowed:
+            raise FileError(f"{path}: tune.{key}: unknown key (the [tune] table takes {sorted(allowed)})")
+    if "scenario" in spec:
+        if d:
+            raise FileError(f"{path}: tune.scenario = {spec['scenario']!r} and scenario keys "
+                            f"({', '.join(sorted(d))}) both given; use one")
+        ref = str(spec.pop("scenario"))
+        local = file.parent / ref
+        scenario = Scenario.load(str(local) if local.exists() else ref)
+    else:
+        scenario = scenario_from_dict(d, str(file))
+    for key in ("gains", "objective"):
+        if key not in spec:
+            raise FileError(f"{path}: tune.{key} is missing")
+    gains = spec["gains"]
+    if not isinstance(gains, dict):
+        raise FileError(f"{path}: tune.gains = {gains!r} must be a table name = [low, high] or [low, high, \"log\"]")
+    kwargs: dict[str, Any] = {
+        "gains": {k: tuple(v) if isinstance(v, list) else v for k, v in gains.items()},
+        "objective": spec["objective"],
+        "constraints": spec.get("constraints", []),
+    }
+    for key in ("cases", "budget", "seed", "popsize", "sigma0"):
+        if key in spec:
+            kwargs[key] = spec[key]
+    return scenario, kwargs
+
+
+def cmd_tune(args: argparse.Namespace) -> int:
+    import landing
+
+    scenario, kwargs = _tune_config(args.config)
+    if args.budget is not None:
+        kwargs["budget"] = args.budget
+    if args.seed is not None:
+        kwargs["seed"] = args.seed
+    print(f"tuning {scenario.name}: {', '.join(kwargs['gains'])} for {kwargs['objective']}")
+    result = landing.tune(scenario, **kwargs, threads=args.threads, progress=not args.no_progress)
+    print(result)
+    folder = Path(args.out or f"tuning/{scenario.name}")
+    written = result.write(folder)
+    if args.figures:
+        from landing import plots
+
+        written += plots.save_figures(
+            {"convergence": plots.tuning_convergence(result), "front": plots.tuning_front(result)}, folder)
+    print(f"written to {folder}/: " + ", ".join(p.name for p in written))
+    if result.interrupted:
+        print("landing: interrupted; the result above is the best so far", file=sys.stderr)
+        return 130
+    return EXIT_OK
+
+
 def parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(
         prog="landing",
@@ -160,6 +233,16 @@ def parser() -> argparse.ArgumentParser:
     p = sub.add_parser("bounds", help="the theory's bounds for a scenario's law")
     p.add_argument("scenario", metavar="SCENARIO")
     p.set_defaults(run=cmd_bounds)
+
+    p = sub.add_parser("tune", help="search a law's gains (a scenario file with a [tune] table)")
+    p.add_argument("config", metavar="CONFIG")
+    p.add_argument("--out", default=None, help="folder for the result (default tuning/NAME)")
+    p.add_argument("--budget", type=int, default=None, help="override tune.budget")
+    p.add_argument("--seed", type=int, default=None, help="override tune.seed")
+    p.add_argument("--threads", type=int, default=None)
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--figures", action="store_true", help="also write the convergence and front figures")
+    p.set_defaults(run=cmd_tune)
     return ap
 
 
