@@ -549,6 +549,7 @@ def masses(results: Labelled, read_at: Optional[Mapping[str, float]] = None):
     ax.set_ylabel("mass (kg)")
     ax.set_title("Mass, fuel spent to landing")
     ax.legend(fontsize=8)
+    return fig
 
 
 # --- Gain tuning (landing.tune) ----------------------------------------------------------------
