@@ -218,26 +218,7 @@ def mass(result: Result, max_cases: int = 300):
 
 def save_all(result: Result, folder: Union[str, Path], dpi: int = 120) -> list[Path]:
     """Write the standard figures of a Mars campaign as PNG files into ``folder``."""
-    out = Path(folder)
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
-    makers = {
-        "trajectories_3d": trajectories_3d,
-        "landing_sites": landing_sites,
-        "final_velocities": final_velocities,
-        "positions": positions,
-        "thrust": thrust,
-        "mass": mass,
-    }
-    res, _ = _parts(result)
-    if {"s1", "s2"} <= set(res.diagnostics):
-        makers["sliding_variables"] = sliding_variables
-    for name, make in makers.items():
-        fig = make(result)
-        path = out / f"{name}.png"
-        fig.savefig(path, dpi=dpi)
-        written.append(path)
-    return written
+    return save_figures(standard_figures(result), folder, dpi=dpi)
 
 
 def standard_figures(result: Result, plant: Any = None, reference: Any = None) -> dict[str, Any]:

@@ -189,122 +189,81 @@ pub fn simulate_batch<'py>(
     kernel: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
     guard(move || {
-        simulate_batch_unguarded(
+        let integ = IntegratorKind::from_name(integrator).ok_or_else(|| {
+            InputError::value(format!(
+                "integrator = {integrator:?} is not one of {:?}",
+                IntegratorKind::NAMES
+            ))
+        })?;
+        if substeps < 1 {
+            return Err(
+                InputError::value(format!("substeps = {substeps} violates substeps >= 1")).into(),
+            );
+        }
+        within_cap("substeps", substeps as u64, "max_substeps", MAX_SUBSTEPS)?;
+        if record_every < 0 {
+            return Err(InputError::value(format!(
+                "record_every = {record_every} violates record_every >= 0"
+            ))
+            .into());
+        }
+        let threads = match threads {
+            None => None,
+            Some(k) if k >= 1 => {
+                within_cap("threads", k as u64, "max_threads", MAX_THREADS)?;
+                Some(k as usize)
+            }
+            Some(k) => {
+                return Err(
+                    InputError::value(format!("threads = {k} violates threads >= 1")).into(),
+                );
+            }
+        };
+        let level = kernel
+            .map(Level::from_name)
+            .transpose()
+            .map_err(|e| InputError::value(format!("kernel: {e}")))?;
+        let cfg = SimConfig::new(t_final, dt, substeps as u32, record_every as u64, seed)
+            .map_err(InputError::from)?
+            .with_first_case(first_case)
+            .with_integrator(integ)
+            .with_settle(if settle_relative {
+                Tolerance::Relative(settle_tolerance)
+            } else {
+                Tolerance::Absolute(settle_tolerance)
+            })
+            .map_err(InputError::from)?;
+        let cfg = match chatter_cutoff {
+            None => cfg,
+            Some(hz) => cfg.with_chatter_cutoff(hz).map_err(InputError::from)?,
+        };
+        let shape = x0.shape();
+        let n = shape[0];
+        let (names, ..) = plant.plants.visit(crate::plants::Names);
+        if shape[1] != names.len() || n == 0 {
+            return Err(InputError::value(format!(
+                "x0 has shape ({}, {}); this plant takes (N, {}) with N >= 1 (state {names:?})",
+                shape[0],
+                shape[1],
+                names.len()
+            ))
+            .into());
+        }
+        within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES)?;
+        check_cases(&format!("plant ({})", plant.kind), &plant.cases, n)?;
+        plant.plants.visit(Simulate {
             py,
-            plant,
-            controller,
-            x0,
-            t_final,
-            dt,
-            integrator,
-            substeps,
-            reference,
-            disturbance,
-            record_every,
-            seed,
-            first_case,
-            settle_tolerance,
-            settle_relative,
-            chatter_cutoff,
-            threads,
-            kernel,
-        )
-    })
-}
-
-#[allow(clippy::too_many_arguments)]
-fn simulate_batch_unguarded<'py>(
-    py: Python<'py>,
-    plant: &Plant,
-    controller: &Law,
-    x0: PyReadonlyArray2<'py, f64>,
-    t_final: f64,
-    dt: f64,
-    integrator: &str,
-    substeps: i64,
-    reference: Option<PyRef<'py, Reference>>,
-    disturbance: Option<PyRef<'py, Disturbance>>,
-    record_every: i64,
-    seed: u64,
-    first_case: u64,
-    settle_tolerance: f64,
-    settle_relative: bool,
-    chatter_cutoff: Option<f64>,
-    threads: Option<i64>,
-    kernel: Option<&str>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let integ = IntegratorKind::from_name(integrator).ok_or_else(|| {
-        InputError::value(format!(
-            "integrator = {integrator:?} is not one of {:?}",
-            IntegratorKind::NAMES
-        ))
-    })?;
-    if substeps < 1 {
-        return Err(
-            InputError::value(format!("substeps = {substeps} violates substeps >= 1")).into(),
-        );
-    }
-    within_cap("substeps", substeps as u64, "max_substeps", MAX_SUBSTEPS)?;
-    if record_every < 0 {
-        return Err(InputError::value(format!(
-            "record_every = {record_every} violates record_every >= 0"
-        ))
-        .into());
-    }
-    let threads = match threads {
-        None => None,
-        Some(k) if k >= 1 => {
-            within_cap("threads", k as u64, "max_threads", MAX_THREADS)?;
-            Some(k as usize)
-        }
-        Some(k) => {
-            return Err(InputError::value(format!("threads = {k} violates threads >= 1")).into());
-        }
-    };
-    let level = kernel
-        .map(Level::from_name)
-        .transpose()
-        .map_err(|e| InputError::value(format!("kernel: {e}")))?;
-    let cfg = SimConfig::new(t_final, dt, substeps as u32, record_every as u64, seed)
-        .map_err(InputError::from)?
-        .with_first_case(first_case)
-        .with_integrator(integ)
-        .with_settle(if settle_relative {
-            Tolerance::Relative(settle_tolerance)
-        } else {
-            Tolerance::Absolute(settle_tolerance)
+            law: controller,
+            reference: reference.as_deref(),
+            disturbance: disturbance.as_deref(),
+            x0: x0.as_slice()?,
+            n,
+            cfg,
+            options: RunOptions {
+                threads,
+                level,
+                cancel: None,
+            },
         })
-        .map_err(InputError::from)?;
-    let cfg = match chatter_cutoff {
-        None => cfg,
-        Some(hz) => cfg.with_chatter_cutoff(hz).map_err(InputError::from)?,
-    };
-    let shape = x0.shape();
-    let n = shape[0];
-    let (names, ..) = plant.plants.visit(crate::plants::Names);
-    if shape[1] != names.len() || n == 0 {
-        return Err(InputError::value(format!(
-            "x0 has shape ({}, {}); this plant takes (N, {}) with N >= 1 (state {names:?})",
-            shape[0],
-            shape[1],
-            names.len()
-        ))
-        .into());
-    }
-    within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES)?;
-    check_cases(&format!("plant ({})", plant.kind), &plant.cases, n)?;
-    plant.plants.visit(Simulate {
-        py,
-        law: controller,
-        reference: reference.as_deref(),
-        disturbance: disturbance.as_deref(),
-        x0: x0.as_slice()?,
-        n,
-        cfg,
-        options: RunOptions {
-            threads,
-            level,
-            cancel: None,
-        },
     })
 }
