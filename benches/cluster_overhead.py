@@ -1,9 +1,11 @@
 """Scheduling overhead of a Dask cluster (BENCHMARKS.md, "Campaigns on a Dask cluster").
 
-The same campaign run in this process (``landing.monte_carlo``, one batch on all the cores)
-and on a ``distributed.LocalCluster`` of local worker processes (one per core, one thread
-each, ``threads=1`` per chunk) for several chunk sizes: the cluster's extra time is what
-scheduling, sending the tasks and gathering the chunks cost. The campaign: the Mars Monte Carlo
+The same campaign run in this process (``landing.monte_carlo``, one batch on all the cores,
+and the same cut in chunks) and on a ``distributed.LocalCluster`` of local worker processes
+(one per core, one thread each, ``threads=1`` per chunk) for several chunk sizes: the
+cluster's extra time over the in-process run is what scheduling, sending the tasks and
+gathering the chunks cost (and, for small chunks, the per-batch cost of the core itself, which
+the in-process chunked rows show alone). The campaign: the Mars Monte Carlo
 preset over 10 s at dt = 1 ms (10^4 steps per case), final states and metrics only
 (record_every = 0), so that what is measured is the scheduling, not the transfer of
 trajectories.
@@ -12,7 +14,7 @@ The runs are interleaved (every configuration once per round, the rounds repeate
 medians reported, since the machine may be shared. The cluster's start is not timed; a warm-up
 round is run and discarded.
 
-    python benches/cluster_overhead.py [--cases 2000] [--chunks 10 50 200 1000] [--repeats 5]
+    python benches/cluster_overhead.py [--cases 2000] [--chunks 10 25 50 100 250 1000] [--repeats 5]
 """
 
 from __future__ import annotations
@@ -39,7 +41,7 @@ def run(scenario: Any, n: int, chunk: Optional[int], client: Any, threads: int) 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--cases", type=int, default=2000)
-    ap.add_argument("--chunks", type=int, nargs="+", default=[10, 50, 200, 1000])
+    ap.add_argument("--chunks", type=int, nargs="+", default=[10, 25, 50, 100, 250, 1000])
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--workers", type=int, default=os.cpu_count())
     args = ap.parse_args()
@@ -53,21 +55,23 @@ def main() -> None:
     print(f"{platform.platform()}, {cores} cores, landing {landing.__version__}, distributed "
           f"{distributed.__version__}")
     print(f"campaign: mars_monte_carlo, {args.cases} cases x {int(round(T_FINAL / DT))} steps, record_every=0")
-    configs: list[tuple[str, Optional[int]]] = [("in-process", None)] + [("cluster", c) for c in args.chunks]
+    configs: list[tuple[str, Optional[int]]] = [("in-process", None)]
+    for c in args.chunks:
+        configs += [("in-process", c), ("cluster", c)]
     times: dict[tuple[str, Optional[int]], list[float]] = {c: [] for c in configs}
     with distributed.LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+                                  dashboard_address=":0") as cluster, distributed.Client(cluster) as client:
         for rnd in range(args.repeats + 1):
             for kind, chunk in configs:
                 if kind == "in-process":
-                    seconds = run(scenario, args.cases, None, None, cores)
+                    seconds = run(scenario, args.cases, chunk, None, cores)
                 else:
                     seconds = run(scenario, args.cases, chunk, client, 1)
                 if rnd:  # round 0 warms up
                     times[(kind, chunk)].append(seconds)
             print(f"round {rnd}: " + ", ".join(f"{k}{'' if c is None else f' {c}'} {t[-1]:.2f} s"
                                               for (k, c), t in times.items() if t and rnd))
-    base = statistics.median(times[("in-process", None)])
+    base = statistics.median(times[("in-process", None)])  # one batch
     print()
     print(f"| run | cases per chunk | chunks | median (s) | cases/s | overhead vs in-process |")
     print("|---|---:|---:|---:|---:|---:|")
@@ -76,6 +80,7 @@ def main() -> None:
         n_chunks = 1 if chunk is None else -(-args.cases // chunk)
         print(f"| {kind} | {args.cases if chunk is None else chunk} | {n_chunks} | {med:.2f} | "
               f"{args.cases / med:,.0f} | {'' if chunk is None else f'{100 * (med / base - 1):+.1f} %'} |")
+    print(f"\nsteps per case: {int(round(T_FINAL / DT))}; the overhead is against the in-process run in one batch")
     print(f"\nall times (s): " + "; ".join(f"{k}{'' if c is None else f' {c}'}: "
                                           + ", ".join(f"{x:.2f}" for x in t) for (k, c), t in times.items()))
 

@@ -32,6 +32,7 @@ from __future__ import annotations
 import hashlib
 import importlib
 import pickle
+import time
 import uuid
 import warnings
 from typing import TYPE_CHECKING, Any, Optional
@@ -78,6 +79,7 @@ def connect(address: str) -> Any:
 
 
 def check_client(client: Any) -> Any:
+    """The ``distributed`` module, once ``client`` is known to be one of its clients."""
     distributed = require_dask()
     if not isinstance(client, distributed.Client):
         raise ParameterTypeError(f"client must be a distributed.Client, got {type(client).__name__}")
@@ -177,12 +179,25 @@ def run_chunk(
 # --- the client's side -----------------------------------------------------------------------------
 
 
-def _in_flight(client: Any) -> int:
-    try:
-        threads = sum(client.nthreads().values())
-    except Exception:  # noqa: BLE001 - a scheduler briefly unreachable: keep going with the minimum
-        threads = 0
-    return max(MIN_IN_FLIGHT, IN_FLIGHT_PER_THREAD * threads)
+class _InFlight:
+    """How many chunks to keep in flight: twice the cluster's threads (at least MIN_IN_FLIGHT),
+    asked of the scheduler at most once a second (workers come and go)."""
+
+    def __init__(self, client: Any):
+        self.client = client
+        self.asked = -float("inf")
+        self.value = MIN_IN_FLIGHT
+
+    def __call__(self) -> int:
+        now = time.monotonic()
+        if now - self.asked >= 1.0:
+            self.asked = now
+            try:
+                threads = sum(self.client.nthreads().values())
+            except Exception:  # noqa: BLE001 - a scheduler briefly unreachable: keep the last value
+                return self.value
+            self.value = max(MIN_IN_FLIGHT, IN_FLIGHT_PER_THREAD * threads)
+        return self.value
 
 
 def run_campaign(
@@ -234,8 +249,9 @@ def run_campaign(
         outstanding[future.key] = future
         return future
 
+    in_flight = _InFlight(client)
     pending = iter(todo)
-    first = [submit(c) for _, c in zip(range(_in_flight(client)), pending)]
+    first = [submit(c) for _, c in zip(range(in_flight()), pending)]
     completed = distributed.as_completed(first)
     del first
     try:
@@ -252,7 +268,7 @@ def run_campaign(
             del part, future
             if bar:
                 bar.update(stop - start)
-            for _ in range(max(0, _in_flight(client) - len(outstanding))):
+            for _ in range(max(0, in_flight() - len(outstanding))):
                 chunk = next(pending, None)
                 if chunk is None:
                     break
