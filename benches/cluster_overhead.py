@@ -38,12 +38,34 @@ def run(scenario: Any, n: int, chunk: Optional[int], client: Any, threads: int) 
     return time.perf_counter() - t0
 
 
+def fixed_cost(client: Any, cores: int, repeats: int) -> None:
+    """What a chunk costs whatever its work: 2000 cases of 10 steps each, in chunks of 10 cases
+    (200 chunks), in process and on the cluster; the time per chunk is almost all fixed cost."""
+    import landing
+
+    tiny = landing.scenarios.mars_monte_carlo(t_final=10 * DT, dt=DT)
+    n, chunk = 2000, 10
+    rows: dict[str, list[float]] = {"in-process": [], "cluster": []}
+    for rnd in range(repeats + 1):
+        a = run(tiny, n, chunk, None, cores)
+        b = run(tiny, n, chunk, client, 1)
+        if rnd:
+            rows["in-process"].append(a)
+            rows["cluster"].append(b)
+    print(f"\nfixed cost per chunk ({n} cases of 10 steps in chunks of {chunk}, medians of {repeats}):")
+    for kind, t in rows.items():
+        med = statistics.median(t)
+        print(f"  {kind}: {med:.2f} s for {n // chunk} chunks, {1e3 * med / (n // chunk):.1f} ms per chunk "
+              f"(all: {', '.join(f'{x:.2f}' for x in t)})")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--cases", type=int, default=2000)
     ap.add_argument("--chunks", type=int, nargs="+", default=[10, 25, 50, 100, 250, 1000])
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--workers", type=int, default=os.cpu_count())
+    ap.add_argument("--fixed-cost-only", action="store_true", help="only the per-chunk fixed cost")
     args = ap.parse_args()
 
     import distributed
@@ -61,6 +83,9 @@ def main() -> None:
     times: dict[tuple[str, Optional[int]], list[float]] = {c: [] for c in configs}
     with distributed.LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, host="127.0.0.1",
                                   dashboard_address=":0") as cluster, distributed.Client(cluster) as client:
+        fixed_cost(client, cores, args.repeats)
+        if args.fixed_cost_only:
+            return
         for rnd in range(args.repeats + 1):
             for kind, chunk in configs:
                 if kind == "in-process":

@@ -8,7 +8,8 @@ How a campaign runs on a cluster:
   core with ``simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads)``.
   Case i depends only on (seed, i), so the result is the local run's bit for bit whatever the
   number of workers, their order of completion or the chunk size.
-- The scenario travels as its TOML text (a few kB in each task, cached on the worker), which
+- The scenario travels as its TOML text (a few kB in each task, cached on the worker; not
+  scattered once, since scattered data is lost with the worker holding it), which
   reads back to the same scenario; a scenario that TOML cannot describe (a law or plant built
   in code) travels pickled. Each task also carries its slice of the initial states, computed
   once by the client.
