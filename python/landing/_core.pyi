@@ -13,6 +13,10 @@ CONTROLLER_KINDS: list[str]
 GRAVITY_KINDS: list[str]
 KERNEL_LEVELS: list[str]
 GRAVITATIONAL_CONSTANT: float
+#: The caps of landing_core::limits by name (docs/parameters.md, "Limits").
+LIMITS: dict[str, int]
+DIVERGENCE_REASONS: list[str]
+MAX_COMMAND: float
 
 Table = dict[str, Any]
 Array = npt.NDArray[np.float64]
@@ -115,6 +119,9 @@ def simulate_batch(
 def kernel_levels() -> list[str]:
     """The instruction-set levels this CPU supports, lowest first."""
 
+def available_memory() -> Optional[int]:
+    """Bytes of memory a new allocation can count on (None where the system does not say)."""
+
 def default_kernel() -> str:
     """The level a batch runs at unless told otherwise."""
 
@@ -164,3 +171,6 @@ def fntsmc_bounds(
 ) -> dict[str, float]:
     """Sound fixed-time bounds of the seed-003 FNTSMC on one axis: ts, s_radius, td, e1_radius,
     inside_rate, t_inside, total."""
+
+def _panic_for_test() -> None:
+    """Test hook: panics inside a guarded entry point (raises SimulationError)."""

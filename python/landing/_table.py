@@ -15,22 +15,15 @@ from typing import Any, Callable, ClassVar, Sequence, Union
 
 import numpy as np
 
-from landing.errors import ParameterTypeError
+from landing._args import real_array
 
 ArrayLike = Union[float, Sequence[float], Sequence[Sequence[float]], np.ndarray]
 
 
 def as_float_array(owner: str, name: str, value: Any) -> np.ndarray:
-    """`value` as a float64 array, or a ParameterTypeError naming the parameter."""
-    if isinstance(value, (str, bytes)):
-        raise ParameterTypeError(f"{owner}: {name} must be a real number or an array of them, got {value!r}")
-    try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ParameterTypeError(
-            f"{owner}: {name} must be a real number or an array of them, got {value!r}"
-        ) from exc
-    return np.ascontiguousarray(arr)
+    """`value` as a float64 array, or a ParameterTypeError naming the parameter (bool, complex,
+    string and object values are refused rather than cast)."""
+    return real_array(name, value, owner=owner)
 
 
 class Table:

@@ -13,6 +13,8 @@ from typing import ClassVar
 import numpy as np
 
 from landing import _core
+from landing._args import integer
+from landing._limits import require_memory
 from landing._table import ArrayLike, Table
 
 __all__ = ["Dispersion", "Normal", "Uniform"]
@@ -31,8 +33,14 @@ class Dispersion(Table):
         return int(self._core.dim)  # type: ignore[attr-defined]
 
     def sample(self, n: int, seed: int = 0, first_case: int = 0) -> np.ndarray:
-        """Cases ``first_case .. first_case + n``, shape ``(n, dim)``."""
-        return self._core.sample(int(seed), int(first_case), int(n))  # type: ignore[attr-defined]
+        """Cases ``first_case .. first_case + n``, shape ``(n, dim)``. The memory the draws
+        need is checked first: a MemoryError states it if it cannot fit."""
+        owner = type(self).__name__
+        n = integer("n", n, minimum=0, cap="max_cases", owner=owner)
+        seed = integer("seed", seed, minimum=0, maximum=2**64 - 1, owner=owner)
+        first_case = integer("first_case", first_case, minimum=0, maximum=2**64 - 1 - n, owner=owner)
+        require_memory(f"{owner}.sample(n={n}): {n} x {self.dim} draws", 8 * n * self.dim)
+        return self._core.sample(seed, first_case, n)  # type: ignore[attr-defined]
 
 
 @dataclass(frozen=True, eq=False)

@@ -91,6 +91,12 @@ class Sum(Disturbance):
         return list(self.parts)
 
     def __add__(self, other: Disturbance) -> "Sum":
+        if not isinstance(other, Disturbance):
+            from landing.errors import ParameterTypeError
+
+            raise ParameterTypeError(
+                f"disturbance must be a landing.disturbances component or a list of them, got {other!r}"
+            )
         return Sum(self.parts + other.components())
 
     def __repr__(self) -> str:
@@ -108,8 +114,13 @@ def compiled(disturbance: DisturbanceLike) -> Union["_core.Disturbance", None]:
         return None
     if isinstance(disturbance, Disturbance):
         return disturbance._core  # type: ignore[attr-defined]
-    if isinstance(disturbance, (str, bytes)) or not hasattr(disturbance, "__iter__"):
-        raise ParameterTypeError(
-            f"disturbance must be a landing.disturbances component or a list of them, got {disturbance!r}"
-        )
-    return Sum(list(disturbance))._core
+    refused = ParameterTypeError(
+        f"disturbance must be a landing.disturbances component or a list of them, got {disturbance!r}"
+    )
+    if isinstance(disturbance, (str, bytes, dict)) or not hasattr(disturbance, "__iter__"):
+        raise refused
+    try:
+        parts = list(disturbance)
+    except TypeError:  # e.g. a 0-d array, iterable in type only
+        raise refused from None
+    return Sum(parts)._core

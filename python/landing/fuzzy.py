@@ -20,8 +20,9 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from landing import _core
-from landing._table import ArrayLike, Table, as_float_array
-from landing.errors import ParameterError
+from landing._args import choice, integer, pair, real, real_array, short
+from landing._table import ArrayLike, Table
+from landing.errors import ParameterError, ParameterTypeError
 
 __all__ = ["Variable", "Mamdani", "variable_rate_system", "SET_NAMES_5", "SET_NAMES_7"]
 
@@ -36,6 +37,32 @@ class Variable:
 
     universe: tuple[float, float]
     sets: Mapping[str, tuple]
+
+    def __post_init__(self) -> None:
+        u = pair("universe", self.universe, owner="Variable")
+        lo = real("universe[0]", u[0], owner="Variable")
+        hi = real("universe[1]", u[1], owner="Variable")
+        if not hi > lo:
+            raise ParameterError(f"Variable: universe = ({lo:g}, {hi:g}) violates lo < hi")
+        if not isinstance(self.sets, Mapping) or not self.sets:
+            raise ParameterTypeError(
+                f"Variable: sets must be a non-empty mapping name -> (shape, parameters...), got {short(self.sets)}"
+            )
+        for name, spec in self.sets.items():
+            if not isinstance(name, str):
+                raise ParameterTypeError(f"Variable: set names must be strings, got {short(name)}")
+            if isinstance(spec, (str, bytes)) or not isinstance(spec, (tuple, list)) or not spec:
+                raise ParameterTypeError(
+                    f"Variable: sets[{name!r}] must be ('triangle', a, b, c) or ('trapezoid', a, b, c, d), got {short(spec)}"
+                )
+            shape = choice(f"sets[{name!r}][0]", spec[0], ("triangle", "trapezoid"), owner="Variable")
+            count = 3 if shape == "triangle" else 4
+            if len(spec) != count + 1:
+                raise ParameterError(
+                    f"Variable: sets[{name!r}] = {short(spec)} violates a {shape} has {count} parameters"
+                )
+            for k, v in enumerate(spec[1:]):
+                real(f"sets[{name!r}][{k + 1}]", v, owner="Variable")
 
     def _table(self) -> dict[str, Any]:
         return {
@@ -60,10 +87,31 @@ class Mamdani(Table):
 
     def __init__(self, inputs: Sequence[Variable], output: Variable,
                  rules: Sequence[tuple[Sequence[str], str]], resolution: int = 401):
+        if isinstance(inputs, (str, bytes, Variable)) or not hasattr(inputs, "__iter__"):
+            raise ParameterTypeError(f"Mamdani: inputs must be a list of Variable, got {short(inputs)}")
         self.inputs = list(inputs)
+        for i, v in enumerate(self.inputs):
+            if not isinstance(v, Variable):
+                raise ParameterTypeError(f"Mamdani: inputs[{i}] must be a Variable, got {short(v)}")
+        if not isinstance(output, Variable):
+            raise ParameterTypeError(f"Mamdani: output must be a Variable, got {short(output)}")
         self.output = output
-        self.rules = [(tuple(a), c) for a, c in rules]
-        self.resolution = int(resolution)
+        if isinstance(rules, (str, bytes)) or not hasattr(rules, "__iter__"):
+            raise ParameterTypeError(f"Mamdani: rules must be a list of ((input sets...), output set), got {short(rules)}")
+        self.rules = []
+        for k, rule in enumerate(rules):
+            if isinstance(rule, (str, bytes)) or not isinstance(rule, (tuple, list)) or len(rule) != 2:
+                raise ParameterTypeError(
+                    f"Mamdani: rules[{k}] must be ((input sets...), output set), got {short(rule)}"
+                )
+            antecedent, consequent = rule
+            if isinstance(antecedent, str) or not isinstance(antecedent, (tuple, list)):
+                raise ParameterTypeError(f"Mamdani: rules[{k}][0] must be a tuple of set names, got {short(antecedent)}")
+            for name in (*antecedent, consequent):
+                if not isinstance(name, str):
+                    raise ParameterTypeError(f"Mamdani: rules[{k}] names sets by strings, got {short(name)}")
+            self.rules.append((tuple(antecedent), consequent))
+        self.resolution = integer("resolution", resolution, minimum=2, cap="max_fuzzy_resolution", owner="Mamdani")
         for antecedent, _ in self.rules:
             if len(antecedent) != len(self.inputs):
                 raise ParameterError(
@@ -87,10 +135,10 @@ class Mamdani(Table):
 
     def evaluate(self, inputs: ArrayLike) -> np.ndarray:
         """Crisp outputs for inputs of shape (N, number of inputs); (N,)."""
-        x = as_float_array("Mamdani", "inputs", inputs)
+        x = real_array("inputs", inputs, finite=True, owner="Mamdani")
         if x.ndim == 1 and len(self.inputs) == 1:
             x = x[:, None]
-        if x.ndim != 2:
+        if x.ndim != 2 or x.shape[1] != len(self.inputs):
             raise ParameterError(f"Mamdani: inputs has shape {x.shape}; it takes (N, {len(self.inputs)})")
         return self._core.evaluate(np.ascontiguousarray(x))
 
@@ -115,5 +163,7 @@ def variable_rate_system(resolution: int = 401) -> Mamdani:
     """The seed-002 variable-rate system (sec. 2.3, Table 1), as the core defines it: inputs s
     and s' with NB NS ZR PS PB on [-5, 5], output with NB NM NS ZR PS PM PB on [-4, 4], evenly
     spaced triangles (shoulders at the ends), the 5x5 rule table."""
-    return Mamdani._from_table(_core.variable_rate_system_table(int(resolution)),
+    resolution = integer("resolution", resolution, minimum=2, cap="max_fuzzy_resolution",
+                         owner="variable_rate_system")
+    return Mamdani._from_table(_core.variable_rate_system_table(resolution),
                                [SET_NAMES_5, SET_NAMES_5], SET_NAMES_7)

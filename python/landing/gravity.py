@@ -13,7 +13,8 @@ from typing import ClassVar
 import numpy as np
 
 from landing import _core
-from landing._table import ArrayLike, Table, as_float_array
+from landing._args import real_array
+from landing._table import ArrayLike, Table
 from landing.errors import ParameterError
 
 __all__ = ["Gravity", "PointMass", "TwoPointMass", "Harmonic2", "G", "EROS_MASS"]
@@ -31,7 +32,7 @@ class Gravity(Table):
     _compiler = _core.Gravity
 
     def _evaluate(self, r: ArrayLike, potential: bool) -> np.ndarray:
-        x = as_float_array(type(self).__name__, "r", r)
+        x = real_array("r", r, finite=True, owner=type(self).__name__)
         if x.shape[-1:] != (3,) or x.ndim > 2:
             raise ParameterError(f"{type(self).__name__}: r has shape {x.shape}; it takes (3,) or (N, 3)")
         out = self._core.evaluate(np.ascontiguousarray(x.reshape(-1, 3)), potential)  # type: ignore[attr-defined]

@@ -11,6 +11,8 @@ from typing import TYPE_CHECKING, Any, Callable, Optional, Sequence, Union
 import numpy as np
 
 from landing._progress import ProgressBar
+from landing._args import boolean, integer
+from landing._limits import require_memory
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
 from landing.simulation import Metrics, SimulationResult, describe_diverged, diverged_cases
@@ -387,6 +389,23 @@ def assemble_campaign(
                             keep=keep, store=None if store is None else str(store.path))
 
 
+def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int) -> int:
+    """Bytes a campaign's results take: the recorded states, commands and diagnostics of the
+    ``n`` cases plus their final states and metrics, in the output allocated once, plus one
+    chunk's batch output before it is copied in. An estimate from above."""
+    steps = round(scenario.t_final / scenario.dt)
+    if record_every == 0:
+        instants = 0
+    else:
+        instants = steps // record_every + 1 + (steps % record_every != 0)
+    axes = scenario.plant.axes
+    widths = sum(w for _, w in scenario.controller._core.diagnostic_layout(axes))  # type: ignore[attr-defined]
+    per_instant = scenario.plant.state_dim + axes + widths
+    # final state plus about 40 metric columns, some per axis
+    per_case = instants * per_instant + scenario.plant.state_dim + 40 * (axes + 1)
+    return 8 * (n + (min(chunk, n) if chunk < n else 0)) * per_case
+
+
 def monte_carlo(
     scenario: Scenario,
     n: int,
@@ -435,14 +454,19 @@ def monte_carlo(
         docs/cluster.md. Needs ``pip install "landing[dask]"``.
     """
     chunk_given = chunk_size is not None
-    try:
-        n = int(n)
-    except (TypeError, ValueError):
-        raise ParameterError(f"n must be an integer, got {n!r}") from None
-    if n < 1:
-        raise ParameterError(f"n = {n} violates n >= 1")
     if not isinstance(scenario, Scenario):
         raise ParameterError(f"scenario must be a landing.scenarios.Scenario, got {type(scenario).__name__}")
+    n = integer("n", n, minimum=1, cap="max_cases")
+    seed = integer("seed", seed, minimum=0, maximum=2**64 - 1)
+    if record_every is not None:
+        record_every = integer("record_every", record_every, minimum=0, maximum=2**63 - 1)
+    if chunk_size is not None:
+        chunk_size = integer("chunk_size", chunk_size, minimum=1, cap="max_cases")
+    if threads is not None:
+        threads = integer("threads", threads, minimum=1, cap="max_threads")
+    if progress is not None:
+        progress = boolean("progress", progress)
+    check_bounds = boolean("check_bounds", check_bounds)
     if client is not None:
         from landing.cluster import check_client, default_chunk_size
 
@@ -455,8 +479,12 @@ def monte_carlo(
         progress = work > 2e7
     if chunk_size is None:
         chunk_size = max(1, -(-n // 50)) if progress else n
-    if chunk_size < 1:
-        raise ParameterError(f"chunk_size = {chunk_size} violates chunk_size >= 1")
+    every = scenario.record_every if record_every is None else record_every
+    # the campaign's output and one chunk's batch: refused up front if they cannot fit
+    require_memory(
+        f"monte_carlo({scenario.name!r}, n={n}): the recorded runs",
+        campaign_bytes(scenario, n, every, chunk=chunk_size),
+    )
 
     keep = _keep(keep)
     x0 = scenario.initial_states(n, seed=seed)

@@ -13,6 +13,8 @@ from typing import Any, ClassVar, Literal, Optional
 import numpy as np
 
 from landing import _core
+from landing._args import real, real_array
+from landing._limits import require_memory
 from landing._table import ArrayLike, Table
 from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
@@ -48,7 +50,7 @@ class Plant(Table):
     def coordinates(self, states: Any) -> tuple[np.ndarray, np.ndarray]:
         """The generalized coordinates q and rates q' the laws read, computed by the core from
         states ``(..., n_state)`` (e.g. ``result.states``): two arrays ``(..., axes)``."""
-        x = np.ascontiguousarray(np.asarray(states, dtype=np.float64))
+        x = real_array("states", states, owner=type(self).__name__)
         if x.ndim == 0 or x.shape[-1] != self.state_dim:
             raise ParameterError(f"states have shape {x.shape}; this plant's have {self.state_dim} components")
         q, qd = self._core.coordinates(x.reshape(-1, x.shape[-1]))  # type: ignore[attr-defined]
@@ -98,10 +100,20 @@ class MarsLander(Plant):
     @staticmethod
     def initial_state(position: ArrayLike, velocity: ArrayLike, mass: ArrayLike) -> np.ndarray:
         """Stack positions ``(..., 3)``, velocities ``(..., 3)`` and masses ``(...)`` into states ``(..., 7)``."""
-        r = np.asarray(position, dtype=np.float64)
-        v = np.asarray(velocity, dtype=np.float64)
-        m = np.asarray(mass, dtype=np.float64)
-        shape = np.broadcast_shapes(r.shape[:-1], v.shape[:-1], m.shape)
+        r = real_array("position", position, owner="MarsLander.initial_state")
+        v = real_array("velocity", velocity, owner="MarsLander.initial_state")
+        m = real_array("mass", mass, owner="MarsLander.initial_state")
+        for name, a in (("position", r), ("velocity", v)):
+            if a.ndim == 0 or a.shape[-1] != 3:
+                raise ParameterError(f"MarsLander.initial_state: {name} has shape {a.shape}; it takes (..., 3)")
+        try:
+            shape = np.broadcast_shapes(r.shape[:-1], v.shape[:-1], m.shape)
+        except ValueError:
+            raise ParameterError(
+                f"MarsLander.initial_state: position {r.shape}, velocity {v.shape} and mass {m.shape} "
+                "violate shapes that broadcast"
+            ) from None
+        require_memory(f"MarsLander.initial_state: states of shape {shape + (7,)}", 8 * 7 * math.prod(shape))
         return np.concatenate(
             [np.broadcast_to(r, shape + (3,)), np.broadcast_to(v, shape + (3,)), np.broadcast_to(m, shape)[..., None]],
             axis=-1,
@@ -223,6 +235,7 @@ class TetheredSatellite(Plant):
 
     def substeps_for(self, dt: float) -> int:
         """The fewest RK4 substeps per control period ``dt`` that keep the tether stable."""
+        dt = real("dt", dt, positive=True, owner="TetheredSatellite.substeps_for")
         step = self.max_step
         return 1 if math.isinf(step) else max(1, math.ceil(dt / step))
 
@@ -231,8 +244,22 @@ class TetheredSatellite(Plant):
         """States at the given angles (rad) and rates (rad/s), broadcast together: ``(n_state,)``
         for scalars, ``(..., n_state)`` otherwise. The flexible tether is laid straight and
         stretched by the rigid dumbbell's tension, every point turning with the line."""
-        a = np.broadcast_arrays(*[np.asarray(v, dtype=np.float64) for v in (phi, theta, phi_dot, theta_dot)])
+        owner = "TetheredSatellite.initial_state"
+        args = [real_array(n, v, finite=True, owner=owner) for n, v in
+                (("phi", phi), ("theta", theta), ("phi_dot", phi_dot), ("theta_dot", theta_dot))]
+        try:
+            a = np.broadcast_arrays(*args)
+        except ValueError:
+            raise ParameterError(
+                f"{owner}: phi, theta, phi_dot, theta_dot have shapes {[x.shape for x in args]}; "
+                "they must broadcast together"
+            ) from None
         shape = a[0].shape
+        # the rows of angles, then the states
+        require_memory(f"{owner}: states of shape {shape + (self.state_dim,)}",
+                       8 * (4 + self.state_dim) * math.prod(shape))
+        if a[0].size == 0:
+            return np.empty(shape + (self.state_dim,))
         rows = np.ascontiguousarray(np.stack([v.reshape(-1) for v in a], axis=1))
         x = self._core.state_at(rows)  # type: ignore[attr-defined]
         return x.reshape(shape + (x.shape[-1],))

@@ -8,7 +8,9 @@ from typing import Any, ClassVar
 import numpy as np
 
 from landing import _core
+from landing._args import integer, real, real_array
 from landing._table import ArrayLike, Table, as_float_array
+from landing.errors import ParameterError
 
 __all__ = ["Reference", "Constant", "Cubic"]
 
@@ -21,7 +23,11 @@ class Reference(Table):
     def evaluate(self, t: ArrayLike, axes: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Position, velocity and acceleration at times ``t``, each ``(len(t), axes)``
         (``(axes,)`` for a scalar t), computed by the core."""
-        tt = as_float_array(type(self).__name__, "t", t)
+        owner = type(self).__name__
+        tt = real_array("t", t, finite=True, owner=owner)
+        axes = integer("axes", axes, owner=owner)
+        if axes not in (2, 3):
+            raise ParameterError(f"{owner}: axes = {axes} violates axes in (2, 3)")
         out = self._core.evaluate(axes, tt.ravel().tolist())  # type: ignore[attr-defined]
         res = tuple(out[k] for k in ("position", "velocity", "acceleration"))
         if tt.ndim == 0:
@@ -56,16 +62,15 @@ class Cubic(Reference):
         cls, p0: ArrayLike, v0: ArrayLike, pT: ArrayLike, vT: ArrayLike, T: float
     ) -> "Cubic":
         """The cubic through position and velocity ``p0, v0`` at 0 and ``pT, vT`` at ``T``."""
-        args = [as_float_array(cls.__name__, n, v).ravel().tolist() for n, v in
+        args = [real_array(n, v, finite=True, owner=cls.__name__).ravel().tolist() for n, v in
                 (("p0", p0), ("v0", v0), ("pT", pT), ("vT", vT))]
-        c = _core.cubic_from_boundary(*args, float(T))
-        return cls(coefficients=np.array(c).T, t_end=float(T))
+        t_end = real("T", T, owner=cls.__name__)
+        c = _core.cubic_from_boundary(*args, t_end)
+        return cls(coefficients=np.array(c).T, t_end=t_end)
 
     def _table(self) -> dict[str, Any]:
         c = as_float_array(type(self).__name__, "coefficients", self.coefficients)
         if c.ndim not in (2, 3) or c.shape[-1] != 4:
-            from landing.errors import ParameterError
-
             raise ParameterError(
                 f"Cubic: coefficients has shape {c.shape}; it takes (axes, 4) or (N, axes, 4)"
             )

@@ -14,11 +14,13 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from landing import controllers, disturbances, dispersions, plants
+from landing import _core, controllers, disturbances, dispersions, plants
+from landing._args import choice, integer, pair, real, real_array, short
+from landing._limits import require_memory
 from landing.controllers import Controller
 from landing.dispersions import Dispersion
-from landing.disturbances import DisturbanceLike
-from landing.errors import ParameterError
+from landing.disturbances import DisturbanceLike, compiled
+from landing.errors import ParameterError, ParameterTypeError
 from landing.plants import Plant
 from landing.reference import Reference
 from landing.simulation import SimulationResult, simulate, simulate_batch
@@ -84,15 +86,55 @@ class Scenario:
     theta: Optional[tuple[float, float]] = None
     description: str = ""
 
+    def __post_init__(self) -> None:
+        """Checks every field as :func:`landing.simulate_batch` would, so that a bad scenario
+        is refused when it is made, naming the field."""
+        owner = f"Scenario {self.name!r}" if isinstance(self.name, str) else "Scenario"
+        if not isinstance(self.name, str):
+            raise ParameterTypeError(f"Scenario: name must be a string, got {short(self.name)}")
+        for name, cls, what, optional in (
+            ("plant", Plant, "a landing.plants plant", False),
+            ("controller", Controller, "a landing.controllers law", False),
+            ("dispersion", Dispersion, "a landing.dispersions dispersion or None", True),
+            ("reference", Reference, "a landing.reference reference or None", True),
+        ):
+            value = getattr(self, name)
+            if not (isinstance(value, cls) or (optional and value is None)):
+                raise ParameterTypeError(f"{owner}: {name} must be {what}, got {short(value)}")
+        x0 = real_array("x0", self.x0, finite=True, owner=owner)
+        if x0.ndim != 1:
+            # its length is checked against the plant when it is run: a campaign that replaces
+            # the plant draws its states from the dispersion and never uses this one
+            raise ParameterError(f"{owner}: x0 has shape {x0.shape}; it takes one state (n_state,)")
+        real("t_final", self.t_final, positive=True, owner=owner)
+        real("dt", self.dt, positive=True, owner=owner)
+        compiled(self.disturbance)
+        choice("integrator", self.integrator, tuple(_core.INTEGRATORS), owner=owner)
+        integer("substeps", self.substeps, minimum=1, cap="max_substeps", owner=owner)
+        integer("record_every", self.record_every, minimum=0, maximum=2**63 - 1, owner=owner)
+        for name in ("settle_tolerance", "chatter_cutoff"):
+            if getattr(self, name) is not None:
+                real(name, getattr(self, name), positive=True, owner=owner)
+        if self.theta is not None:
+            for i, v in enumerate(pair("theta", self.theta, owner=owner)):
+                t = real(f"theta[{i}]", v, owner=owner)
+                if not 0 < t < 1:
+                    raise ParameterError(f"{owner}: theta[{i}] = {t:g} violates 0 < theta < 1")
+        if not isinstance(self.description, str):
+            raise ParameterTypeError(f"{owner}: description must be a string, got {short(self.description)}")
+
     def replace(self, **changes: Any) -> "Scenario":
         """A copy with some fields changed: ``s.replace(dt=1e-2)``. A dict given for a part
         (plant, controller, reference, dispersion) changes some of its parameters and keeps the
         others: ``s.replace(controller={"alpha1": 6.0})`` is
         ``s.replace(controller=s.controller.replace(alpha1=6.0))``."""
-        names = {f.name for f in dataclasses.fields(self)}
+        known = {f.name for f in dataclasses.fields(self)}
+        unknown = sorted(set(changes) - known)
+        if unknown:
+            raise ParameterTypeError(
+                f"Scenario {self.name!r}: unknown field {unknown[0]!r}; the fields are {sorted(known)}"
+            )
         for key, value in changes.items():
-            if key not in names:
-                raise ParameterError(f"Scenario.replace: {key!r} is not a field (the fields: {sorted(names)})")
             current = getattr(self, key)
             if isinstance(value, dict) and hasattr(current, "replace"):
                 changes[key] = current.replace(**value)
@@ -133,6 +175,11 @@ class Scenario:
     def initial_states(self, n: int, seed: int = 0, first_case: int = 0) -> np.ndarray:
         """Cases ``first_case .. first_case + n`` of the dispersion (the nominal state repeated
         if there is none)."""
+        owner = f"scenario {self.name!r}"
+        n = integer("n", n, minimum=0, cap="max_cases", owner=owner)
+        dim = self.plant.state_dim
+        # the draws, then the states built from them
+        require_memory(f"{owner}: the initial states of {n} cases", 2 * 8 * n * dim)
         if self.dispersion is None:
             return np.tile(np.asarray(self.x0, dtype=float), (n, 1))
         x = self.plant.states_from_draws(self.dispersion.sample(n, seed=seed, first_case=first_case))
@@ -444,8 +491,9 @@ def tether_monte_carlo(spread_deg: float = 10.0, law: str = "fntsmc", fidelity: 
     ``landing.monte_carlo(scenario, n)`` and check it with ``landing.theory.check_fntsmc_run``.
     The horizon grows with the spread, 40 s per degree rounded up to whole minutes (at least
     100 s): the thrust limit makes large in-plane swings slow."""
-    if not (isinstance(spread_deg, (int, float)) and spread_deg > 0):
-        raise ParameterError(f"spread_deg = {spread_deg!r} violates spread_deg > 0")
+    spread_deg = real("spread_deg", spread_deg, positive=True)
+    if spread_deg > 180.0:
+        raise ParameterError(f"spread_deg = {spread_deg:g} violates spread_deg <= 180")
     hi = np.array([math.radians(spread_deg), math.radians(spread_deg),
                    spread_deg * TETHER_RATE_SPREAD[0], spread_deg * TETHER_RATE_SPREAD[1]])
     base = tether_comparison(law, fidelity)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import operator
 import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Iterator, Mapping, Optional, Sequence, Union
@@ -10,6 +9,7 @@ from typing import TYPE_CHECKING, Any, Iterator, Mapping, Optional, Sequence, Un
 import numpy as np
 
 from landing import _core
+from landing._args import integer, real, real_array
 from landing.controllers import Controller
 from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
@@ -263,21 +263,6 @@ class SimulationResult:
         return self.states[..., self.state_names.index(name)]
 
 
-def _int(name: str, value: Any, *, optional: bool = False) -> Optional[int]:
-    if value is None and optional:
-        return None
-    try:
-        return operator.index(value)
-    except TypeError:
-        raise ParameterTypeError(f"{name} must be an integer, got {value!r}") from None
-
-
-def _real(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ParameterTypeError(f"{name} must be a real number, got {value!r}")
-    return float(value)
-
-
 def simulate_batch(
     plant: Plant,
     controller: Controller,
@@ -352,31 +337,33 @@ def simulate_batch(
         )
     if not isinstance(integrator, str):
         raise ParameterTypeError(f"integrator must be a string, got {integrator!r}")
-    seed_i = _int("seed", seed)
-    if not 0 <= seed_i < 2**64:
-        raise ParameterError(f"seed = {seed_i} violates 0 <= seed < 2**64")
-    first = _int("first_case", first_case)
-    if not 0 <= first < 2**63:
-        raise ParameterError(f"first_case = {first} violates 0 <= first_case < 2**63")
+    seed_i = integer("seed", seed, minimum=0, maximum=2**64 - 1)
+    first = integer("first_case", first_case, minimum=0, maximum=2**63 - 1)
+    if kernel is not None and not isinstance(kernel, str):
+        raise ParameterTypeError(f"kernel must be a string or None, got {kernel!r}")
     if kernel is not None and kernel not in _core.KERNEL_LEVELS:
         raise ParameterError(f"kernel = {kernel!r} is not one of {tuple(_core.KERNEL_LEVELS)}")
+    substeps_i = integer("substeps", substeps, minimum=1, cap="max_substeps")
+    record_every_i = integer("record_every", record_every, minimum=0, maximum=2**63 - 1)
+    threads_i = None if threads is None else integer("threads", threads, minimum=1, cap="max_threads")
+    integer("x0 cases N", x.shape[0], cap="max_cases")
     out = _core.simulate_batch(
         plant._core,  # type: ignore[attr-defined]
         controller._core,  # type: ignore[attr-defined]
         x,
-        t_final=_real("t_final", t_final),
-        dt=_real("dt", dt),
+        t_final=real("t_final", t_final),
+        dt=real("dt", dt),
         integrator=integrator,
-        substeps=_int("substeps", substeps),
+        substeps=substeps_i,
         reference=None if reference is None else reference._core,  # type: ignore[attr-defined]
         disturbance=compiled(disturbance),
-        record_every=_int("record_every", record_every),
+        record_every=record_every_i,
         seed=seed_i,
         first_case=first,
-        settle_tolerance=0.02 if settle_tolerance is None else _real("settle_tolerance", settle_tolerance),
+        settle_tolerance=0.02 if settle_tolerance is None else real("settle_tolerance", settle_tolerance),
         settle_relative=settle_tolerance is None,
-        chatter_cutoff=None if chatter_cutoff is None else _real("chatter_cutoff", chatter_cutoff),
-        threads=_int("threads", threads, optional=True),
+        chatter_cutoff=None if chatter_cutoff is None else real("chatter_cutoff", chatter_cutoff),
+        threads=threads_i,
         kernel=kernel,
     )
     diag = out["diagnostics"]
@@ -409,10 +396,7 @@ def simulate_batch(
 
 
 def _as_states(x0: Any) -> np.ndarray:
-    try:
-        return np.ascontiguousarray(np.asarray(x0, dtype=np.float64))
-    except (TypeError, ValueError):
-        raise ParameterTypeError("x0 must be an array of real numbers") from None
+    return real_array("x0", x0, expected="an array of real numbers")
 
 
 def simulate(

@@ -25,6 +25,7 @@ the double integrator's velocity is one run of the scalar law.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Optional
 
@@ -33,8 +34,10 @@ import numpy as np
 from landing import _core
 from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
 from landing.disturbances import DisturbanceLike, Sinusoid, compiled
-from landing.errors import ParameterError
-from landing.plants import DoubleIntegrator
+from landing._args import integer, real, real_array
+from landing._limits import require_memory
+from landing.errors import ParameterError, ParameterTypeError
+from landing.plants import DoubleIntegrator, Plant
 from landing.simulation import SimulationResult, simulate_batch
 
 __all__ = [
@@ -62,9 +65,48 @@ __all__ = [
 ]
 
 
-def _vectorized(fn, *args):
-    out = np.vectorize(fn, otypes=[float])(*[np.asarray(a, dtype=float) for a in args])
+def _reals(owner: str, **args: Any) -> list[np.ndarray]:
+    """Each argument as a finite float64 array (named in the error), checked to broadcast."""
+    arrays = [real_array(name, value, finite=True, owner=owner) for name, value in args.items()]
+    try:
+        shape = np.broadcast_shapes(*[a.shape for a in arrays])
+    except ValueError:
+        shapes = ", ".join(f"{n} {a.shape}" for n, a in zip(args, arrays))
+        raise ParameterError(f"{owner}: the shapes {shapes} violate shapes that broadcast together") from None
+    # the broadcast inputs and the results
+    require_memory(f"{owner} over arrays of shape {shape}", 8 * (len(arrays) + 2) * math.prod(shape))
+    return arrays
+
+
+def _vectorized(fn, owner: str, **args: Any):
+    out = np.vectorize(fn, otypes=[float])(*_reals(owner, **args))
     return float(out) if out.ndim == 0 else out
+
+
+def _instance(owner: str, name: str, value: Any, cls: type, what: str) -> None:
+    if not isinstance(value, cls):
+        raise ParameterTypeError(f"{owner}: {name} must be {what}, got {type(value).__name__}")
+
+
+def _time_signal(owner: str, t: Any, signal: Any, tol: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Recorded times (T,), a signal (..., T, D) and a tolerance (scalar or (..., D)), checked."""
+    tt = real_array("t", t, owner=owner)
+    sig = real_array("signal", signal, owner=owner)
+    tl = real_array("tol", tol, owner=owner)
+    if tt.ndim != 1 or tt.size == 0:
+        raise ParameterError(f"{owner}: t has shape {tt.shape}; it takes (T,) with T >= 1")
+    if sig.ndim < 2 or sig.shape[-2] != tt.size:
+        raise ParameterError(
+            f"{owner}: signal has shape {sig.shape}; it takes (..., T, D) with T = len(t) = {tt.size}"
+        )
+    if tl.ndim:
+        try:
+            np.broadcast_shapes(tl[..., None, :].shape, sig.shape)
+        except (ValueError, IndexError):
+            raise ParameterError(
+                f"{owner}: tol has shape {tl.shape}; it takes a scalar or (..., D) matching signal {sig.shape}"
+            ) from None
+    return tt, sig, tl
 
 
 def fixed_time_bound(c1, e1, c2, e2):
@@ -73,18 +115,20 @@ def fixed_time_bound(c1, e1, c2, e2):
 
     Eq. 18 is this with (beta1, q1, beta2, q2), eq. 26 with (alpha1, gamma1, alpha2, gamma2).
     Arrays broadcast."""
-    return _vectorized(_core.fixed_time_bound, c1, e1, c2, e2)
+    return _vectorized(_core.fixed_time_bound, "fixed_time_bound", c1=c1, e1=e1, c2=c2, e2=e2)
 
 
 def practical_time_bound(c1, e1, c2, e2, theta):
     """Theorem 1 (k = 1): time to reach the practical neighbourhood, the fixed-time bound / theta."""
-    return _vectorized(_core.practical_time_bound, c1, e1, c2, e2, theta)
+    return _vectorized(_core.practical_time_bound, "practical_time_bound", c1=c1, e1=e1, c2=c2, e2=e2,
+                       theta=theta)
 
 
 def practical_radius(c1, e1, c2, e2, d_max, theta):
     """Eq. 38-39: ``min{(d_max/((1-theta) c1))^(1/e1), (d_max/((1-theta) c2))^(1/e2)}``, the
     neighbourhood that ``s' = -c1 sig^e1(s) - c2 sig^e2(s) + d``, |d| <= d_max, reaches."""
-    return _vectorized(_core.practical_radius, c1, e1, c2, e2, d_max, theta)
+    return _vectorized(_core.practical_radius, "practical_radius", c1=c1, e1=e1, c2=c2, e2=e2, d_max=d_max,
+                       theta=theta)
 
 
 @dataclass(frozen=True)
@@ -146,10 +190,18 @@ def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2
     """The bounds of seed 001 Theorems 2-4 for a FixedTimeMSS law (per axis), under a
     disturbance bounded by ``ap_max`` per axis (see :func:`disturbance_bound`)."""
     if not isinstance(law, FixedTimeMSS):
-        raise ParameterError(f"mss_bounds takes a FixedTimeMSS law, got {type(law).__name__}")
+        raise ParameterTypeError(f"mss_bounds takes a FixedTimeMSS law, got {type(law).__name__}")
     names = ("beta1", "q1", "beta2", "q2", "alpha1", "gamma1", "alpha2", "gamma2")
     gains = [_axes_or_cases(getattr(law, n), 3) for n in names]
-    args = np.broadcast_arrays(*gains, np.asarray(ap_max, dtype=float))
+    ap = real_array("ap_max", ap_max, finite=True, owner="mss_bounds")
+    theta1 = real("theta1", theta1, owner="mss_bounds")
+    theta2 = real("theta2", theta2, owner="mss_bounds")
+    try:
+        args = np.broadcast_arrays(*gains, ap)
+    except ValueError:
+        raise ParameterError(
+            f"mss_bounds: ap_max has shape {ap.shape}; it takes a scalar, (3,) or the gains' (N, 3)"
+        ) from None
     shape = args[0].shape
     keys = ("t1", "t2", "s2_radius", "s2_time", "s1_radius", "s1_time", "printed_time", "settle_time")
     out = {k: np.empty(shape) for k in keys}
@@ -162,6 +214,9 @@ def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2
 
 def disturbance_bound(disturbance: DisturbanceLike, axes: int = 3) -> np.ndarray:
     """Per-axis bound on |d_i(t)|: |constant| + sum of |amplitudes| + noise bound."""
+    axes = integer("axes", axes, owner="disturbance_bound")
+    if axes not in (2, 3):
+        raise ParameterError(f"disturbance_bound: axes = {axes} violates axes in (2, 3)")
     handle = compiled(disturbance)
     if handle is None:
         return np.zeros(axes)
@@ -174,7 +229,7 @@ def min_final_time(r0, v0, a_max, g=0.0) -> tuple[np.ndarray, np.ndarray]:
     negative for z up) and tf2 the time to null the velocity at full thrust. A soft landing
     needs ``t_f >= max(tf1, tf2)`` over the axes. Arrays broadcast."""
     f = np.vectorize(lambda *a: _core.min_final_time(*a), otypes=[float, float])
-    tf1, tf2 = f(*[np.asarray(a, dtype=float) for a in (r0, v0, a_max, g)])
+    tf1, tf2 = f(*_reals("min_final_time", r0=r0, v0=v0, a_max=a_max, g=g))
     return tf1, tf2
 
 
@@ -183,12 +238,13 @@ def min_time_to_rest(r0, v0, a_max, g=0.0):
     ``a_max`` either way plus gravity ``g`` (time-optimal bang-bang, one switch): a lower bound
     on any landing time on that axis. Infinite when the thrust cannot overcome gravity. Arrays
     broadcast."""
-    return _vectorized(_core.min_time_to_rest, r0, v0, a_max, g)
+    return _vectorized(_core.min_time_to_rest, "min_time_to_rest", r0=r0, v0=v0, a_max=a_max, g=g)
 
 
 def entry_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
     """First recorded time at which ``|signal| <= tol``; ``signal`` has time on axis -2
     (``(..., T, D)``), the result drops it. NaN where never."""
+    t, signal, tol = _time_signal("entry_time", t, signal, tol)
     inside = np.abs(signal) <= np.asarray(tol)[..., None, :] if np.ndim(tol) else np.abs(signal) <= tol
     first = np.argmax(inside, axis=-2)
     out = np.asarray(t)[first].astype(float)
@@ -199,6 +255,7 @@ def entry_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
 def settle_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
     """First recorded time from which ``|signal| <= tol`` holds to the end (NaN if it does not
     hold at the end); layout as :func:`entry_time`."""
+    t, signal, tol = _time_signal("settle_time", t, signal, tol)
     inside = np.abs(signal) <= np.asarray(tol)[..., None, :] if np.ndim(tol) else np.abs(signal) <= tol
     tail = np.flip(np.logical_and.accumulate(np.flip(inside, axis=-2), axis=-2), axis=-2)
     first = np.argmax(tail, axis=-2)
@@ -258,12 +315,15 @@ def _reaching_run(c1, e1, c2, e2, s0, *, disturbance, dt, t_final, seed=0) -> Si
                           disturbance=disturbance, seed=seed)
 
 
-def _as_cases(s0: Any) -> np.ndarray:
-    s = np.asarray(s0, dtype=float)
+def _as_cases(owner: str, s0: Any) -> np.ndarray:
+    s = real_array("s0", s0, finite=True, owner=owner)
     if s.ndim == 0:
         s = s.reshape(1, 1)
     if s.ndim == 1:
         s = s[:, None]
+    if s.ndim != 2 or s.shape[0] == 0 or s.shape[1] not in (1, 3):
+        raise ParameterError(f"{owner}: s0 has shape {s.shape}; it takes a scalar, (N,), (N, 1) or (N, 3) with N >= 1")
+    integer("s0 cases N", s.shape[0], cap="max_cases", owner=owner)
     return np.broadcast_to(s, (s.shape[0], 3)) if s.shape[1] == 1 else s
 
 
@@ -291,6 +351,11 @@ def chattering_band(c1: float, e1: float, dt: float) -> float:
     """Half-width of the band a sampled ``s' = -c1 sig^e1(s)`` (e1 < 1) chatters in: where
     one held step ``c1 |s|^e1 dt`` equals ``|s|``, ``(c1 dt)^(1/(1-e1))``. Continuous time
     reaches 0; the sampled law cannot get further."""
+    c1 = real("c1", c1, positive=True, owner="chattering_band")
+    e1 = real("e1", e1, owner="chattering_band")
+    if not 0 < e1 < 1:
+        raise ParameterError(f"chattering_band: e1 = {e1:g} violates 0 < e1 < 1")
+    dt = real("dt", dt, positive=True, owner="chattering_band")
     return float((c1 * dt) ** (1.0 / (1.0 - e1)))
 
 
@@ -302,8 +367,12 @@ def check_fixed_time_bound(
     with :func:`fixed_time_bound`. ``dt`` defaults to a control period at which the sampled law
     is stable from the largest ``|s0|``; ``tol`` is raised to ten times the
     :func:`chattering_band` of the sampled law if that is larger."""
+    owner = "check_fixed_time_bound"
+    c1, e1, c2, e2 = (real(n, v, owner=owner) for n, v in (("c1", c1), ("e1", e1), ("c2", c2), ("e2", e2)))
     bound = fixed_time_bound(c1, e1, c2, e2)
-    s = _as_cases(s0)
+    s = _as_cases(owner, s0)
+    dt = None if dt is None else real("dt", dt, positive=True, owner=owner)
+    tol = real("tol", tol, positive=True, owner=owner)
     dt = _sampling_step(c2, e2, float(np.abs(s).max()), dt)
     tol = max(tol, 10.0 * chattering_band(c1, e1, dt))
     horizon = _horizon(dt, 1.2 * bound)
@@ -332,9 +401,15 @@ def check_practical_bound(
     each ``s0`` and compare with Theorem 1: |s| enters :func:`practical_radius` within
     :func:`practical_time_bound` and stays in it (``extra["max_after_entry"]``, checked over
     ``settle_for`` seconds after the bound, by default the bound itself)."""
+    owner = "check_practical_bound"
+    c1, e1, c2, e2, d_max, theta, omega = (
+        real(n, v, owner=owner) for n, v in (("c1", c1), ("e1", e1), ("c2", c2), ("e2", e2),
+                                              ("d_max", d_max), ("theta", theta), ("omega", omega)))
+    dt = None if dt is None else real("dt", dt, positive=True, owner=owner)
+    settle_for = None if settle_for is None else real("settle_for", settle_for, nonnegative=True, owner=owner)
     radius = practical_radius(c1, e1, c2, e2, d_max, theta)
     bound = practical_time_bound(c1, e1, c2, e2, theta)
-    s = _as_cases(s0)
+    s = _as_cases(owner, s0)
     dt = _sampling_step(c2, e2, max(float(np.abs(s).max()), radius), dt)
     horizon = _horizon(dt, bound + (bound if settle_for is None else settle_for))
     res = _reaching_run(c1, e1, c2, e2, s, disturbance=Sinusoid(amplitude=d_max, omega=omega),
@@ -360,6 +435,10 @@ def check_mss(result: SimulationResult, bounds: MSSBounds) -> dict[str, BoundChe
     in its neighbourhood (NaN if it is outside at the end of the run). Where the bound time
     exceeds the horizon, ``extra["checkable"]`` is False and only the end of the run is seen.
     """
+    _instance("check_mss", "result", result, SimulationResult, "a landing.SimulationResult")
+    _instance("check_mss", "bounds", bounds, MSSBounds, "a landing.theory.MSSBounds")
+    if result.t.size == 0:
+        raise ParameterError("check_mss needs a recorded run (record_every >= 1)")
     if "s1" not in result.diagnostics or "s2" not in result.diagnostics:
         raise ParameterError("check_mss needs a FixedTimeMSS result with recorded s1 and s2")
     t = result.t
@@ -390,7 +469,7 @@ def fntsmc_ts_printed(c_v, alpha_s, beta_s):
     ``z3 = (3 alpha_s - 1)/(2 alpha_s)``, ``z4 = (3 beta_s - 1)/(2 beta_s)`` (the seed's
     degrees). The seed never gives Lemma 2's ``c_v``, so this is a function of it. Arrays
     broadcast."""
-    return _vectorized(_core.fntsmc_ts_printed, c_v, alpha_s, beta_s)
+    return _vectorized(_core.fntsmc_ts_printed, "fntsmc_ts_printed", c_v=c_v, alpha_s=alpha_s, beta_s=beta_s)
 
 
 def fntsmc_td_printed(k1, p1, k2, p2, d=0.5):
@@ -398,7 +477,7 @@ def fntsmc_td_printed(k1, p1, k2, p2, d=0.5):
     ``g1 = 2^((p1+1)/2) k1``, ``g2 = 2^((p2+1)/2) (k2 - 1/(p2+1))``. Not a bound for the law:
     Lemma 4 needs p1 < 1 < p2 and g2 > 0, eq. 21 and Table 2 have p1 > 1 > p2 and g2 < 0 (see
     :func:`fntsmc_bounds`). Returned as printed, whatever its sign. Arrays broadcast."""
-    return _vectorized(_core.fntsmc_td_printed, k1, p1, k2, p2, d)
+    return _vectorized(_core.fntsmc_td_printed, "fntsmc_td_printed", k1=k1, p1=p1, k2=k2, p2=p2, d=d)
 
 
 @dataclass(frozen=True)
@@ -460,9 +539,25 @@ def fntsmc_bounds(law: FixedTimeNTSMC, tol: Any, *, d_max: Any = 0.0, theta: flo
 
     ``axes`` defaults to the gains' length (2 for the tethered satellite's defaults)."""
     if not isinstance(law, FixedTimeNTSMC):
-        raise ParameterError(f"fntsmc_bounds takes a FixedTimeNTSMC law, got {type(law).__name__}")
-    gains = _law_gains(law, _FNTSMC_GAINS, axes)
-    args = np.broadcast_arrays(*gains, np.asarray(tol, dtype=float), np.asarray(d_max, dtype=float))
+        raise ParameterTypeError(f"fntsmc_bounds takes a FixedTimeNTSMC law, got {type(law).__name__}")
+    owner = "fntsmc_bounds"
+    if axes is not None:
+        axes = integer("axes", axes, minimum=1, maximum=3, owner=owner)
+    tol_a = real_array("tol", tol, finite=True, owner=owner)
+    d_max_a = real_array("d_max", d_max, finite=True, owner=owner)
+    theta = real("theta", theta, owner=owner)
+    d = real("d", d, owner=owner)
+    try:
+        gains = _law_gains(law, _FNTSMC_GAINS, axes)
+    except ValueError:
+        raise ParameterError(f"{owner}: axes = {axes} violates the law's gains having 1 or axes values") from None
+    try:
+        args = np.broadcast_arrays(*gains, tol_a, d_max_a)
+    except ValueError:
+        raise ParameterError(
+            f"{owner}: tol {tol_a.shape} and d_max {d_max_a.shape} violate shapes that broadcast with the "
+            f"gains' {gains[0].shape}"
+        ) from None
     shape = args[0].shape
     keys = ("ts", "s_radius", "td", "e1_radius", "inside_rate", "t_inside", "total")
     out = {k: np.empty(shape) for k in keys}
@@ -501,9 +596,19 @@ def check_fntsmc_bound(law: FixedTimeNTSMC, pairs: Any, *, axis: int = 0, tol: f
     ``(k3 dt)^(1/(1 - alpha_s))`` (:func:`chattering_band`), nor e1 closer than that band over
     the inside rate: ``s_tol`` and ``tol`` are raised to ten times those if larger. ``dt``
     defaults to a period at which the held command is stable from the largest initial s."""
+    owner = "check_fntsmc_bound"
+    _instance(owner, "law", law, FixedTimeNTSMC, "a landing.controllers.FixedTimeNTSMC law")
+    e = real_array("pairs", pairs, finite=True, owner=owner)
+    if e.size == 0 or e.size % 2:
+        raise ParameterError(f"{owner}: pairs has shape {e.shape}; it takes (M, 2) pairs (e1, e2) with M >= 1")
+    e = e.reshape(-1, 2)
+    integer("pairs M", e.shape[0], cap="max_cases", owner=owner)
+    tol = real("tol", tol, positive=True, owner=owner)
+    dt = None if dt is None else real("dt", dt, positive=True, owner=owner)
+    axes = _law_gains(law, _FNTSMC_GAINS, None)[0].shape[-1]
+    axis = integer("axis", axis, minimum=0, maximum=axes - 1, owner=owner)
     one = _axis_law(law, axis)
     g = {n: float(getattr(one, n)) for n in _FNTSMC_GAINS}
-    e = np.asarray(pairs, dtype=float).reshape(-1, 2)
     zeta = lambda x, p: np.sign(x) * np.abs(x) ** p  # noqa: E731 (outside sigma, the bound's regime)
     s0 = e[:, 1] + g["k1"] * zeta(e[:, 0], g["p1"]) + g["k2"] * zeta(e[:, 0], g["p2"])
     if dt is None:
@@ -540,6 +645,11 @@ def check_fntsmc_run(result: SimulationResult, plant: Any, bounds: FNTSMCBounds)
     ``bounds``: per case and axis, the time from which |q_i - 0| stays within ``bounds.tol``
     (NaN if it is outside at the end) against ``bounds.total``. The reference must be the
     origin (the seed's q_d = 0)."""
+    _instance("check_fntsmc_run", "result", result, SimulationResult, "a landing.SimulationResult")
+    _instance("check_fntsmc_run", "plant", plant, Plant, "a landing.plants plant")
+    _instance("check_fntsmc_run", "bounds", bounds, FNTSMCBounds, "a landing.theory.FNTSMCBounds")
+    if result.t.size == 0:
+        raise ParameterError("check_fntsmc_run needs a recorded run (record_every >= 1)")
     q, _ = plant.coordinates(result.states)
     if q.ndim == 2:
         q = q[None]

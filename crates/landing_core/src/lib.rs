@@ -16,6 +16,7 @@ pub mod gravity;
 pub mod integrator;
 pub mod kernel;
 pub mod lanes;
+pub mod limits;
 pub mod memory;
 pub mod math;
 pub mod metrics;

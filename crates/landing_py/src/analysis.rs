@@ -7,38 +7,32 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use landing_core::dispersion::{Component, Dispersion};
+use landing_core::limits::MAX_CASES;
 use landing_core::{ParamError, theory};
 
-use crate::errors::InputError;
+use crate::errors::{InputError, guard, within_cap};
 use crate::table::Table;
 
-fn check<T>(_py: Python<'_>, r: Result<T, ParamError>) -> PyResult<T> {
-    Ok(r.map_err(InputError::from)?)
+/// Runs a theory formula under [`guard`], its `ParamError` as a `ParameterError`.
+fn check<T>(formula: impl FnOnce() -> Result<T, ParamError>) -> PyResult<T> {
+    guard(|| Ok(formula().map_err(InputError::from)?))
 }
 
 /// Seed 001 Lemma 2 (k = 1) for s' = -c1 sig^e1(s) - c2 sig^e2(s).
 #[pyfunction]
-pub fn fixed_time_bound(py: Python<'_>, c1: f64, e1: f64, c2: f64, e2: f64) -> PyResult<f64> {
-    check(py, theory::fixed_time_bound(c1, e1, c2, e2))
+pub fn fixed_time_bound(c1: f64, e1: f64, c2: f64, e2: f64) -> PyResult<f64> {
+    check(|| theory::fixed_time_bound(c1, e1, c2, e2))
 }
 
 /// Seed 001 Theorem 1 (k = 1): time to reach the practical neighbourhood.
 #[pyfunction]
-pub fn practical_time_bound(
-    py: Python<'_>,
-    c1: f64,
-    e1: f64,
-    c2: f64,
-    e2: f64,
-    theta: f64,
-) -> PyResult<f64> {
-    check(py, theory::practical_time_bound(c1, e1, c2, e2, theta))
+pub fn practical_time_bound(c1: f64, e1: f64, c2: f64, e2: f64, theta: f64) -> PyResult<f64> {
+    check(|| theory::practical_time_bound(c1, e1, c2, e2, theta))
 }
 
 /// Seed 001 eq. 38-39: the practical neighbourhood's radius.
 #[pyfunction]
 pub fn practical_radius(
-    py: Python<'_>,
     c1: f64,
     e1: f64,
     c2: f64,
@@ -46,7 +40,7 @@ pub fn practical_radius(
     d_max: f64,
     theta: f64,
 ) -> PyResult<f64> {
-    check(py, theory::practical_radius(c1, e1, c2, e2, d_max, theta))
+    check(|| theory::practical_radius(c1, e1, c2, e2, d_max, theta))
 }
 
 /// Seed 001 Theorems 2 to 4 for one axis of the fixed-time MSS guidance.
@@ -66,12 +60,11 @@ pub fn mss_bounds<'py>(
     theta1: f64,
     theta2: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let b = check(
-        py,
+    let b = check(|| {
         theory::mss_bounds(
             beta1, q1, beta2, q2, alpha1, gamma1, alpha2, gamma2, ap_max, theta1, theta2,
-        ),
-    )?;
+        )
+    })?;
     let d = PyDict::new(py);
     d.set_item("t1", b.t1)?;
     d.set_item("t2", b.t2)?;
@@ -86,39 +79,26 @@ pub fn mss_bounds<'py>(
 
 /// Seed 001 Remark 1 (sign-consistent): (tf1, tf2) lower bounds on one axis.
 #[pyfunction]
-pub fn min_final_time(
-    py: Python<'_>,
-    r0: f64,
-    v0: f64,
-    a_max: f64,
-    g: f64,
-) -> PyResult<(f64, f64)> {
-    check(py, theory::min_final_time(r0, v0, a_max, g))
+pub fn min_final_time(r0: f64, v0: f64, a_max: f64, g: f64) -> PyResult<(f64, f64)> {
+    check(|| theory::min_final_time(r0, v0, a_max, g))
 }
 
 /// Shortest time to rest at 0 on one axis (time-optimal bang-bang, gravity g).
 #[pyfunction]
-pub fn min_time_to_rest(py: Python<'_>, r0: f64, v0: f64, a_max: f64, g: f64) -> PyResult<f64> {
-    check(py, theory::min_time_to_rest(r0, v0, a_max, g))
+pub fn min_time_to_rest(r0: f64, v0: f64, a_max: f64, g: f64) -> PyResult<f64> {
+    check(|| theory::min_time_to_rest(r0, v0, a_max, g))
 }
 
 /// Seed 003 eq. 42 as printed, as a function of Lemma 2's constant c_v (not in the seed).
 #[pyfunction]
-pub fn fntsmc_ts_printed(py: Python<'_>, c_v: f64, alpha_s: f64, beta_s: f64) -> PyResult<f64> {
-    check(py, theory::fntsmc_ts_printed(c_v, alpha_s, beta_s))
+pub fn fntsmc_ts_printed(c_v: f64, alpha_s: f64, beta_s: f64) -> PyResult<f64> {
+    check(|| theory::fntsmc_ts_printed(c_v, alpha_s, beta_s))
 }
 
 /// Seed 003 eq. 47 as printed (not a bound for eq. 21's exponents; see the core).
 #[pyfunction]
-pub fn fntsmc_td_printed(
-    py: Python<'_>,
-    k1: f64,
-    p1: f64,
-    k2: f64,
-    p2: f64,
-    d: f64,
-) -> PyResult<f64> {
-    check(py, theory::fntsmc_td_printed(k1, p1, k2, p2, d))
+pub fn fntsmc_td_printed(k1: f64, p1: f64, k2: f64, p2: f64, d: f64) -> PyResult<f64> {
+    check(|| theory::fntsmc_td_printed(k1, p1, k2, p2, d))
 }
 
 /// Sound fixed-time bounds of the seed-003 FNTSMC on one axis.
@@ -138,12 +118,11 @@ pub fn fntsmc_bounds<'py>(
     d_max: f64,
     theta: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let b = check(
-        py,
+    let b = check(|| {
         theory::fntsmc_bounds(
             k1, p1, k2, p2, k3, alpha_s, beta_s, sigma_phi, tol, d_max, theta,
-        ),
-    )?;
+        )
+    })?;
     let d = PyDict::new(py);
     d.set_item("ts", b.ts)?;
     d.set_item("s_radius", b.s_radius)?;
@@ -221,16 +200,18 @@ fn parse_dispersion(table: &Table) -> Result<Dispersion, InputError> {
 impl DispersionHandle {
     #[new]
     fn new(table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let t = Table::from_py(table).map_err(|e| e.context("dispersion"))?;
-        Ok(Self {
-            dispersion: parse_dispersion(&t).map_err(|e| e.context("dispersion"))?,
+        guard(|| {
+            let t = Table::from_py(table).map_err(|e| e.context("dispersion"))?;
+            Ok(Self {
+                dispersion: parse_dispersion(&t).map_err(|e| e.context("dispersion"))?,
+            })
         })
     }
 
     /// Number of components.
     #[getter]
-    fn dim(&self) -> usize {
-        self.dispersion.dim()
+    fn dim(&self) -> PyResult<usize> {
+        guard(|| Ok(self.dispersion.dim()))
     }
 
     /// Cases `first_case .. first_case + n`, shape (n, components).
@@ -241,17 +222,27 @@ impl DispersionHandle {
         first_case: u64,
         n: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let dim = self.dispersion.dim();
-        let d = &self.dispersion;
-        let data = py.detach(|| d.sample(seed, first_case, n));
-        Ok(PyArray1::from_vec(py, data).reshape([n, dim])?.into_any())
+        guard(|| {
+            // `landing.dispersions.Dispersion.sample` has checked the memory it needs
+            within_cap("n", n as u64, "max_cases", MAX_CASES)?;
+            if first_case.checked_add(n as u64).is_none() {
+                return Err(InputError::value(format!(
+                    "first_case = {first_case} violates first_case + n < 2^64 (n = {n})"
+                ))
+                .into());
+            }
+            let dim = self.dispersion.dim();
+            let d = &self.dispersion;
+            let data = py.detach(|| d.sample(seed, first_case, n));
+            Ok(PyArray1::from_vec(py, data).reshape([n, dim])?.into_any())
+        })
     }
 }
 
 /// One Philox4x64-10 block, exposed so the tests can compare with `numpy.random.Philox`.
 #[pyfunction]
-fn philox4x64(counter: [u64; 4], key: [u64; 2]) -> [u64; 4] {
-    philox4x64_10(counter, key)
+fn philox4x64(counter: [u64; 4], key: [u64; 2]) -> PyResult<[u64; 4]> {
+    guard(|| Ok(philox4x64_10(counter, key)))
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

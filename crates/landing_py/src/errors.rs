@@ -145,3 +145,26 @@ pub fn internal_error(panic: Box<dyn std::any::Any + Send>) -> PyErr {
         format!("internal error in the simulation core ({what}); this is a bug, please report it"),
     )
 }
+
+/// Runs the body of a binding entry point (every `#[pyfunction]` and `#[pymethods]` item
+/// goes through it), so that a panic left in the core arrives as `landing.errors.
+/// SimulationError` (a `LandingError`, an Exception) rather than pyo3's `PanicException`,
+/// a BaseException that `except Exception` does not catch. Inputs are validated before the
+/// code that could panic on them; this is the net under that rule, not a substitute for it.
+pub fn guard<T>(body: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(body)) {
+        Ok(result) => result,
+        Err(panic) => Err(internal_error(panic)),
+    }
+}
+
+/// A count argument (cases, substeps, threads, resolution) checked against its cap from
+/// `landing_core::limits`: the error names the argument, its value and the cap.
+pub fn within_cap(name: &str, value: u64, cap_name: &str, cap: u64) -> Result<(), InputError> {
+    if value > cap {
+        return Err(InputError::value(format!(
+            "{name} = {value} violates {name} <= {cap_name} ({cap}); see landing._core.LIMITS"
+        )));
+    }
+    Ok(())
+}

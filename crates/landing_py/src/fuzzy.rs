@@ -9,8 +9,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use landing_core::fuzzy::{Mamdani, Membership, Rule, Variable, variable_rate_system};
+use landing_core::limits::MAX_FUZZY_RESOLUTION;
 
-use crate::errors::InputError;
+use crate::errors::{InputError, guard, within_cap};
 
 fn item<'py, T: for<'a> FromPyObject<'a, 'py>>(
     d: &Bound<'py, PyDict>,
@@ -38,6 +39,16 @@ fn variable(d: &Bound<'_, PyDict>, what: &str) -> Result<Variable, InputError> {
                 )));
             }
         });
+    }
+    // checked here too (Mamdani::new checks them again) so that the error names the variable
+    // and the set, not only the set's shape
+    for (j, set) in sets.iter().enumerate() {
+        set.validate().map_err(|e| {
+            InputError::value(format!(
+                "{what}: sets[{j}] {} = {} violates {}",
+                e.param, e.value, e.rule
+            ))
+        })?;
     }
     Ok(Variable { lo, hi, sets })
 }
@@ -77,9 +88,11 @@ pub struct FuzzySystem {
 impl FuzzySystem {
     #[new]
     fn new(table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let system = parse(table).map_err(|e| e.context("fuzzy system"))?;
-        Ok(Self {
-            system: Arc::new(system),
+        guard(|| {
+            let system = parse(table).map_err(|e| e.context("fuzzy system"))?;
+            Ok(Self {
+                system: Arc::new(system),
+            })
         })
     }
 
@@ -89,24 +102,32 @@ impl FuzzySystem {
         py: Python<'py>,
         inputs: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let shape = inputs.shape();
-        if shape[1] != self.system.n_inputs() {
-            return Err(InputError::value(format!(
-                "inputs has {} columns; the system takes {}",
-                shape[1],
-                self.system.n_inputs()
-            ))
-            .into());
-        }
-        let x = inputs.as_array();
-        let rows: Vec<Vec<f64>> = x
-            .outer_iter()
-            .map(|r| r.iter().copied().collect())
-            .collect();
-        let system = self.system.clone();
-        let out: Vec<f64> =
-            py.detach(move || rows.iter().map(|r| system.evaluate::<f64>(r)).collect());
-        Ok(PyArray1::from_vec(py, out))
+        guard(|| {
+            let shape = inputs.shape();
+            if shape[1] != self.system.n_inputs() {
+                return Err(InputError::value(format!(
+                    "inputs has {} columns; the system takes {}",
+                    shape[1],
+                    self.system.n_inputs()
+                ))
+                .into());
+            }
+            let x = inputs.as_array();
+            if let Some(((i, j), v)) = x.indexed_iter().find(|(_, v)| !v.is_finite()) {
+                return Err(InputError::value(format!(
+                    "inputs[{i}, {j}] = {v} violates finite values"
+                ))
+                .into());
+            }
+            let rows: Vec<Vec<f64>> = x
+                .outer_iter()
+                .map(|r| r.iter().copied().collect())
+                .collect();
+            let system = self.system.clone();
+            let out: Vec<f64> =
+                py.detach(move || rows.iter().map(|r| system.evaluate::<f64>(r)).collect());
+            Ok(PyArray1::from_vec(py, out))
+        })
     }
 }
 
@@ -132,12 +153,25 @@ pub fn variable_rate_system_table(
     py: Python<'_>,
     resolution: usize,
 ) -> PyResult<Bound<'_, PyDict>> {
+    guard(|| variable_rate_system_table_unguarded(py, resolution))
+}
+
+fn variable_rate_system_table_unguarded(
+    py: Python<'_>,
+    resolution: usize,
+) -> PyResult<Bound<'_, PyDict>> {
     if resolution < 2 {
         return Err(InputError::value(format!(
             "resolution = {resolution} violates resolution >= 2"
         ))
         .into());
     }
+    within_cap(
+        "resolution",
+        resolution as u64,
+        "max_fuzzy_resolution",
+        MAX_FUZZY_RESOLUTION,
+    )?;
     let m = variable_rate_system(resolution);
     let d = PyDict::new(py);
     let inputs = m

@@ -7,7 +7,7 @@ use pyo3::types::PyDict;
 
 use landing_core::registry::AnyGravity;
 
-use crate::errors::InputError;
+use crate::errors::{InputError, guard};
 use crate::table::Table;
 
 /// A compiled gravity field (`landing.gravity.Gravity` holds one).
@@ -21,23 +21,36 @@ pub struct Gravity {
 impl Gravity {
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let t = Table::from_py(table).map_err(|e| e.context(owner))?;
-        let (fields, _) = t
-            .read_cases(None, |p| AnyGravity::from_params(p))
-            .map_err(|e| e.context(owner))?;
-        Ok(Self {
-            fields: fields.iter().copied().collect(),
+        guard(|| {
+            let t = Table::from_py(table).map_err(|e| e.context(owner))?;
+            let (fields, _) = t
+                .read_cases(None, |p| AnyGravity::from_params(p))
+                .map_err(|e| e.context(owner))?;
+            Ok(Self {
+                fields: fields.iter().copied().collect(),
+            })
         })
     }
 
     /// The field's kind (one of GRAVITY_KINDS).
     #[getter]
-    fn kind(&self) -> &'static str {
-        self.fields[0].kind()
+    fn kind(&self) -> PyResult<&'static str> {
+        guard(|| Ok(self.fields[0].kind()))
     }
 
     /// Acceleration (N, 3) or potential (N,) at positions (N, 3).
     fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        positions: PyReadonlyArray2<'py, f64>,
+        potential: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        guard(|| self.evaluate_unguarded(py, positions, potential))
+    }
+}
+
+impl Gravity {
+    fn evaluate_unguarded<'py>(
         &self,
         py: Python<'py>,
         positions: PyReadonlyArray2<'py, f64>,
@@ -60,6 +73,14 @@ impl Gravity {
         let f = &self.fields[0];
         let r = positions.as_slice()?;
         let n = shape[0];
+        if let Some((k, v)) = r.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(InputError::value(format!(
+                "r[{}, {}] = {v} violates finite values",
+                k / 3,
+                k % 3
+            ))
+            .into());
+        }
         let mut out = Vec::with_capacity(if potential { n } else { 3 * n });
         for row in r.chunks_exact(3) {
             let x = Vector3::new(row[0], row[1], row[2]);

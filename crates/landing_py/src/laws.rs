@@ -7,7 +7,7 @@ use pyo3::types::PyDict;
 use landing_core::control::AnyLaw;
 
 use crate::compiled::{ByAxes, ReadFor};
-use crate::errors::InputError;
+use crate::errors::{InputError, guard};
 use crate::table::{Reader, Table};
 
 struct Laws;
@@ -30,30 +30,38 @@ pub struct Law {
 impl Law {
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let t = Table::from_py(table).map_err(|e| e.context(owner))?;
-        // a table whose per-axis arrays all have length 2 is meant for 2 axes: its error names
-        // the axis (read for 3 axes it would be one value per case)
-        let lengths = t.trailing_lengths();
-        let two_axes = lengths.contains(&2) && !lengths.contains(&3);
-        Ok(Self {
-            kind: t.kind().unwrap_or_default().to_string(),
-            compiled: ByAxes::compile::<Laws>(owner, &t, two_axes)?,
+        guard(|| {
+            let t = Table::from_py(table).map_err(|e| e.context(owner))?;
+            // a table whose per-axis arrays all have length 2 is meant for 2 axes: its error
+            // names the axis (read for 3 axes it would be one value per case)
+            let lengths = t.trailing_lengths();
+            let two_axes = lengths.contains(&2) && !lengths.contains(&3);
+            Ok(Self {
+                kind: t.kind().unwrap_or_default().to_string(),
+                compiled: ByAxes::compile::<Laws>(owner, &t, two_axes)?,
+            })
         })
     }
 
     #[getter]
-    fn kind(&self) -> &str {
-        &self.kind
+    fn kind(&self) -> PyResult<&str> {
+        guard(|| Ok(self.kind.as_str()))
     }
 
     /// The axis counts the law's parameters fit.
     #[getter]
-    fn axes(&self) -> Vec<usize> {
-        self.compiled.axes()
+    fn axes(&self) -> PyResult<Vec<usize>> {
+        guard(|| Ok(self.compiled.axes()))
     }
 
     /// Names and widths of the diagnostic signals for `axes` axes.
     fn diagnostic_layout(&self, axes: usize) -> PyResult<Vec<(&'static str, usize)>> {
+        guard(|| self.diagnostic_layout_unguarded(axes))
+    }
+}
+
+impl Law {
+    fn diagnostic_layout_unguarded(&self, axes: usize) -> PyResult<Vec<(&'static str, usize)>> {
         Ok(match axes {
             3 => self
                 .compiled

@@ -18,14 +18,17 @@ mod simulate;
 mod table;
 
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use landing_core::control::LAW_KINDS;
 use landing_core::gravity::G;
 use landing_core::integrator::IntegratorKind;
 use landing_core::kernel::Level;
 use landing_core::metrics::{Divergence, MAX_COMMAND};
+use landing_core::limits::LIMITS;
 use landing_core::registry::{GRAVITY_KINDS, PLANT_KINDS};
 
+use errors::guard;
 use fuzzy::FuzzySystem;
 use gravity::Gravity;
 use laws::Law;
@@ -34,16 +37,41 @@ use signals::{Disturbance, Reference};
 
 /// The instruction-set levels this CPU supports, lowest first.
 #[pyfunction]
-fn kernel_levels() -> Vec<&'static str> {
-    Level::supported().into_iter().map(Level::name).collect()
+fn kernel_levels() -> PyResult<Vec<&'static str>> {
+    guard(|| Ok(Level::supported().into_iter().map(Level::name).collect()))
+}
+
+/// Bytes of memory a new allocation can count on, as the core measures it before a batch
+/// (None where the system does not say).
+#[pyfunction]
+fn available_memory() -> PyResult<Option<u64>> {
+    guard(|| Ok(landing_core::memory::available_bytes()))
 }
 
 /// The level a batch runs at unless told otherwise (`LANDING_KERNEL`, else the best).
 #[pyfunction]
 fn default_kernel() -> PyResult<&'static str> {
-    Level::resolve(None)
-        .map(Level::name)
-        .map_err(|e| errors::InputError::value(e.to_string()).into())
+    guard(|| {
+        Level::resolve(None)
+            .map(Level::name)
+            .map_err(|e| errors::InputError::value(e.to_string()).into())
+    })
+}
+
+/// Test hook: panics inside a guarded entry point, so the tests can check that a panic in
+/// the core arrives as a `LandingError` (not documented; not part of the API).
+#[pyfunction]
+fn _panic_for_test() -> PyResult<()> {
+    guard(|| panic!("deliberate panic for the tests"))
+}
+
+/// The caps of `landing_core::limits`, by name.
+fn limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    for (name, value) in LIMITS {
+        d.set_item(name, value)?;
+    }
+    Ok(d)
 }
 
 #[pymodule]
@@ -60,6 +88,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fuzzy::variable_rate_system_table, m)?)?;
     m.add_function(wrap_pyfunction!(kernel_levels, m)?)?;
     m.add_function(wrap_pyfunction!(default_kernel, m)?)?;
+    m.add_function(wrap_pyfunction!(available_memory, m)?)?;
+    m.add_function(wrap_pyfunction!(_panic_for_test, m)?)?;
     analysis::register(m)?;
     m.add("INTEGRATORS", IntegratorKind::NAMES.to_vec())?;
     m.add("PLANT_KINDS", PLANT_KINDS.to_vec())?;
@@ -69,5 +99,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GRAVITATIONAL_CONSTANT", G)?;
     m.add("DIVERGENCE_REASONS", Divergence::NAMES.to_vec())?;
     m.add("MAX_COMMAND", MAX_COMMAND)?;
+    m.add("LIMITS", limits(m.py())?)?;
     Ok(())
 }

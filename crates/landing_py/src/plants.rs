@@ -11,7 +11,7 @@ use landing_core::plant::PlantModel;
 use landing_core::registry::{AnyPlant, PlantCase, PlantVisitor};
 use landing_core::state::State;
 
-use crate::errors::InputError;
+use crate::errors::{InputError, guard};
 use crate::output;
 use crate::table::{Cases, Table};
 
@@ -136,7 +136,13 @@ impl PlantVisitor for StatesAt<'_> {
                     ));
                 }
                 Some(x) => {
-                    out.extend(x.map_err(|e| InputError::from(e).context(&format!("row {i}")))?)
+                    let x = x.map_err(|e| InputError::from(e).context(&format!("row {i}")))?;
+                    if x.iter().any(|v| !v.is_finite()) {
+                        return Err(InputError::value(format!(
+                            "coordinates[{i}] = {r:?} violates coordinates that give a finite state (angles and rates too large)"
+                        )));
+                    }
+                    out.extend(x)
                 }
             }
         }
@@ -148,33 +154,60 @@ impl PlantVisitor for StatesAt<'_> {
 impl Plant {
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        Ok(Self::compile(
-            owner,
-            &Table::from_py(table).map_err(|e| e.context(owner))?,
-        )?)
+        guard(|| {
+            Ok(Self::compile(
+                owner,
+                &Table::from_py(table).map_err(|e| e.context(owner))?,
+            )?)
+        })
     }
 
     #[getter]
-    fn kind(&self) -> &str {
-        &self.kind
+    fn kind(&self) -> PyResult<&str> {
+        guard(|| Ok(self.kind.as_str()))
     }
 
     /// Number of generalized coordinates.
     #[getter]
-    fn axes(&self) -> usize {
-        self.plants.axes()
+    fn axes(&self) -> PyResult<usize> {
+        guard(|| Ok(self.plants.axes()))
     }
 
     /// Number of cases the parameters hold (1 when shared).
     #[getter]
-    fn cases(&self) -> usize {
-        self.cases.count
+    fn cases(&self) -> PyResult<usize> {
+        guard(|| Ok(self.cases.count))
     }
 
     /// state_names, control_names, axes, max_step and the model's derived figures (the
     /// tethered satellite's inertia, orbital_rate, thrust_limit, torque_limit, and for the
     /// flexible model nodes and segment_length), of the first case.
     fn info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        guard(|| self.info_unguarded(py))
+    }
+
+    /// The generalized coordinates (q, q') the laws read, for states (M, state dim).
+    fn coordinates<'py>(
+        &self,
+        py: Python<'py>,
+        states: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        guard(|| self.coordinates_unguarded(py, states))
+    }
+
+    /// States (M, state dim) at coordinates: rows (q, q') of 2 D values, for the plants whose
+    /// state they determine (the tethered satellite: phi, theta, phi_dot, theta_dot).
+    fn state_at<'py>(
+        &self,
+        py: Python<'py>,
+        rows: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        guard(|| self.state_at_unguarded(py, rows))
+    }
+}
+
+impl Plant {
+    fn info_unguarded<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (state, control, axes, figures, step) = self.plants.visit(Describe);
         let d = PyDict::new(py);
         d.set_item("state_names", state.to_vec())?;
@@ -191,8 +224,7 @@ impl Plant {
         Ok(d)
     }
 
-    /// The generalized coordinates (q, q') the laws read, for states (M, state dim).
-    fn coordinates<'py>(
+    fn coordinates_unguarded<'py>(
         &self,
         py: Python<'py>,
         states: PyReadonlyArray2<'py, f64>,
@@ -218,9 +250,7 @@ impl Plant {
         ))
     }
 
-    /// States (M, state dim) at coordinates: rows (q, q') of 2 D values, for the plants whose
-    /// state they determine (the tethered satellite: phi, theta, phi_dot, theta_dot).
-    fn state_at<'py>(
+    fn state_at_unguarded<'py>(
         &self,
         py: Python<'py>,
         rows: PyReadonlyArray2<'py, f64>,

@@ -9,7 +9,7 @@ use landing_core::params::FromParams;
 use landing_core::reference::Reference as CoreReference;
 
 use crate::compiled::{ByAxes, ReadFor};
-use crate::errors::InputError;
+use crate::errors::{InputError, guard};
 use crate::output;
 use crate::table::{Reader, Table, Value};
 
@@ -48,9 +48,11 @@ pub struct Reference {
 impl Reference {
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let t = Table::from_py(table).map_err(|e| e.context(owner))?;
-        Ok(Self {
-            compiled: ByAxes::compile::<References>(owner, &t, false)?,
+        guard(|| {
+            let t = Table::from_py(table).map_err(|e| e.context(owner))?;
+            Ok(Self {
+                compiled: ByAxes::compile::<References>(owner, &t, false)?,
+            })
         })
     }
 
@@ -61,6 +63,20 @@ impl Reference {
         axes: usize,
         t: Vec<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        guard(|| self.evaluate_unguarded(py, axes, t))
+    }
+}
+
+impl Reference {
+    fn evaluate_unguarded<'py>(
+        &self,
+        py: Python<'py>,
+        axes: usize,
+        t: Vec<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        if let Some((i, v)) = t.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(InputError::value(format!("t[{i}] = {v} violates finite values")).into());
+        }
         fn eval<const D: usize>(c: &ByAxes, t: &[f64]) -> Result<[Vec<f64>; 3], InputError> {
             let (refs, _) = c.get::<CoreReference<D>, D>()?;
             if !refs.is_shared() {
@@ -74,8 +90,15 @@ impl Reference {
                 Vec::with_capacity(t.len() * D),
                 Vec::with_capacity(t.len() * D),
             ];
-            for &ti in t {
+            for (i, &ti) in t.iter().enumerate() {
                 let pt = r.at(ti);
+                let values = [&pt.position, &pt.velocity, &pt.acceleration];
+                if values.iter().any(|v| v.iter().any(|x| !x.is_finite())) {
+                    // a cubic far before 0 overflows
+                    return Err(InputError::value(format!(
+                        "t[{i}] = {ti} violates times at which the reference is finite"
+                    )));
+                }
                 out[0].extend_from_slice(pt.position.as_slice());
                 out[1].extend_from_slice(pt.velocity.as_slice());
                 out[2].extend_from_slice(pt.acceleration.as_slice());
@@ -126,32 +149,42 @@ impl Disturbance {
     /// A disturbance from its table `{"components": [...]}`.
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
-        let t = Table::from_py(table).map_err(|e| e.context(owner))?;
-        let components = match t.entry("components") {
-            Some(Value::List(items)) => items.clone(),
-            _ => {
-                return Err(InputError::type_(format!(
-                    "{owner}: a disturbance table has a list 'components'"
-                ))
-                .into());
-            }
-        };
-        Ok(Self::from_components(owner, components)?)
+        guard(|| {
+            let t = Table::from_py(table).map_err(|e| e.context(owner))?;
+            let components = match t.entry("components") {
+                Some(Value::List(items)) => items.clone(),
+                _ => {
+                    return Err(InputError::type_(format!(
+                        "{owner}: a disturbance table has a list 'components'"
+                    ))
+                    .into());
+                }
+            };
+            Ok(Self::from_components(owner, components)?)
+        })
     }
 
     /// The disturbances acting together (their components add up).
     #[staticmethod]
     fn combine(parts: Vec<PyRef<'_, Disturbance>>) -> PyResult<Self> {
-        let components = parts
-            .iter()
-            .flat_map(|p| p.components.iter().cloned())
-            .collect();
-        Ok(Self::from_components("disturbance", components)?)
+        guard(|| {
+            let components = parts
+                .iter()
+                .flat_map(|p| p.components.iter().cloned())
+                .collect();
+            Ok(Self::from_components("disturbance", components)?)
+        })
     }
 
     /// Per-axis bound on |d_i(t)| (shared by all cases): |constant| + sum of |amplitudes| +
     /// noise bound.
     fn bound(&self, axes: usize) -> PyResult<Vec<f64>> {
+        guard(|| self.bound_unguarded(axes))
+    }
+}
+
+impl Disturbance {
+    fn bound_unguarded(&self, axes: usize) -> PyResult<Vec<f64>> {
         fn b<const D: usize>(c: &ByAxes) -> Result<Vec<f64>, InputError> {
             let (d, _) = c.get::<CoreDisturbance<D>, D>()?;
             if !d.is_shared() {
@@ -182,6 +215,16 @@ pub fn cubic_from_boundary(
     vt: Vec<f64>,
     t_end: f64,
 ) -> PyResult<Vec<Vec<f64>>> {
+    guard(|| cubic_from_boundary_unguarded(p0, v0, pt, vt, t_end))
+}
+
+fn cubic_from_boundary_unguarded(
+    p0: Vec<f64>,
+    v0: Vec<f64>,
+    pt: Vec<f64>,
+    vt: Vec<f64>,
+    t_end: f64,
+) -> PyResult<Vec<Vec<f64>>> {
     fn fit<const D: usize>(v: [&[f64]; 4], t_end: f64) -> Result<Vec<Vec<f64>>, InputError> {
         let s = v.map(nalgebra::SVector::<f64, D>::from_column_slice);
         match CoreReference::cubic_from_boundary(s[0], s[1], s[2], s[3], t_end)? {
@@ -189,6 +232,13 @@ pub fn cubic_from_boundary(
                 Ok(coefficients.iter().map(|c| c.as_slice().to_vec()).collect())
             }
             CoreReference::Constant { .. } => unreachable!("cubic_from_boundary builds a cubic"),
+        }
+    }
+    for (name, v) in [("p0", &p0), ("v0", &v0), ("pT", &pt), ("vT", &vt)] {
+        if let Some((i, x)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            return Err(
+                InputError::value(format!("{name}[{i}] = {x} violates finite values")).into(),
+            );
         }
     }
     let d = p0.len();

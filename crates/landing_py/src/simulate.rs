@@ -13,13 +13,14 @@ use landing_core::batch::{Batch, RunOptions, run};
 use landing_core::control::AnyLaw;
 use landing_core::disturbance::Disturbance as CoreDisturbance;
 use landing_core::integrator::IntegratorKind;
+use landing_core::limits::{MAX_CASES, MAX_SUBSTEPS, MAX_THREADS};
 use landing_core::plant::PlantModel;
 use landing_core::reference::Reference as CoreReference;
 use landing_core::registry::PlantVisitor;
 use landing_core::state::State;
 use landing_core::{Level, PerCase, SimConfig, Tolerance};
 
-use crate::errors::{InputError, batch_error, internal_error};
+use crate::errors::{InputError, batch_error, guard, internal_error, within_cap};
 use crate::laws::Law;
 use crate::output;
 use crate::plants::Plant;
@@ -160,11 +161,57 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
     }
 }
 
-/// See `landing.simulate_batch` for the documentation.
+/// See `landing.simulate_batch` for the documentation. A panic anywhere below arrives as a
+/// `SimulationError` (see [`guard`]).
 #[pyfunction]
 #[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_batch<'py>(
+    py: Python<'py>,
+    plant: &Plant,
+    controller: &Law,
+    x0: PyReadonlyArray2<'py, f64>,
+    t_final: f64,
+    dt: f64,
+    integrator: &str,
+    substeps: i64,
+    reference: Option<PyRef<'py, Reference>>,
+    disturbance: Option<PyRef<'py, Disturbance>>,
+    record_every: i64,
+    seed: u64,
+    first_case: u64,
+    settle_tolerance: f64,
+    settle_relative: bool,
+    chatter_cutoff: Option<f64>,
+    threads: Option<i64>,
+    kernel: Option<&str>,
+) -> PyResult<Bound<'py, PyDict>> {
+    guard(move || {
+        simulate_batch_unguarded(
+            py,
+            plant,
+            controller,
+            x0,
+            t_final,
+            dt,
+            integrator,
+            substeps,
+            reference,
+            disturbance,
+            record_every,
+            seed,
+            first_case,
+            settle_tolerance,
+            settle_relative,
+            chatter_cutoff,
+            threads,
+            kernel,
+        )
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+fn simulate_batch_unguarded<'py>(
     py: Python<'py>,
     plant: &Plant,
     controller: &Law,
@@ -190,11 +237,12 @@ pub fn simulate_batch<'py>(
             IntegratorKind::NAMES
         ))
     })?;
-    if substeps < 1 || substeps > u32::MAX as i64 {
+    if substeps < 1 {
         return Err(
             InputError::value(format!("substeps = {substeps} violates substeps >= 1")).into(),
         );
     }
+    within_cap("substeps", substeps as u64, "max_substeps", MAX_SUBSTEPS)?;
     if record_every < 0 {
         return Err(InputError::value(format!(
             "record_every = {record_every} violates record_every >= 0"
@@ -203,7 +251,10 @@ pub fn simulate_batch<'py>(
     }
     let threads = match threads {
         None => None,
-        Some(k) if k >= 1 => Some(k as usize),
+        Some(k) if k >= 1 => {
+            within_cap("threads", k as u64, "max_threads", MAX_THREADS)?;
+            Some(k as usize)
+        }
         Some(k) => {
             return Err(InputError::value(format!("threads = {k} violates threads >= 1")).into());
         }
@@ -238,6 +289,7 @@ pub fn simulate_batch<'py>(
         ))
         .into());
     }
+    within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES)?;
     check_cases(&format!("plant ({})", plant.kind), &plant.cases, n)?;
     plant.plants.visit(Simulate {
         py,

@@ -112,6 +112,13 @@ impl Table {
             ))
         })?;
         let shape = arr.shape().to_vec();
+        if shape.contains(&0) {
+            // every reader picks at least one value (the first case, axis or node count)
+            return Err(InputError::value(format!(
+                "{key} has shape {}; it takes at least one value",
+                shape_str(&shape)
+            )));
+        }
         let data: Vec<f64> = arr.as_array().iter().copied().collect();
         if let Some((i, x)) = data.iter().enumerate().find(|(_, x)| !x.is_finite()) {
             let at = if data.len() > 1 {

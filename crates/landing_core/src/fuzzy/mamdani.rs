@@ -10,6 +10,7 @@
 use super::Membership;
 use crate::error::{ParamError, require};
 use crate::lanes::{Mask, Real};
+use crate::limits::MAX_FUZZY_RESOLUTION;
 
 /// Most sets one output variable may have (the aggregation keeps one activation per set on
 /// the stack, so evaluation never allocates).
@@ -91,10 +92,10 @@ impl Mamdani {
             "at most 16 output sets",
         )?;
         require(
-            resolution >= 2,
+            (2..=MAX_FUZZY_RESOLUTION).contains(&(resolution as u64)),
             "resolution",
             resolution as f64,
-            "resolution >= 2",
+            "2 <= resolution <= max_fuzzy_resolution (100000)",
         )?;
         require(!rules.is_empty(), "rules", 0.0, "at least one rule")?;
         for (k, r) in rules.iter().enumerate() {

@@ -53,12 +53,15 @@ impl TwoPointMass {
 
 impl Validate for TwoPointMass {
     fn validate(&self) -> Result<(), ParamError> {
-        for (i, &m) in self.mu.iter().enumerate() {
-            require(m > 0.0, "masses", m, "masses > 0").map_err(|e| e.on_axis(i))?;
+        // named as the user gives them (m1, m2, position1, position2); the field keeps G m_i
+        const MU: [(&str, &str); 2] = [("G m1", "G m1 > 0"), ("G m2", "G m2 > 0")];
+        const POSITION: [&str; 2] = ["position1", "position2"];
+        for (&m, (name, rule)) in self.mu.iter().zip(MU) {
+            require(m > 0.0, name, m, rule)?;
         }
-        for p in &self.positions {
+        for (p, name) in self.positions.iter().zip(POSITION) {
             for (i, v) in p.iter().enumerate() {
-                require(true, "positions", *v, "finite values").map_err(|e| e.on_axis(i))?;
+                require(true, name, *v, "finite values").map_err(|e| e.on_axis(i))?;
             }
         }
         Ok(())

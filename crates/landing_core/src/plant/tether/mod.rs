@@ -53,7 +53,15 @@ pub fn orbital_rate(altitude: f64) -> Result<f64, ParamError> {
         "orbit_altitude > -6378137 m",
     )?;
     let r = EARTH_RADIUS + altitude;
-    Ok((MU_EARTH / (r * r * r)).sqrt())
+    let rate = (MU_EARTH / (r * r * r)).sqrt();
+    // beyond about 5e102 m, r^3 overflows and the orbit would not turn at all
+    require(
+        rate > 0.0 && rate.is_finite(),
+        "orbit_altitude",
+        altitude,
+        "a positive, finite mean motion sqrt(mu / (R + orbit_altitude)^3)",
+    )?;
+    Ok(rate)
 }
 
 /// The parameters both fidelities share (seed Table 1 and the orbit of its section 4).

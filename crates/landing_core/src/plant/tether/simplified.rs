@@ -111,7 +111,10 @@ impl<R: Real> Plant<R, 2> for TetheredSimplified<R> {
 
 impl PlantModel<2> for TetheredSimplified {
     type At<R: Real> = TetheredSimplified<R>;
-    type Blocks = crate::kernel::Wide;
+    // Narrow like the flexible tether: the laws of a two-axis plant are then compiled for
+    // three lane types instead of five (every law is compiled once per axis count and lane
+    // type), which shortens the build; this small plant gains nothing from wider blocks.
+    type Blocks = crate::kernel::Narrow;
     const STATE_NAMES: &'static [&'static str] = &["phi", "theta", "phi_dot", "theta_dot"];
     const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];
 
