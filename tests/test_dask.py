@@ -303,9 +303,11 @@ def test_a_worker_killed_mid_run_costs_only_its_chunks(client, tmp_path):
 
     def kill_one_after_two_chunks() -> None:
         deadline = time.monotonic() + 60
-        while completed() < 2 and time.monotonic() < deadline:
-            time.sleep(0.01)
         address, victim = next(iter(pids.items()))
+        while time.monotonic() < deadline:  # two chunks stored, and the victim running one
+            if completed() >= 2 and client.processing(workers=[address])[address]:
+                break
+            time.sleep(0.01)
         killed["running"] = client.processing(workers=[address])[address]
         killed["done_before"] = completed()
         os.kill(victim, signal.SIGKILL)
