@@ -81,8 +81,17 @@ def cmd_mc(args: argparse.Namespace) -> int:
         kwargs["store"] = args.store
     if args.no_progress:
         kwargs["progress"] = False
+    client = None
+    if args.scheduler is not None:
+        from landing.cluster import connect
+
+        client = kwargs["client"] = connect(args.scheduler)
     start = time.perf_counter()
-    mc = landing.monte_carlo(scenario, args.cases, **kwargs)
+    try:
+        mc = landing.monte_carlo(scenario, args.cases, **kwargs)
+    finally:
+        if client is not None:
+            client.close()
     print(f"{args.cases} cases in {time.perf_counter() - start:.2f} s")
     print(mc.report())
     _figures(mc, scenario, args.out, f"figures/{scenario.name}")
@@ -221,6 +230,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--store", default=None, help="campaign directory: written as chunks complete, resumed if present")
     p.add_argument("--chunk-size", type=int, default=None)
     p.add_argument("--threads", type=int, default=None)
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run the chunks on the Dask cluster of this scheduler (tcp://host:8786), "
+                        "--threads threads each on a worker; needs landing[dask]")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--out", default=None, help=figures_help)
     p.set_defaults(run=cmd_mc)

@@ -418,6 +418,7 @@ def monte_carlo(
     check_bounds: bool = True,
     keep: Union[str, Sequence[str]] = SIGNALS,
     store: Union[str, "os.PathLike[str]", None] = None,
+    client: Any = None,
 ) -> MonteCarloResult:
     """Run ``n`` dispersed cases of ``scenario``.
 
@@ -444,6 +445,13 @@ def monte_carlo(
         (scenario, seed, n, chunk_size, record settings) is refused. Without ``chunk_size`` a
         new store is cut into ``max(1000, n / 50)``-case chunks and a resumed one keeps its own.
         :func:`landing.load` reads it back. Needs ``pip install "landing[io]"``.
+    client : a ``distributed.Client``: run the chunks on its Dask cluster, ``threads`` threads
+        each on a worker (default: all the worker machine's cores), the store (if any) written
+        by this process as chunks arrive. The result is the local run's bit for bit; a lost
+        worker costs only its chunks, which are re-run; Ctrl-C cancels the outstanding chunks
+        and keeps the completed ones in the store. Without ``chunk_size`` (and no store to
+        resume) the chunks are of ``max(1000, n / 50)`` cases. See :mod:`landing.cluster` and
+        docs/cluster.md. Needs ``pip install "landing[dask]"``.
     """
     chunk_given = chunk_size is not None
     if not isinstance(scenario, Scenario):
@@ -459,6 +467,12 @@ def monte_carlo(
     if progress is not None:
         progress = boolean("progress", progress)
     check_bounds = boolean("check_bounds", check_bounds)
+    if client is not None:
+        from landing.cluster import check_client, default_chunk_size
+
+        check_client(client)
+        if chunk_size is None and store is None:
+            chunk_size = default_chunk_size(n)
     work = n * scenario.t_final / scenario.dt
     if progress is None:
         # wherever stderr goes: a bar in terminals and notebooks, a line every 30 s in logs
@@ -498,8 +512,16 @@ def monte_carlo(
         return part
 
     try:
-        mc = assemble_campaign(scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
-                               run_chunk=run_chunk, store=campaign_store, check_bounds=check_bounds, bar=bar)
+        if client is not None:
+            from landing.cluster import run_campaign
+
+            mc = run_campaign(client, scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
+                              record_every=opts["record_every"], threads=threads, store=campaign_store,
+                              check_bounds=check_bounds, bar=bar)
+        else:
+            mc = assemble_campaign(scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
+                                   run_chunk=run_chunk, store=campaign_store, check_bounds=check_bounds,
+                                   bar=bar)
     finally:
         if bar:
             bar.close()

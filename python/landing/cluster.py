@@ -1,0 +1,293 @@
+"""Campaigns on a Dask cluster: ``landing.monte_carlo(..., client=CLIENT)`` and
+``landing mc ... --scheduler ADDRESS``.
+
+How a campaign runs on a cluster:
+
+- The cases are cut into chunks (``chunk_size`` cases each); each chunk is one task,
+  :func:`run_chunk`, which rebuilds the scenario on the worker and runs its cases in the Rust
+  core with ``simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads)``.
+  Case i depends only on (seed, i), so the result is the local run's bit for bit whatever the
+  number of workers, their order of completion or the chunk size.
+- The scenario travels as its TOML text (a few kB in each task, cached on the worker; not
+  scattered once, since scattered data is lost with the worker holding it), which
+  reads back to the same scenario; a scenario that TOML cannot describe (a law or plant built
+  in code) travels pickled. Each task also carries its slice of the initial states, computed
+  once by the client.
+- The client keeps a bounded number of chunks in flight (twice the cluster's threads, at least
+  8), gathers each chunk as it completes, writes it to the campaign store (when ``store=`` is
+  given: the store is written by the client process only, so the workers need no shared
+  filesystem) and copies it into the preallocated output. Signals not kept are dropped on the
+  worker, before the transfer.
+- A worker lost mid-campaign costs only the chunks it was running or holding: the client still
+  holds their futures, so the scheduler runs them again elsewhere (the tasks are pure: the same
+  inputs give the same bits). A chunk is abandoned only when it has killed several workers
+  (Dask's ``distributed.scheduler.allowed-failures``).
+- Ctrl-C (or any error) cancels the outstanding chunks; the completed ones are in the store,
+  and re-running the same call resumes from them.
+
+Dask is the optional extra ``landing[dask]``; nothing here is imported by a local campaign.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import pickle
+import time
+import uuid
+import warnings
+from typing import TYPE_CHECKING, Any, Optional
+
+import numpy as np
+
+from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from landing._progress import ProgressBar
+    from landing.montecarlo import MonteCarloResult
+    from landing.scenarios import Scenario
+    from landing.simulation import SimulationResult
+    from landing.store import CampaignStore
+
+__all__ = ["require_dask", "connect", "default_chunk_size", "run_chunk", "run_campaign"]
+
+#: Prefix of the chunks' task keys (as the Dask dashboard shows them).
+KEY_PREFIX = "landing-chunk"
+#: Chunks in flight per thread of the cluster (at least MIN_IN_FLIGHT in all).
+IN_FLIGHT_PER_THREAD = 2
+MIN_IN_FLIGHT = 8
+#: Re-runs of a chunk whose task raised (a lost worker does not count: Dask re-runs those).
+RETRIES = 1
+
+
+def require_dask(what: str = "monte_carlo(client=...)") -> Any:
+    """The ``distributed`` module, or an ImportError saying how to install it."""
+    try:
+        return importlib.import_module("distributed")
+    except ImportError as e:
+        raise ImportError(
+            f"{what} needs Dask's distributed scheduler, the optional extra landing[dask]: "
+            "pip install \"landing[dask]\""
+        ) from e
+
+
+def connect(address: str) -> Any:
+    """A ``distributed.Client`` connected to the scheduler at ``address`` (``tcp://host:8786``)."""
+    distributed = require_dask("--scheduler")
+    if not isinstance(address, str) or not address:
+        raise ParameterError(f"scheduler = {address!r} must be a scheduler address such as tcp://host:8786")
+    return distributed.Client(address)
+
+
+def check_client(client: Any) -> Any:
+    """The ``distributed`` module, once ``client`` is known to be one of its clients."""
+    distributed = require_dask()
+    if not isinstance(client, distributed.Client):
+        raise ParameterTypeError(f"client must be a distributed.Client, got {type(client).__name__}")
+    return distributed
+
+
+def default_chunk_size(n: int) -> int:
+    """Cases per chunk on a cluster when none is given: the store's rule, max(1000, n / 50)
+    cases (at most n); at a few ms of scheduling per chunk that keeps the overhead small for
+    any scenario longer than a few steps (BENCHMARKS.md measures it)."""
+    return min(n, max(1000, -(-n // 50)))
+
+
+# --- the scenario on the workers ------------------------------------------------------------------
+
+
+def scenario_payload(scenario: "Scenario") -> tuple[str, Any]:
+    """What a task carries of the scenario: ``("toml", text)`` when the text reads back to the
+    same scenario, else ``("pickle", bytes)``."""
+    from landing.errors import LandingError
+    from landing.scenario_files import scenario_from_dict, tomllib
+
+    text = scenario.to_toml()
+    try:
+        if scenario_from_dict(tomllib.loads(text)).to_toml() == text:
+            return ("toml", text)
+    except (tomllib.TOMLDecodeError, LandingError):
+        pass
+    try:
+        return ("pickle", pickle.dumps(scenario, protocol=pickle.HIGHEST_PROTOCOL))
+    except Exception as e:  # noqa: BLE001 - any pickling failure means the same thing here
+        raise ParameterError(
+            f"scenario = {scenario.name!r} cannot be sent to the cluster's workers: its TOML text does "
+            f"not read back to the same scenario and it does not pickle ({type(e).__name__}: {e}); "
+            "build it from a scenario file's parts"
+        ) from e
+
+
+#: Scenarios rebuilt on this worker, by payload digest (a campaign's chunks share one).
+_SCENARIOS: dict[str, "Scenario"] = {}
+
+
+def _scenario_on_worker(payload: tuple[str, Any]) -> "Scenario":
+    kind, data = payload
+    raw = data.encode() if kind == "toml" else data
+    digest = kind + ":" + hashlib.sha256(raw).hexdigest()
+    scenario = _SCENARIOS.get(digest)
+    if scenario is None:
+        if kind == "toml":
+            from landing.scenario_files import scenario_from_dict, tomllib
+
+            scenario = scenario_from_dict(tomllib.loads(data), "<the campaign's scenario>")
+        else:
+            scenario = pickle.loads(data)
+        if len(_SCENARIOS) >= 8:
+            _SCENARIOS.clear()
+        _SCENARIOS[digest] = scenario
+    return scenario
+
+
+def run_chunk(
+    payload: tuple[str, Any],
+    version: str,
+    x0: np.ndarray,
+    start: int,
+    seed: int,
+    record_every: int,
+    threads: Optional[int],
+    keep: tuple[str, ...],
+) -> "SimulationResult":
+    """One chunk, on a worker: cases ``start .. start + len(x0)`` of the campaign, with the
+    signals not kept dropped (the task the client submits)."""
+    import dataclasses
+
+    from landing import __version__
+
+    if version != __version__:
+        raise RuntimeError(
+            f"this worker runs landing {__version__}, the client {version}: install the same version "
+            "on every worker (the same bits need the same code)"
+        )
+    scenario = _scenario_on_worker(payload)
+    # an array received over the network may be read-only or misaligned: the core wants its own
+    x0 = np.array(x0, dtype=np.float64, order="C", copy=True)
+    with warnings.catch_warnings():
+        # the client warns once for the whole campaign
+        warnings.simplefilter("ignore", DivergenceWarning)
+        part = scenario.simulate_batch(x0, seed=seed, first_case=start, threads=threads, record_every=record_every)
+    return dataclasses.replace(
+        part,
+        states=part.states if "states" in keep else None,
+        controls=part.controls if "controls" in keep else None,
+        diagnostics=part.diagnostics if "diagnostics" in keep else {},
+    )
+
+
+# --- the client's side -----------------------------------------------------------------------------
+
+
+class _InFlight:
+    """How many chunks to keep in flight: twice the cluster's threads (at least MIN_IN_FLIGHT),
+    asked of the scheduler at most once a second (workers come and go)."""
+
+    def __init__(self, client: Any):
+        self.client = client
+        self.asked = -float("inf")
+        self.value = MIN_IN_FLIGHT
+
+    def __call__(self) -> int:
+        now = time.monotonic()
+        if now - self.asked >= 1.0:
+            self.asked = now
+            try:
+                threads = sum(self.client.nthreads().values())
+            except Exception:  # noqa: BLE001 - a scheduler briefly unreachable: keep the last value
+                return self.value
+            self.value = max(MIN_IN_FLIGHT, IN_FLIGHT_PER_THREAD * threads)
+        return self.value
+
+
+def run_campaign(
+    client: Any,
+    scenario: "Scenario",
+    *,
+    n: int,
+    seed: int,
+    x0: np.ndarray,
+    chunk_size: int,
+    keep: tuple[str, ...],
+    record_every: int,
+    threads: Optional[int],
+    store: Optional["CampaignStore"],
+    check_bounds: bool,
+    bar: Optional["ProgressBar"] = None,
+) -> "MonteCarloResult":
+    """The campaign's chunks on the cluster behind ``client``, assembled as the local run's
+    (see the module's docstring)."""
+    from landing import __version__
+    from landing.montecarlo import MonteCarloResult, _Assembly, _check_in_slices
+
+    distributed = check_client(client)
+    payload = scenario_payload(scenario)
+    out = _Assembly(n, keep)
+    todo: list[tuple[int, int, int]] = []
+    for index, start in enumerate(range(0, n, chunk_size)):
+        stop = min(n, start + chunk_size)
+        if store is not None and store.is_complete(index):
+            part = store.read_chunk(index)
+            out.put(start, stop, part)
+            del part
+            if bar:
+                bar.update(stop - start)
+        else:
+            todo.append((index, start, stop))
+
+    run_id = uuid.uuid4().hex[:12]  # this call's keys: never those of a cancelled earlier call
+    chunk_of: dict[str, tuple[int, int, int]] = {}
+    outstanding: dict[str, Any] = {}
+
+    def submit(chunk: tuple[int, int, int]) -> Any:
+        index, start, stop = chunk
+        future = client.submit(
+            run_chunk, payload, __version__, x0[start:stop], start, seed, record_every, threads, keep,
+            key=f"{KEY_PREFIX}-{run_id}-{index:06d}", pure=True, retries=RETRIES,
+        )
+        chunk_of[future.key] = chunk
+        outstanding[future.key] = future
+        return future
+
+    in_flight = _InFlight(client)
+    pending = iter(todo)
+    first = [submit(c) for _, c in zip(range(in_flight()), pending)]
+    completed = distributed.as_completed(first)
+    del first
+    try:
+        for future in completed:
+            index, start, stop = chunk_of.pop(future.key)
+            part = future.result()  # waits if the worker holding it was lost and it is re-run
+            del outstanding[future.key]
+            future.release()
+            if store is not None:
+                draws = (None if scenario.dispersion is None
+                         else scenario.dispersion.sample(stop - start, seed=seed, first_case=start))
+                store.write_chunk(index, start, stop, part, x0[start:stop], draws)
+            out.put(start, stop, part)
+            del part, future
+            if bar:
+                bar.update(stop - start)
+            for _ in range(max(0, in_flight() - len(outstanding))):
+                chunk = next(pending, None)
+                if chunk is None:
+                    break
+                completed.add(submit(chunk))
+    except BaseException:
+        # Ctrl-C or a failed chunk: stop the rest; the completed chunks are in the store
+        if outstanding:
+            try:
+                client.cancel(list(outstanding.values()))
+            except Exception:  # noqa: BLE001 - the original error matters more
+                pass
+        raise
+    if out.first is None:  # pragma: no cover - n >= 1 gives at least one chunk
+        raise ParameterError(f"n = {n} gave no chunk")
+    result = out.result()
+    bounds = scenario.bounds()
+    checks = None
+    if check_bounds and bounds is not None and result.t.size and {"s1", "s2"} <= set(result.diagnostics):
+        checks = _check_in_slices(result, bounds)
+    return MonteCarloResult(scenario=scenario, seed=seed, x0=x0, result=result, bounds=bounds, checks=checks,
+                            keep=keep, store=None if store is None else str(store.path))
