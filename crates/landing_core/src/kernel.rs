@@ -147,6 +147,8 @@ impl Level {
 /// tether's 38 components) or a law dominated by divisions gains nothing from width and loses
 /// to the copies (W6: 262 ms at 8 lanes, 551 ms at 32). Each plant picks [`Wide`] or
 /// [`Narrow`] blocks ([`crate::plant::PlantModel::Blocks`]); a case's bits do not depend on it.
+/// Every law is compiled once per axis count and lane type, so the plants of one axis count
+/// share a choice: the three-axis plants are wide, the two-axis (tether) plants narrow.
 pub trait Blocks: Send + Sync + 'static {
     type Baseline: Real;
     #[cfg(target_arch = "x86_64")]
