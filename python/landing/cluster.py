@@ -219,7 +219,7 @@ def run_campaign(
     """The campaign's chunks on the cluster behind ``client``, assembled as the local run's
     (see the module's docstring)."""
     from landing import __version__
-    from landing.montecarlo import MonteCarloResult, _Assembly, _check_in_slices
+    from landing.montecarlo import _Assembly, finish_campaign
 
     distributed = check_client(client)
     payload = scenario_payload(scenario)
@@ -284,10 +284,4 @@ def run_campaign(
         raise
     if out.first is None:  # pragma: no cover - n >= 1 gives at least one chunk
         raise ParameterError(f"n = {n} gave no chunk")
-    result = out.result()
-    bounds = scenario.bounds()
-    checks = None
-    if check_bounds and bounds is not None and result.t.size and {"s1", "s2"} <= set(result.diagnostics):
-        checks = _check_in_slices(result, bounds)
-    return MonteCarloResult(scenario=scenario, seed=seed, x0=x0, result=result, bounds=bounds, checks=checks,
-                            keep=keep, store=None if store is None else str(store.path))
+    return finish_campaign(scenario, seed, x0, out.result(), keep, store, check_bounds)

@@ -380,7 +380,13 @@ def assemble_campaign(
         del part
         if bar:
             bar.update(stop - start)
-    result = out.result()
+    return finish_campaign(scenario, seed, x0, out.result(), keep, store, check_bounds)
+
+
+def finish_campaign(scenario: Scenario, seed: int, x0: np.ndarray, result: SimulationResult, keep: Any,
+                    store: Any, check_bounds: bool) -> MonteCarloResult:
+    """The campaign's result from its assembled runs: the scenario's bounds and, when asked and
+    the sliding variables were kept, the checks against them (the local and cluster paths)."""
     bounds = scenario.bounds()
     checks = None
     if check_bounds and bounds is not None and result.t.size and {"s1", "s2"} <= set(result.diagnostics):
