@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 import landing
+from conftest import assert_same_bits, assert_same_campaign
 from landing import scenarios
 from landing.errors import ParameterTypeError
 
@@ -35,38 +36,6 @@ def need_io() -> None:
         pytest.importorskip(name)
 
 
-def same(a: np.ndarray, b: np.ndarray, what: str) -> None:
-    a, b = np.asarray(a), np.asarray(b)
-    assert a.dtype == b.dtype, f"{what}: dtype {a.dtype} != {b.dtype}"
-    assert a.shape == b.shape, f"{what}: shape {a.shape} != {b.shape}"
-    if a.dtype.kind in "fc":
-        assert np.array_equal(a, b, equal_nan=True), f"{what}: values differ"
-    # and the bits, signed zeros and NaN payloads included
-    assert a.tobytes() == b.tobytes(), f"{what}: the bits differ"
-
-
-def assert_same_campaign(a: landing.MonteCarloResult, b: landing.MonteCarloResult) -> None:
-    assert a.seed == b.seed and a.keep == b.keep and a.n_cases == b.n_cases
-    same(a.x0, b.x0, "x0")
-    same(a.t, b.t, "t")
-    same(a.result.final_state, b.result.final_state, "final_state")
-    for name in ("states", "controls"):
-        x, y = getattr(a, name), getattr(b, name)
-        assert (x is None) == (y is None), name
-        if x is not None:
-            same(x, y, name)
-    assert list(a.diagnostics) == list(b.diagnostics)
-    for k in a.diagnostics:
-        same(a.diagnostics[k], b.diagnostics[k], k)
-    assert list(a.metrics) == list(b.metrics)
-    for k in a.metrics:
-        same(a.metrics[k], b.metrics[k], f"metrics[{k!r}]")
-    assert a.result.state_names == b.result.state_names and a.result.control_names == b.result.control_names
-    wa, wb = a.within_bounds(), b.within_bounds()
-    assert (wa is None) == (wb is None)
-    if wa is not None:
-        same(wa, wb, "within_bounds")
-    assert a.report() == b.report()
 
 
 @pytest.fixture(scope="module")

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import landing
+from conftest import assert_same_bits, assert_same_campaign
 from landing import scenarios
 from landing.errors import ParameterError
 
@@ -27,34 +28,6 @@ from landing.store import CampaignStore  # noqa: E402
 
 def small(**kw):
     return scenarios.mars_monte_carlo(t_final=5.0, dt=2e-3, record_every=25, **kw)
-
-
-def assert_same_bits(a: np.ndarray, b: np.ndarray, what: str) -> None:
-    a, b = np.asarray(a), np.asarray(b)
-    assert a.dtype == b.dtype, f"{what}: dtype {a.dtype} != {b.dtype}"
-    assert a.shape == b.shape, f"{what}: shape {a.shape} != {b.shape}"
-    assert a.tobytes() == b.tobytes(), f"{what}: the bits differ"
-
-
-def assert_same_campaign(a: landing.MonteCarloResult, b: landing.MonteCarloResult) -> None:
-    assert a.seed == b.seed and a.keep == b.keep
-    assert_same_bits(a.x0, b.x0, "x0")
-    assert_same_bits(a.t, b.t, "t")
-    assert_same_bits(a.result.final_state, b.result.final_state, "final_state")
-    for name in ("states", "controls"):
-        x, y = getattr(a, name), getattr(b, name)
-        assert (x is None) == (y is None), name
-        if x is not None:
-            assert_same_bits(x, y, name)
-    assert set(a.diagnostics) == set(b.diagnostics)
-    for k in a.diagnostics:
-        assert_same_bits(a.diagnostics[k], b.diagnostics[k], k)
-    assert list(a.metrics) == list(b.metrics)
-    for k in a.metrics:
-        assert_same_bits(a.metrics[k], b.metrics[k], f"metrics[{k!r}]")
-        if a.metrics[k].dtype.kind == "f":  # and the NaN patterns agree
-            assert np.array_equal(a.metrics[k], b.metrics[k], equal_nan=True), k
-    assert a.result.state_names == b.result.state_names and a.result.control_names == b.result.control_names
 
 
 @pytest.fixture(scope="module")

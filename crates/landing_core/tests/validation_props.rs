@@ -54,6 +54,34 @@ fn first_violation(checks: &[Check<'_>]) -> Option<(&'static str, f64)> {
     None
 }
 
+/// `validate()` accepted the value (`expected` None) or refused it naming the expected
+/// parameter and value.
+fn check(
+    got: Result<(), landing_core::ParamError>,
+    expected: Option<(&str, f64)>,
+) -> Result<(), TestCaseError> {
+    match (got, expected) {
+        (Ok(()), None) => {}
+        (Err(e), Some((name, value))) => {
+            prop_assert_eq!(e.param, name);
+            prop_assert!(
+                same_value(e.value, value),
+                "{} reported {} for {}",
+                name,
+                e.value,
+                value
+            );
+        }
+        (got, want) => prop_assert!(
+            false,
+            "validate() = {:?}, expected a violation {:?}",
+            got,
+            want
+        ),
+    }
+    Ok(())
+}
+
 fn same_value(a: f64, b: f64) -> bool {
     (a.is_nan() && b.is_nan()) || a == b
 }
@@ -85,14 +113,7 @@ proptest! {
             ("gamma1", &gamma1, unit), ("gamma2", &gamma2, above_one),
             ("s1_floor", &[s1_floor], positive),
         ]);
-        match (law.validate(), expected) {
-            (Ok(()), None) => {}
-            (Err(e), Some((name, value))) => {
-                prop_assert_eq!(e.param, name);
-                prop_assert!(same_value(e.value, value), "{} reported {} for {}", name, e.value, value);
-            }
-            (got, want) => prop_assert!(false, "validate() = {:?}, expected a violation {:?}", got, want),
-        }
+        check(law.validate(), expected)?;
     }
 
     /// Seed 001 eq. 46: b1, b2, c > 0 per axis, s_floor > 0, all finite.
@@ -109,14 +130,7 @@ proptest! {
             ("b1", &b1, positive), ("b2", &b2, positive), ("c", &c, positive),
             ("s_floor", &[s_floor], positive),
         ]);
-        match (law.validate(), expected) {
-            (Ok(()), None) => {}
-            (Err(e), Some((name, value))) => {
-                prop_assert_eq!(e.param, name);
-                prop_assert!(same_value(e.value, value));
-            }
-            (got, want) => prop_assert!(false, "validate() = {:?}, expected a violation {:?}", got, want),
-        }
+        check(law.validate(), expected)?;
     }
 
     /// The Mars lander: isp, area, g0 > 0; gravity, drag_coefficient, density_decay >= 0; all
@@ -142,14 +156,7 @@ proptest! {
         .or_else(|| {
             thrust_limit.iter().find(|l| l.is_nan() || **l <= 0.0).map(|&l| ("thrust_limit", l))
         });
-        match (plant.validate(), expected) {
-            (Ok(()), None) => {}
-            (Err(e), Some((name, value))) => {
-                prop_assert_eq!(e.param, name);
-                prop_assert!(same_value(e.value, value));
-            }
-            (got, want) => prop_assert!(false, "validate() = {:?}, expected a violation {:?}", got, want),
-        }
+        check(plant.validate(), expected)?;
     }
 
     /// A fuzzy system's resolution: 2 <= resolution <= MAX_FUZZY_RESOLUTION, refused before
