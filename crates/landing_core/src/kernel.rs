@@ -238,6 +238,17 @@ macro_rules! level_laws {
                 law.diagnostics(memory, input, out)
             }
 
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn add_stats<const D: usize, L: Real>(
+                stats: &mut crate::metrics::CommandStats<D, L>,
+                u: &SVector<L, D>,
+                e: &SVector<L, D>,
+                dt: f64,
+            ) {
+                stats.add(u, e, dt)
+            }
+
             // SAFETY (every call below): this type is used only by the block rollouts of its
             // own level, which run only once `Level::resolve` has checked the CPU has it.
             impl<const D: usize, L: Real> LawCalls<D, L> for $name {
@@ -265,6 +276,15 @@ macro_rules! level_laws {
                     out: &mut [L],
                 ) {
                     unsafe { diagnostics(law, memory, input, out) }
+                }
+                #[inline(always)]
+                fn add_stats(
+                    stats: &mut crate::metrics::CommandStats<D, L>,
+                    u: &SVector<L, D>,
+                    e: &SVector<L, D>,
+                    dt: f64,
+                ) {
+                    unsafe { add_stats(stats, u, e, dt) }
                 }
             }
         };

@@ -338,6 +338,8 @@ pub(crate) trait LawCalls<const D: usize, R: Real> {
         input: &LawInput<D, R>,
         out: &mut [R],
     );
+    /// [`CommandStats::add`], out of line like the law.
+    fn add_stats(stats: &mut CommandStats<D, R>, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64);
 }
 
 /// The plant's derivative over one step with the command held: what the integrator steps.
@@ -530,7 +532,7 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
             slot += 1;
             next_record += cfg.record_every;
         }
-        stats.add(&u, &input.e, cfg.dt);
+        K::add_stats(&mut stats, &u, &input.e, cfg.dt);
         let outside = dot(&input.e, &input.e).simd_gt(tolerance_sq);
         last_outside = R::select(live & outside, R::splat(k as f64), last_outside);
         if let (Some(sm), Some(m)) = (settle_mass.as_mut(), plant.mass(&x)) {

@@ -178,15 +178,16 @@ fn against_mpmath_reference() {
                 if scaled > worst_pow_scaled.0 || scaled.is_nan() {
                     worst_pow_scaled = (scaled, i);
                 }
-                // bound: 1 ulp plus |y ln x| ulp
-                if e.is_nan() || e > 1.0 + t {
+                // bound: 1 ulp plus 2 |y ln x| ulp (the logarithm is rounded twice, see
+                // `lanes::math::pow`)
+                if e.is_nan() || e > 1.0 + 2.0 * t {
                     failures.push(format!(
-                        "pow({:e}, {:e}) = {:e}, expected {:e}: {e:.3} ulp > 1 + |y ln x| = {:.3}",
+                        "pow({:e}, {:e}) = {:e}, expected {:e}: {e:.3} ulp > 1 + 2 |y ln x| = {:.3}",
                         s.args[0][i],
                         s.args[1][i],
                         g,
                         s.expected[i],
-                        1.0 + t
+                        1.0 + 2.0 * t
                     ));
                 }
             } else if e.is_nan() || e > 2.0 {
@@ -426,7 +427,7 @@ fn dense_against_libm_tanh_atan2() {
 #[test]
 fn dense_against_libm_pow() {
     // moderate exponents, as the controllers use: within 2 steps of libm when |y ln x| < 1,
-    // and 1 + |y ln x| (+ libm's own half ulp) beyond
+    // and 1 + 2 |y ln x| (+ libm's own half ulp) beyond
     let mut rng = Rng(77);
     let n = dense_count();
     let mut worst_small = 0u64;
@@ -446,7 +447,7 @@ fn dense_against_libm_pow() {
         }
         worst_scaled = worst_scaled.max(d as f64 / (1.0 + t));
         assert!(
-            d as f64 <= 2.0 + t,
+            d as f64 <= 2.0 + 2.0 * t,
             "pow({:e}, {:e}): {d} steps from libm",
             a[i],
             b[i]

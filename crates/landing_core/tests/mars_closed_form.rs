@@ -232,6 +232,7 @@ fn law_input_drift_is_the_modelled_acceleration() {
         inertia: plant.inertia(&x),
     };
     // at the target with zero rate, the fixed-time law only cancels the drift
-    let a = reconstructed_gains(MssVariant::Printed).command(&(), &input);
+    let law = reconstructed_gains(MssVariant::Printed);
+    let a = law.command(&law.start(&input), &input);
     assert_eq!(a, -d);
 }

@@ -20,6 +20,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::math::PowLog;
 use crate::lanes::{Mask, Real, filled, sub};
 use crate::params::{FromParams, ParamSource};
 
@@ -63,7 +64,7 @@ crate::gather_struct!(FixedTimeMss<const D: usize, R> {
     shared: [variant],
 });
 
-/// The powers of one axis that the surfaces and the law share: with l = ln|s1|, one logarithm
+/// The powers of one axis that the surfaces and the law share: one logarithm ([`PowLog`])
 /// and two exponentials give |s1|^q1 and |s1|^q2, and every other power of |s1| the law needs
 /// is a product or quotient of those (|s|^(2q-1) = (|s|^q)^2 / |s|). At s1 = 0, ln gives -inf
 /// and both powers are exactly 0.
@@ -82,11 +83,11 @@ impl<R: Real> AxisPowers<R> {
     #[inline(always)]
     fn new(s1: R, q1: R, q2: R) -> Self {
         let abs = s1.abs();
-        let l = abs.ln();
+        let l = PowLog::of(abs);
         Self {
             abs,
-            p1: (q1 * l).exp(),
-            p2: (q2 * l).exp(),
+            p1: l.pow(q1),
+            p2: l.pow(q2),
             sign: s1.signum0(),
         }
     }
@@ -95,8 +96,8 @@ impl<R: Real> AxisPowers<R> {
 /// `sig^g1(s) * a1 + sig^g2(s) * a2` with one logarithm (0 at s = 0: ln gives -inf).
 #[inline(always)]
 fn two_sig<R: Real>(s: R, a1: R, g1: R, a2: R, g2: R) -> R {
-    let l = s.abs().ln();
-    s.signum0() * (a1 * (g1 * l).exp() + a2 * (g2 * l).exp())
+    let l = PowLog::of(s.abs());
+    s.signum0() * (a1 * l.pow(g1) + a2 * l.pow(g2))
 }
 
 impl<const D: usize, R: Real> FixedTimeMss<D, R> {
@@ -136,15 +137,43 @@ impl<const D: usize, R: Real> FixedTimeMss<D, R> {
     }
 }
 
+/// What the law derives from its gains, once per block ([`ControlLaw::Memory`]): the
+/// coefficients of the printed variant's cancellation terms.
+#[derive(Clone, Copy, Debug)]
+pub struct MssConstants<const D: usize, R> {
+    /// beta1^2 q1, beta2^2 q2, beta1 beta2 (q1 + q2)
+    c11: SVector<R, D>,
+    c22: SVector<R, D>,
+    c12: SVector<R, D>,
+    /// 2 q1 - 1, the one exponent that can be negative
+    e1: SVector<R, D>,
+}
+
 impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
-    type Memory = ();
+    type Memory = MssConstants<D, R>;
+    const ADVANCES: bool = false;
     const DIAGNOSTICS: &'static [&'static str] = &["s1", "s2"];
 
     #[inline(always)]
-    fn start(&self, _input: &LawInput<D, R>) {}
+    fn start(&self, _input: &LawInput<D, R>) -> MssConstants<D, R> {
+        let (b1, b2, q1, q2) = (&self.beta1, &self.beta2, &self.q1, &self.q2);
+        let mut k = MssConstants {
+            c11: filled(R::zero()),
+            c22: filled(R::zero()),
+            c12: filled(R::zero()),
+            e1: filled(R::zero()),
+        };
+        for i in 0..D {
+            k.c11[i] = b1[i] * b1[i] * q1[i];
+            k.c22[i] = b2[i] * b2[i] * q2[i];
+            k.c12[i] = b1[i] * b2[i] * (q1[i] + q2[i]);
+            k.e1[i] = R::splat(2.0) * q1[i] - 1.0;
+        }
+        k
+    }
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
+    fn command(&self, k: &MssConstants<D, R>, input: &LawInput<D, R>) -> SVector<R, D> {
         let mut a = sub(&input.reference.acceleration, &input.drift);
         let zero = R::zero();
         for i in 0..D {
@@ -154,21 +183,18 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
             let nonzero = p.abs.simd_gt(zero);
             let inv = R::one() / p.abs;
             let cancel = match self.variant {
-                // |s1|^(2q1-1), |s1|^(2q2-1), |s1|^(q1+q2-1); only the first can be singular
+                // beta1^2 q1 |s1|^(2q1-1) + beta2^2 q2 |s1|^(2q2-1)
+                // + beta1 beta2 (q1+q2) |s1|^(q1+q2-1); only the first power can be singular
                 MssVariant::Printed => {
-                    let e1 = R::splat(2.0) * q1 - 1.0;
-                    let no_guard = e1.simd_ge(zero) | p.abs.simd_ge(self.s1_floor);
-                    let t1 = self.guarded(no_guard, p.p1 * p.p1 * inv, e1);
-                    let c = p.sign
-                        * (b1 * b1 * q1 * t1
-                            + b2 * b2 * q2 * p.p2 * p.p2 * inv
-                            + b1 * b2 * (q1 + q2) * p.p1 * p.p2 * inv);
-                    R::select(nonzero, c, zero)
+                    let no_guard = k.e1[i].simd_ge(zero) | p.abs.simd_ge(self.s1_floor);
+                    let t1 = self.guarded(no_guard, p.p1 * p.p1 * inv, k.e1[i]);
+                    let rest = (p.p2 * inv) * (k.c22[i] * p.p2 + k.c12[i] * p.p1);
+                    R::select(nonzero, p.sign * (k.c11[i] * t1 + rest), zero)
                 }
                 // |s1|^(q1-1) (singular, guarded) and |s1|^(q2-1)
                 MssVariant::Exact => {
-                    let t1 = self.guarded(p.abs.simd_ge(self.s1_floor), p.p1 / p.abs, q1 - 1.0);
-                    let t2 = R::select(nonzero, p.p2 / p.abs, zero);
+                    let t1 = self.guarded(p.abs.simd_ge(self.s1_floor), p.p1 * inv, q1 - 1.0);
+                    let t2 = R::select(nonzero, p.p2 * inv, zero);
                     -(b1 * q1 * t1 + b2 * q2 * t2) * input.de[i]
                 }
             };
@@ -185,7 +211,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
     }
 
     #[inline(always)]
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
+    fn diagnostics(&self, _memory: &MssConstants<D, R>, input: &LawInput<D, R>, out: &mut [R]) {
         out[..D].copy_from_slice(input.e.as_slice());
         out[D..2 * D].copy_from_slice(self.s2(input).as_slice());
     }

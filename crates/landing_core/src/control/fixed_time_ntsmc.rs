@@ -38,6 +38,7 @@ use nalgebra::{SMatrix, SVector};
 use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::math::PowLog;
 use crate::lanes::{Mask, Real, sub, vector, zeros};
 use crate::math::sgn;
 use crate::params::{FromParams, ParamSource};
@@ -68,22 +69,22 @@ impl<R: Real> ZetaPair<R> {
     #[inline(always)]
     fn new(e: R, p: [R; 2], sigma: R) -> Self {
         let a = e.abs();
-        let l = a.ln();
+        let l = PowLog::of(a);
         let sign = e.signum0();
         let outside = a.simd_gt(sigma);
         let mut zeta = [R::zero(); 2];
         let mut slope = [R::zero(); 2];
         for k in 0..2 {
             // |e|^p and p |e|^(p-1) = p |e|^p / |e|
-            let pw = (p[k] * l).exp();
+            let pw = l.pow(p[k]);
             zeta[k] = sign * pw;
             slope[k] = p[k] * pw / a;
         }
         if !outside.all() {
-            let ls = sigma.ln();
+            let ls = PowLog::of(sigma);
             for k in 0..2 {
                 // l_k = (2 - p) sigma^(p - 1), m_k = (p - 1) sigma^(p - 2)
-                let s1 = ((p[k] - 1.0) * ls).exp();
+                let s1 = ls.pow(p[k] - 1.0);
                 let lk = (R::splat(2.0) - p[k]) * s1;
                 let mk = (p[k] - 1.0) * (s1 / sigma);
                 zeta[k] = R::select(outside, zeta[k], lk * e + mk * e * a);
@@ -132,16 +133,16 @@ crate::gather_struct!(FixedTimeNtsmc<const D: usize, R> {
 struct Axis<R> {
     s: R,
     /// ln |s|, shared by the powers of s in the reaching law and the adaptation
-    ln_abs_s: R,
+    ln_abs_s: PowLog<R>,
     /// K1 zeta1' + K2 zeta2'
     surface_rate: R,
     phi: [R; MAX_NODES],
 }
 
-/// `sig^a(s)` from ln|s| (0 at s = 0, where ln|s| = -inf, for a > 0).
+/// `sig^a(s)` from the logarithm of |s| (0 at s = 0 for a > 0).
 #[inline(always)]
-fn sig_from_ln<R: Real>(s: R, ln_abs: R, a: R) -> R {
-    sgn(s) * (a * ln_abs).exp()
+fn sig_from_ln<R: Real>(s: R, ln_abs: PowLog<R>, a: R) -> R {
+    sgn(s) * ln_abs.pow(a)
 }
 
 impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
@@ -155,7 +156,7 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
         let zn = [e1 / self.rbf_scale_e1[i], e2 / self.rbf_scale_e2[i]];
         Axis {
             s,
-            ln_abs_s: s.abs().ln(),
+            ln_abs_s: PowLog::of(s.abs()),
             surface_rate,
             phi: rbf::basis(self.rbf_nodes, zn, self.rbf_width[i]),
         }

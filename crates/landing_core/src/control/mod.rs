@@ -63,8 +63,13 @@ pub struct LawInput<const D: usize, R = f64> {
 }
 
 pub trait ControlLaw<R: Real, const D: usize>: Send + Sync {
-    /// Internal state carried from one control period to the next.
+    /// Internal state carried from one control period to the next, made by `start`. A law may
+    /// also keep there what it derives from its gains alone, computed once per block rather
+    /// than at every period (the law is called out of line, so the compiler cannot hoist it).
     type Memory: Copy + Send + Sync + std::fmt::Debug;
+
+    /// Whether `advance` changes the memory (the rollout calls it only then).
+    const ADVANCES: bool = std::mem::size_of::<Self::Memory>() > 0;
 
     /// Names of the law's diagnostic signals (sliding variables, adaptive terms), each a
     /// D-vector, recorded alongside the states.
@@ -161,13 +166,11 @@ macro_rules! laws {
                 }
             }
 
-            /// Whether the law has a memory to advance (a memoryless law's `advance` does
-            /// nothing, and the rollout need not call it).
+            /// Whether the law has a memory to advance (otherwise `advance` does nothing, and
+            /// the rollout need not call it).
             pub fn has_memory(&self) -> bool {
                 match self {
-                    $(Self::$variant(_) => std::mem::size_of::<
-                        <$variant<D, R> as ControlLaw<R, D>>::Memory,
-                    >() > 0,)*
+                    $(Self::$variant(_) => <$variant<D, R> as ControlLaw<R, D>>::ADVANCES,)*
                 }
             }
 

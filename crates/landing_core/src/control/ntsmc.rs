@@ -23,6 +23,7 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
+use crate::lanes::math::PowLog;
 use crate::lanes::{Real, filled, sub};
 use crate::math::sgn;
 use crate::params::{FromParams, ParamSource};
@@ -45,10 +46,10 @@ impl<const D: usize, R: Real> Ntsmc<D, R> {
     #[inline(always)]
     fn axis(&self, i: usize, e1: R, e2: R) -> (R, R) {
         let r = self.gamma[i] / self.alpha[i];
-        let l = e2.abs().ln();
+        let l = PowLog::of(e2.abs());
         let sign = sgn(e2);
-        let s = e1 + sign * (r * l).exp() / self.beta[i];
-        (s, sign * ((R::splat(2.0) - r) * l).exp())
+        let s = e1 + sign * l.pow(r) / self.beta[i];
+        (s, sign * l.pow(R::splat(2.0) - r))
     }
 
     /// The sliding variable s per axis.

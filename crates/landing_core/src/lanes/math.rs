@@ -2,8 +2,8 @@
 //! `lanes/exp_log.rs`) and `sin`, `cos`, `sin_cos`, `atan2` (in `lanes/trig.rs`).
 //!
 //! Every function is a fixed sequence of the primitive operations of [`Real`] (IEEE `+ - * /`,
-//! `sqrt`, comparisons, `select` and a few exact bit manipulations): no fused multiply-add, no
-//! libm, no table lookups and no branch on a lane's value (special cases are masks and
+//! `sqrt`, comparisons, `select`, a few exact bit manipulations and exact lookups in a
+//! 16-entry table): no fused multiply-add, no libm and no branch on a lane's value (special cases are masks and
 //! selects). So `f64` and every `Lanes<W>` give the same bits per lane, whatever the width or
 //! the instruction-set level (SSE2, AVX2, AVX-512) the kernel was compiled for. The one
 //! exception is documented at [`sin_cos`]: arguments beyond 2^20 pi/2 take a cold per-lane libm
@@ -16,34 +16,19 @@
 //! error each term contributes to the final result).
 //!
 //! Accuracy, measured against correctly rounded mpmath values (`tests/lane_math.rs` and a
-//! denser search) and against glibc over millions of points: exp 0.88 ulp, ln 0.78, sin and
-//! cos 0.76, tanh 0.86, atan2 1.41 (where b/a is just above a power of two; below 1
-//! elsewhere), and pow 1.2 ulp where `|y ln x| <= 1`, growing with `|y ln x|` beyond
+//! denser search) and against glibc over millions of points: exp 0.67 ulp, ln 0.78, sin and
+//! cos 0.76, tanh 0.72, atan2 1.41 (where b/a is just above a power of two; below 1
+//! elsewhere), and pow 1.44 ulp where `|y ln x| <= 1`, growing with `|y ln x|` beyond
 //! (documented there).
 
-pub use super::exp_log::{exp, ln, pow, tanh};
+pub use super::exp_log::{PowLog, exp, ln, pow, tanh};
 pub use super::trig::{atan2, cos, sin, sin_cos};
 
 use super::Real;
 
-/// `c[0] + c[1] x + ... + c[9] x^9` by Estrin's scheme: a few more multiplies than Horner but
-/// a dependency chain of 4 multiply-add levels instead of 9, which matters when calls follow
-/// one another in the rollout's step.
-#[inline(always)]
-pub(super) fn estrin10<R: Real>(x: R, x2: R, c: &[f64; 10]) -> R {
-    let x4 = x2 * x2;
-    let x8 = x4 * x4;
-    let a0 = x * c[1] + c[0];
-    let a1 = x * c[3] + c[2];
-    let a2 = x * c[5] + c[4];
-    let a3 = x * c[7] + c[6];
-    let a4 = x * c[9] + c[8];
-    let b0 = x2 * a1 + a0;
-    let b1 = x2 * a3 + a2;
-    (x4 * b1 + b0) + x8 * a4
-}
-
-/// `c[0] + c[1] x + ... + c[10] x^10` by Estrin's scheme (see [`estrin10`]).
+/// `c[0] + c[1] x + ... + c[10] x^10` by Estrin's scheme: a few more multiplies than Horner
+/// but a dependency chain of 4 multiply-add levels instead of 10, which matters when calls
+/// follow one another in the rollout's step.
 #[inline(always)]
 pub(super) fn estrin11<R: Real>(x: R, c: &[f64; 11]) -> R {
     let x2 = x * x;

@@ -119,6 +119,15 @@ pub trait Real:
     /// `(e, m)` with `x = 2^e m`, `1 <= m < 2`, for a positive normal `x` (IEEE 754's logB
     /// and the significand; other inputs give unspecified values).
     fn split_exponent(self) -> (Self, Self);
+    /// `table[i]` in each lane, with `i` the low four bits of the lane's bit pattern: where
+    /// `x + ROUNDER` keeps the integer that x rounds to (two's complement, so `i = n mod 16`).
+    /// A copy of a table entry, so the same bits at every level (the reductions of the
+    /// table-driven `exp`).
+    fn lookup16(self, table: &[f64; 16]) -> Self;
+    /// The lane whose bit pattern is `bits(self) + (bits(n) << 48)` (wrapping): for `n` as
+    /// `x + ROUNDER` leaves an integer, adds `(n mod 2^16) 2^48` to `self`'s bits, which moves
+    /// `n / 16` into the exponent field (the scaling of the table-driven `exp`).
+    fn add_shl48(self, n: Self) -> Self;
 
     /// `self 2^k` for an integral `k` with the result normal (IEEE 754's scaleB, exact there).
     #[inline(always)]
@@ -296,6 +305,14 @@ impl Real for f64 {
         let e = biased - 4_503_599_627_371_519.0;
         let m = f64::from_bits((bits & MANTISSA_BITS) | ONE_BITS);
         (e, m)
+    }
+    #[inline(always)]
+    fn lookup16(self, table: &[f64; 16]) -> Self {
+        table[(self.to_bits() & 15) as usize]
+    }
+    #[inline(always)]
+    fn add_shl48(self, n: Self) -> Self {
+        f64::from_bits(self.to_bits().wrapping_add(n.to_bits() << 48))
     }
 }
 
@@ -583,6 +600,14 @@ impl<const W: usize> Real for Lanes<W> {
             (e[i], m[i]) = <f64 as Real>::split_exponent(self.0[i]);
         }
         (Self(e), Self(m))
+    }
+    #[inline(always)]
+    fn lookup16(self, table: &[f64; 16]) -> Self {
+        Self(map(self.0, |x| x.lookup16(table)))
+    }
+    #[inline(always)]
+    fn add_shl48(self, n: Self) -> Self {
+        Self(zip(self.0, n.0, <f64 as Real>::add_shl48))
     }
 }
 

@@ -34,7 +34,8 @@ macro_rules! level {
         lt: $lt:expr, le: $le:expr, gt: $gt:expr, ge: $ge:expr, eq: $eq:expr,
         blend: $blend:expr, mand: $mand:expr, mor: $mor:expr, mxor: $mxor:expr, mnot: $mnot:expr,
         bits: $bits:expr, mtrue: $mtrue:expr, mfalse: $mfalse:expr,
-        split: $split:path, scale2: $scale2:path,
+        split: $split:path, scale2: $scale2:path, lookup16: $lookup16:path,
+        add_shl48: $add_shl48:path,
         features: [$($features:literal)?] $(,)?
     ) => {
         /// N vector registers of lanes (see the module documentation).
@@ -347,6 +348,14 @@ macro_rules! level {
             fn scale2(self, k: Self) -> Self {
                 self.zip(k, |a, b| unsafe { ($scale2)(a, b) })
             }
+            #[inline(always)]
+            fn lookup16(self, table: &[f64; 16]) -> Self {
+                self.map(|a| unsafe { ($lookup16)(a, table) })
+            }
+            #[inline(always)]
+            fn add_shl48(self, n: Self) -> Self {
+                self.zip(n, |a, b| unsafe { ($add_shl48)(a, b) })
+            }
 
             // SAFETY (the six below): as for the intrinsics, this type is used only inside
             // the kernels of its level, which run only on CPUs that have its features.
@@ -419,6 +428,8 @@ level!(
     mfalse: unsafe { _mm_setzero_pd() },
     split: sse2_ops::split,
     scale2: sse2_ops::scale2,
+    lookup16: sse2_ops::lookup16,
+    add_shl48: sse2_ops::add_shl48,
     features: [],
 );
 
@@ -445,6 +456,8 @@ level!(
     mfalse: unsafe { _mm256_setzero_pd() },
     split: avx2_ops::split,
     scale2: avx2_ops::scale2,
+    lookup16: avx2_ops::lookup16,
+    add_shl48: avx2_ops::add_shl48,
     features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt"],
 );
 
@@ -474,6 +487,8 @@ level!(
     // normal results)
     split: avx512_ops::split,
     scale2: avx512_ops::scale2,
+    lookup16: avx512_ops::lookup16,
+    add_shl48: avx512_ops::add_shl48,
     features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"],
 );
 
@@ -505,6 +520,22 @@ mod sse2_ops {
         ))));
         _mm_mul_pd(a, two_k)
     }
+
+    #[inline(always)]
+    pub(super) unsafe fn lookup16(x: __m128d, table: &[f64; 16]) -> __m128d {
+        let bits = _mm_castpd_si128(x);
+        let i0 = (_mm_cvtsi128_si64(bits) & 15) as usize;
+        let i1 = (_mm_cvtsi128_si64(_mm_unpackhi_epi64(bits, bits)) & 15) as usize;
+        _mm_set_pd(table[i1], table[i0])
+    }
+
+    #[inline(always)]
+    pub(super) unsafe fn add_shl48(a: __m128d, n: __m128d) -> __m128d {
+        _mm_castsi128_pd(_mm_add_epi64(
+            _mm_castpd_si128(a),
+            _mm_slli_epi64::<48>(_mm_castpd_si128(n)),
+        ))
+    }
 }
 
 /// AVX2's logB/significand and scaleB, as functions: a closure this large is not always
@@ -534,6 +565,20 @@ mod avx2_ops {
         )));
         _mm256_mul_pd(a, two_k)
     }
+
+    #[inline(always)]
+    pub(super) unsafe fn lookup16(x: __m256d, table: &[f64; 16]) -> __m256d {
+        let i = _mm256_and_si256(_mm256_castpd_si256(x), _mm256_set1_epi64x(15));
+        _mm256_i64gather_pd::<8>(table.as_ptr(), i)
+    }
+
+    #[inline(always)]
+    pub(super) unsafe fn add_shl48(a: __m256d, n: __m256d) -> __m256d {
+        _mm256_castsi256_pd(_mm256_add_epi64(
+            _mm256_castpd_si256(a),
+            _mm256_slli_epi64::<48>(_mm256_castpd_si256(n)),
+        ))
+    }
 }
 
 /// AVX-512's own exact instructions for IEEE 754 logB and the significand (getexp, getmant)
@@ -553,5 +598,23 @@ mod avx512_ops {
     #[inline(always)]
     pub(super) unsafe fn scale2(a: __m512d, k: __m512d) -> __m512d {
         _mm512_scalef_pd(a, k)
+    }
+
+    /// The table in two registers, indexed by the low four bits of each lane (vpermt2pd).
+    #[inline(always)]
+    pub(super) unsafe fn lookup16(x: __m512d, table: &[f64; 16]) -> __m512d {
+        _mm512_permutex2var_pd(
+            _mm512_loadu_pd(table.as_ptr()),
+            _mm512_castpd_si512(x),
+            _mm512_loadu_pd(table.as_ptr().add(8)),
+        )
+    }
+
+    #[inline(always)]
+    pub(super) unsafe fn add_shl48(a: __m512d, n: __m512d) -> __m512d {
+        _mm512_castsi512_pd(_mm512_add_epi64(
+            _mm512_castpd_si512(a),
+            _mm512_slli_epi64::<48>(_mm512_castpd_si512(n)),
+        ))
     }
 }
