@@ -141,11 +141,14 @@ impl Level {
 }
 
 /// The lane types of a plant's blocks at each level. A block's lanes must fill several vector
-/// registers, so that each instruction's latency hides behind the others' (measured: W1 takes
+/// registers, so that each instruction's latency hides behind the others' (measured: W1 took
 /// 53, 41 and 37 ns per case-step at 8, 16 and 32 AVX-512 lanes), but a block must also stay
 /// in the registers and the first-level cache: a plant with a large state (the flexible
 /// tether's 38 components) or a law dominated by divisions gains nothing from width and loses
-/// to the copies (W6: 262 ms at 8 lanes, 551 ms at 32). Each plant picks [`Wide`] or
+/// to the copies (W6: 262 ms at 8 lanes, 551 ms at 32). Once the exponential was shortened
+/// and the statistics moved out of line, 16 AVX-512 lanes ran W1 as fast as 32 and W3 11 %
+/// faster (17.2 against 19.4 ms at 24 lanes), with less padding in a last, partial block and
+/// finer shares between threads (BENCHMARKS.md). Each plant picks [`Wide`] or
 /// [`Narrow`] blocks ([`crate::plant::PlantModel::Blocks`]); a case's bits do not depend on it.
 /// Every law is compiled once per axis count and lane type, so the plants of one axis count
 /// share a choice: the three-axis plants are wide, the two-axis (tether) plants narrow.
@@ -157,7 +160,7 @@ pub trait Blocks: Send + Sync + 'static {
     type Avx512: Real;
 }
 
-/// Blocks of 8 cases in SSE2 registers, 16 in AVX2, 32 in AVX-512.
+/// Blocks of 8 cases in SSE2 registers, 16 in AVX2 and AVX-512.
 pub struct Wide;
 
 /// Blocks of 8 cases at every level.
@@ -167,7 +170,7 @@ pub struct Narrow;
 impl Blocks for Wide {
     type Baseline = crate::lanes::x86::Sse2<4>;
     type Avx2 = crate::lanes::x86::Avx2<4>;
-    type Avx512 = crate::lanes::x86::Avx512<4>;
+    type Avx512 = crate::lanes::x86::Avx512<2>;
 }
 
 #[cfg(target_arch = "x86_64")]

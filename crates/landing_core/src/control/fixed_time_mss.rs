@@ -68,15 +68,19 @@ crate::gather_struct!(FixedTimeMss<const D: usize, R> {
 /// and two exponentials give |s1|^q1 and |s1|^q2, and every other power of |s1| the law needs
 /// is a product or quotient of those (|s|^(2q-1) = (|s|^q)^2 / |s|). At s1 = 0, ln gives -inf
 /// and both powers are exactly 0.
+///
+/// `sig^q(s) = sgn(s) |s|^q` is taken as `|s|^q` with the sign of s (`copysign`, one bitwise
+/// operation where `sgn(s) *` takes two compares, two selects and a multiply): the same value
+/// wherever s != 0, and a zero either way at s = 0, where the power is 0.
 #[derive(Clone, Copy, Debug)]
 struct AxisPowers<R> {
+    /// s1
+    s: R,
     /// |s1|
     abs: R,
     /// |s1|^q1, |s1|^q2
     p1: R,
     p2: R,
-    /// sgn(s1)
-    sign: R,
 }
 
 impl<R: Real> AxisPowers<R> {
@@ -85,10 +89,10 @@ impl<R: Real> AxisPowers<R> {
         let abs = s1.abs();
         let l = PowLog::of(abs);
         Self {
+            s: s1,
             abs,
             p1: l.pow(q1),
             p2: l.pow(q2),
-            sign: s1.signum0(),
         }
     }
 }
@@ -97,7 +101,7 @@ impl<R: Real> AxisPowers<R> {
 #[inline(always)]
 fn two_sig<R: Real>(s: R, a1: R, g1: R, a2: R, g2: R) -> R {
     let l = PowLog::of(s.abs());
-    s.signum0() * (a1 * l.pow(g1) + a2 * l.pow(g2))
+    (a1 * l.pow(g1) + a2 * l.pow(g2)).copysign(s)
 }
 
 impl<const D: usize, R: Real> FixedTimeMss<D, R> {
@@ -109,7 +113,7 @@ impl<const D: usize, R: Real> FixedTimeMss<D, R> {
     /// s2 on axis i (eq. 21).
     #[inline(always)]
     fn s2_axis(&self, i: usize, p: &AxisPowers<R>, ds1: R) -> R {
-        ds1 + p.sign * (self.beta1[i] * p.p1 + self.beta2[i] * p.p2)
+        ds1 + (self.beta1[i] * p.p1 + self.beta2[i] * p.p2).copysign(p.s)
     }
 
     /// Second sliding variable (eq. 21).
@@ -189,7 +193,7 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
                     let no_guard = k.e1[i].simd_ge(zero) | p.abs.simd_ge(self.s1_floor);
                     let t1 = self.guarded(no_guard, p.p1 * p.p1 * inv, k.e1[i]);
                     let rest = (p.p2 * inv) * (k.c22[i] * p.p2 + k.c12[i] * p.p1);
-                    R::select(nonzero, p.sign * (k.c11[i] * t1 + rest), zero)
+                    R::select(nonzero, (k.c11[i] * t1 + rest).copysign(p.s), zero)
                 }
                 // |s1|^(q1-1) (singular, guarded) and |s1|^(q2-1)
                 MssVariant::Exact => {
