@@ -131,10 +131,13 @@ impl IntegratorKind {
         let mut y = *x;
         for i in 0..tab.stages {
             let k = f.at(tab.at[i], if i == 0 { x } else { &y });
-            if i == 0 {
-                sum.set_scaled(&k, R::splat(tab.weight[0]));
-            } else {
-                sum.add_scaled_assign(&k, R::splat(tab.weight[i]));
+            // a weight of 1 multiplies nothing: `k * 1` is `k`, bit for bit
+            let w = tab.weight[i];
+            match (i == 0, w == 1.0) {
+                (true, true) => *sum = k,
+                (true, false) => sum.set_scaled(&k, R::splat(w)),
+                (false, true) => sum.add_assign_state(&k),
+                (false, false) => sum.add_scaled_assign(&k, R::splat(w)),
             }
             if i + 1 < tab.stages {
                 y.set_add_scaled(x, &k, R::splat(tab.next[i] * h));

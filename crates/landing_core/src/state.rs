@@ -28,6 +28,9 @@ pub trait State<R: Real>: Copy + Send + Sync + 'static {
     /// `self += k c`, component by component.
     fn add_scaled_assign(&mut self, k: &Self, c: R);
 
+    /// `self += k`, component by component.
+    fn add_assign_state(&mut self, k: &Self);
+
     /// `self = k c`, component by component.
     fn set_scaled(&mut self, k: &Self, c: R);
 
@@ -71,6 +74,13 @@ impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     fn add_scaled_assign(&mut self, k: &Self, c: R) {
         for i in 0..N {
             self[i] = self[i] + k[i] * c;
+        }
+    }
+
+    #[inline(always)]
+    fn add_assign_state(&mut self, k: &Self) {
+        for i in 0..N {
+            self[i] = self[i] + k[i];
         }
     }
 

@@ -12,7 +12,7 @@ const LN2_LO: f64 = 1.9082149292705877e-10; // 0x3DEA39EF35793C76
 /// `e^x = 2^k 2^(j/16) e^r` with |r| <= ln2/32 and `2^(j/16)` from a table. The splits of
 /// ln2/16 are those of ln2 divided by 16 (exact), so `n * LN2_16_HI` is exact for |n| < 2^21
 /// and `x - n * LN2_16_HI` is exact (Sterbenz: x and n ln2/16 are within a factor 2).
-const INV_LN2_16: f64 = 16.0 * std::f64::consts::LOG2_E;
+pub const INV_LN2_16: f64 = 16.0 * std::f64::consts::LOG2_E;
 const LN2_16_HI: f64 = LN2_HI / 16.0;
 const LN2_16_LO: f64 = LN2_LO / 16.0;
 
@@ -263,13 +263,15 @@ const EXP16_FAST: f64 = 16_000.0;
 /// ln2/16 rounded.
 const LN2_16: f64 = std::f64::consts::LN_2 / 16.0;
 
-/// `2^(x/16)`, the exponential in [`log16`]'s units: `e^y` is `exp16(y 16/ln2)`. The same
+/// `2^(x/16)`, the exponential in [`log16`]'s units: `e^y` is `exp16(y 16/ln2)`, so that
+/// `e^(c y)` for a constant `c` is `exp16(c' y)` with `c' = c 16/ln2` ([`INV_LN2_16`]) folded
+/// once (the Mars plant's density does this). The same
 /// table and polynomial as [`exp`], with a shorter reduction: `x` is already in units of
 /// ln2/16, so `n` is its nearest integer and `r = (x - n) ln2/16` (`x - n` exact), where
 /// `exp` needs a product and a two-part subtraction. Within 0.6 ulp of `2^(x/16)` for the
 /// `x` given.
 #[inline(always)]
-fn exp16<R: Real>(x: R) -> R {
+pub fn exp16<R: Real>(x: R) -> R {
     #[inline(always)]
     fn reduce<R: Real>(x: R) -> (R, R) {
         let kd = x + super::ROUNDER;

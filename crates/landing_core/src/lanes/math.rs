@@ -21,7 +21,7 @@
 //! elsewhere), and pow 1.44 ulp where `|y ln x| <= 1`, growing with `|y ln x|` beyond
 //! (documented there).
 
-pub use super::exp_log::{PowLog, exp, ln, pow, tanh};
+pub use super::exp_log::{INV_LN2_16, PowLog, exp, exp16, ln, pow, tanh};
 pub use super::trig::{atan2, cos, sin, sin_cos};
 
 use super::Real;

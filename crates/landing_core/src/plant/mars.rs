@@ -20,6 +20,7 @@ use nalgebra::{SVector, Vector3};
 use super::{Plant, PlantModel};
 use crate::error::{ParamError, Validate, require, require_axes};
 use crate::gravity::{GravityField, Uniform};
+use crate::lanes::math::{INV_LN2_16, exp16};
 use crate::lanes::{Gather, Real, filled, norm, zeros};
 use crate::params::{FromParams, ParamSource};
 
@@ -94,6 +95,10 @@ pub struct Prepared<R> {
     lander: MarsLander<R>,
     inv_area: Vector3<R>,
     inv_exhaust_velocity: R,
+    /// `-h_d 16/ln2`: the density `exp(-h_d rz)` is `exp16(density_16 rz)`, the exponential
+    /// with the shorter reduction (`lanes::math::exp16`), 4 of its 30 operations fewer at each
+    /// of the four evaluations per step.
+    density_16: R,
 }
 
 impl<R: Real> Prepared<R> {
@@ -108,6 +113,7 @@ impl<R: Real> Prepared<R> {
                 one / lander.area[2],
             ),
             inv_exhaust_velocity: one / lander.exhaust_velocity(),
+            density_16: -lander.density_decay * INV_LN2_16,
         }
     }
 
@@ -118,7 +124,7 @@ impl<R: Real> Prepared<R> {
         if !p.drag {
             return zeros();
         }
-        let k = -p.drag_coefficient * (-p.density_decay * rz).exp() * inv_m;
+        let k = -p.drag_coefficient * exp16(self.density_16 * rz) * inv_m;
         Vector3::new(
             k * v[0] * v[0].abs() * self.inv_area[0],
             k * v[1] * v[1].abs() * self.inv_area[1],
