@@ -1,10 +1,10 @@
-//! Transcendental functions over [`Real`] lanes: `exp`, `ln`, `pow`, `tanh` (written in
-//! `lanes/exp_log.rs`) and `sin`, `cos`, `sin_cos`, `atan2` (in `lanes/trig.rs`).
+//! Transcendental functions over [`Real`] lanes: `exp`, `ln`, `pow`, `tanh`, and `PowLog` and
+//! `exp16` for powers sharing one logarithm (written in `lanes/exp_log.rs`) and `sin`, `cos`, `sin_cos`, `atan2` (in `lanes/trig.rs`).
 //!
 //! Every function is a fixed sequence of the primitive operations of [`Real`] (IEEE `+ - * /`,
 //! `sqrt`, comparisons, `select`, a few exact bit manipulations and exact lookups in a
-//! 16-entry table): no fused multiply-add, no libm and no branch on a lane's value (special cases are masks and
-//! selects). So `f64` and every `Lanes<W>` give the same bits per lane, whatever the width or
+//! 16-entry table): no fused multiply-add, no libm and no branch on a lane's value (special
+//! cases are masks and selects). So `f64` and every `Lanes<W>` give the same bits per lane, whatever the width or
 //! the instruction-set level (SSE2, AVX2, AVX-512) the kernel was compiled for. The one
 //! exception is documented at [`sin_cos`]: arguments beyond 2^20 pi/2 take a cold per-lane libm
 //! path.
