@@ -16,6 +16,7 @@
 //! an unfused `a * b + c` differ in the last bit. (Rust never contracts `a * b + c` on its
 //! own.)
 
+pub mod axes;
 mod exp_log;
 pub mod gather;
 pub mod math;
