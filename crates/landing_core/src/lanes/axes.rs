@@ -335,3 +335,47 @@ impl<R: Real, const D: usize> Real for Axes<R, D> {
         each2!(self.add_shl48(n))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lanes::Lanes;
+    use nalgebra::Vector3;
+
+    type A = Axes<Lanes<4>, 3>;
+
+    #[test]
+    fn lanes_are_numbered_axis_after_axis() {
+        let a = A::from_fn(|i| i as f64);
+        for i in 0..A::LANES {
+            assert_eq!(a.lane(i), i as f64);
+        }
+        let m = <A as Real>::Mask::from_fn(|i| i % 5 == 0);
+        for i in 0..A::LANES {
+            assert_eq!(m.lane(i), i % 5 == 0);
+        }
+        assert!(!m.all() && m.any());
+    }
+
+    #[test]
+    fn every_lane_is_the_lane_type_operation() {
+        // exp and a power of mixed values, side by side, against each axis on its own
+        let v = Vector3::new(
+            Lanes([0.5, -3.0, 0.0, 750.0]),
+            Lanes([1e-300, 2.0, f64::NAN, -0.0]),
+            Lanes([7.25, 1e5, -1e-3, 3.0]),
+        );
+        let a = Axes::of(&v);
+        let q = A::splat(0.7);
+        let exp = a.exp().vector();
+        let pow = a.abs().powf(q).vector();
+        for k in 0..3 {
+            let e = v[k].exp();
+            let p = v[k].abs().powf(Lanes([0.7; 4]));
+            for i in 0..4 {
+                assert_eq!(exp[k].lane(i).to_bits(), e.lane(i).to_bits());
+                assert_eq!(pow[k].lane(i).to_bits(), p.lane(i).to_bits());
+            }
+        }
+    }
+}
