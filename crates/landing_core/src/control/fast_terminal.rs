@@ -14,7 +14,8 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, Validate, require, require_axes};
-use crate::lanes::{Mask, Real, sub, zeros};
+use crate::lanes::axes::Axes;
+use crate::lanes::{Mask, Real, sub};
 use crate::math::{Switch, sgn};
 use crate::params::{FromParams, ParamSource};
 
@@ -35,27 +36,28 @@ crate::gather_struct!(TerminalSurface<const D: usize, R> {
 });
 
 impl<const D: usize, R: Real> TerminalSurface<D, R> {
-    /// (s, u_eq) at this instant.
+    /// (s, u_eq) at this instant, the axes side by side ([`Axes`], as the MSS law: each
+    /// step of the chain issues every axis's instructions together).
     #[inline(always)]
     pub fn evaluate(&self, input: &LawInput<D, R>) -> (SVector<R, D>, SVector<R, D>) {
-        let mut s = zeros();
-        let mut eq = sub(&input.reference.acceleration, &input.drift);
-        for i in 0..D {
-            let e = input.e[i];
-            let r = self.p[i] / self.q[i];
-            let abs = e.abs();
-            // |e|^r once (0 at e = 0); |e|^(r-1) = |e|^r / |e| away from the floor
-            let pow = abs.powf(r);
-            s[i] = input.de[i] + self.alpha[i] * e + self.beta[i] * sgn(e) * pow;
-            let above = abs.simd_ge(self.e_floor);
-            let slope = if above.all() {
-                pow / abs
-            } else {
-                R::select(above, pow / abs, self.e_floor.powf(r - 1.0))
-            };
-            eq[i] -= (self.alpha[i] + self.beta[i] * r * slope) * input.de[i];
-        }
-        (s, eq)
+        let e = Axes::of(&input.e);
+        let de = Axes::of(&input.de);
+        let (alpha, beta) = (Axes::of(&self.alpha), Axes::of(&self.beta));
+        let r = Axes::of(&self.p) / Axes::of(&self.q);
+        let abs = e.abs();
+        // |e|^r once (0 at e = 0); |e|^(r-1) = |e|^r / |e| away from the floor
+        let pow = abs.powf(r);
+        let s = de + alpha * e + beta * sgn(e) * pow;
+        let floor = Axes([self.e_floor; D]);
+        let above = abs.simd_ge(floor);
+        let slope = if above.all() {
+            pow / abs
+        } else {
+            Real::select(above, pow / abs, floor.powf(r - 1.0))
+        };
+        let eq = Axes::of(&sub(&input.reference.acceleration, &input.drift))
+            - (alpha + beta * r * slope) * de;
+        (s.vector(), eq.vector())
     }
 }
 
