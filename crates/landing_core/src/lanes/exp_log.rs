@@ -107,7 +107,7 @@ fn exp_reduce<R: Real>(x: R) -> (R, R) {
     let lo = n * LN2_16_LO;
     let r = hi - lo;
     let r2 = r * r;
-    let q = (r * EXP_Q[1] + EXP_Q[0]) + r2 * ((r * EXP_Q[3] + EXP_Q[2]) + r2 * EXP_Q[4]);
+    let q = exp_q(r, r2);
     let t = hi - (lo - r2 * q);
     (kd, t + kd.lookup16(&EXP_TAIL))
 }
@@ -150,19 +150,37 @@ pub fn exp<R: Real>(x: R) -> R {
     let xc = R::splat(EXP_CLAMP_HI).min(R::splat(EXP_CLAMP_LO).max(x));
     let (kd, tmp) = exp_reduce(xc);
     if (x.simd_ge(R::splat(-700.0)) & x.simd_le(R::splat(700.0))).all() {
-        // s = 2^k T_j is normal, and scaling by it commutes with the roundings: the same bits
-        // as the general form below
-        let s = kd.lookup16(&EXP_T_SHIFTED).add_shl48(kd);
-        s + s * tmp
+        scale_normal(kd, tmp)
     } else {
-        // 2^k in two factors: `p 2^k1` is exact and normal, and the multiply by 2^k2 rounds
-        // once, into the subnormals or to infinity when the result leaves the normal range.
-        let t = kd.lookup16(&EXP_T);
-        let p = t + t * tmp;
-        let k = exp_k(kd);
-        let k1 = k.max(R::splat(-1000.0)).min(R::splat(1000.0));
-        (p * k1.pow2i()) * (k - k1).pow2i()
+        scale_general(kd, tmp)
     }
+}
+
+/// `2^k T_j (1 + tmp)` for the `(kd, tmp)` of a reduction, where the result is normal:
+/// `s = 2^k T_j` from the bits, and scaling by it commutes with the roundings, so the same
+/// bits as [`scale_general`].
+#[inline(always)]
+fn scale_normal<R: Real>(kd: R, tmp: R) -> R {
+    let s = kd.lookup16(&EXP_T_SHIFTED).add_shl48(kd);
+    s + s * tmp
+}
+
+/// `2^k T_j (1 + tmp)` for any k the clamps allow: 2^k in two factors, `p 2^k1` exact and
+/// normal, and the multiply by 2^k2 rounding once, into the subnormals or to infinity when the
+/// result leaves the normal range.
+#[inline(always)]
+fn scale_general<R: Real>(kd: R, tmp: R) -> R {
+    let t = kd.lookup16(&EXP_T);
+    let p = t + t * tmp;
+    let k = exp_k(kd);
+    let k1 = k.max(R::splat(-1000.0)).min(R::splat(1000.0));
+    (p * k1.pow2i()) * (k - k1).pow2i()
+}
+
+/// `Q(r)` of `e^r = 1 + r + r^2 Q(r)` (Estrin's scheme, `r2 = r^2`).
+#[inline(always)]
+fn exp_q<R: Real>(r: R, r2: R) -> R {
+    (r * EXP_Q[1] + EXP_Q[0]) + r2 * ((r * EXP_Q[3] + EXP_Q[2]) + r2 * EXP_Q[4])
 }
 
 /// 2^54, to bring a subnormal into the normal range before its exponent is read.
@@ -278,22 +296,17 @@ pub fn exp16<R: Real>(x: R) -> R {
         let n = kd - super::ROUNDER;
         let r = (x - n) * LN2_16;
         let r2 = r * r;
-        let q = (r * EXP_Q[1] + EXP_Q[0]) + r2 * ((r * EXP_Q[3] + EXP_Q[2]) + r2 * EXP_Q[4]);
+        let q = exp_q(r, r2);
         (kd, (r + r2 * q) + kd.lookup16(&EXP_TAIL))
     }
     if x.abs().simd_le(R::splat(EXP16_FAST)).all() {
         let (kd, tmp) = reduce(x);
-        let s = kd.lookup16(&EXP_T_SHIFTED).add_shl48(kd);
-        s + s * tmp
+        scale_normal(kd, tmp)
     } else {
-        // as `exp`'s general form; NaN goes through the clamp (constant first)
+        // NaN goes through the clamp (constant first)
         let xc = R::splat(EXP16_CLAMP_HI).min(R::splat(EXP16_CLAMP_LO).max(x));
         let (kd, tmp) = reduce(xc);
-        let t = kd.lookup16(&EXP_T);
-        let p = t + t * tmp;
-        let k = exp_k(kd);
-        let k1 = k.max(R::splat(-1000.0)).min(R::splat(1000.0));
-        (p * k1.pow2i()) * (k - k1).pow2i()
+        scale_general(kd, tmp)
     }
 }
 
