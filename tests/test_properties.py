@@ -39,7 +39,7 @@ from landing import (
     scenarios,
     theory,
 )
-from landing._limits import LIMITS, available_memory, require_memory
+from landing._internal.limits import LIMITS, available_memory, require_memory
 from landing.errors import LandingError, ParameterError, ParameterTypeError, SimulationError
 from conftest import NOMINAL, RECONSTRUCTED_GAINS
 
@@ -508,7 +508,7 @@ def test_huge_counts_are_refused_without_allocating(monkeypatch: pytest.MonkeyPa
         landing.monte_carlo(CAMPAIGN, 2**70)
     # within the cap but beyond memory (here made 1 GiB): a MemoryError stating the size and
     # what is available, raised before anything of that size is allocated
-    monkeypatch.setattr(landing._limits, "available_memory", lambda: 2**30)
+    monkeypatch.setattr(landing._internal.limits, "available_memory", lambda: 2**30)
     tracemalloc.start()
     try:
         with pytest.raises(MemoryError, match=r"needs 224 GiB \(240518168576 bytes\) but only 1 GiB"):

@@ -20,7 +20,7 @@ from landing import _core
 from landing import controllers as C
 from landing import gravity as G
 from landing import plants as P
-from landing._table import Table
+from landing._internal.table import Table
 from landing.errors import LandingError
 from test_every_law_on_every_plant import laws, tether_laws
 

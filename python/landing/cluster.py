@@ -43,7 +43,7 @@ import numpy as np
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
 
 if TYPE_CHECKING:  # pragma: no cover
-    from landing._progress import ProgressBar
+    from landing._internal.progress import ProgressBar
     from landing.montecarlo import MonteCarloResult
     from landing.scenarios import Scenario
     from landing.simulation import SimulationResult

@@ -15,7 +15,7 @@ from typing import Any, Literal
 import numpy as np
 
 from landing import _core
-from landing._table import ArrayLike, Table
+from landing._internal.table import ArrayLike, Table
 
 __all__ = [
     "Controller",
@@ -336,7 +336,7 @@ class Tabulated(Controller):
 
     def _table(self) -> dict[str, Any]:
         from landing.errors import ParameterError, ParameterTypeError
-        from landing._table import as_float_array
+        from landing._internal.table import as_float_array
 
         force = as_float_array("Tabulated", "force", self.force)
         if force.ndim not in (2, 3) or force.shape[-2] == 0:

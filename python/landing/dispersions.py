@@ -13,9 +13,9 @@ from typing import ClassVar
 import numpy as np
 
 from landing import _core
-from landing._args import integer
-from landing._limits import require_memory
-from landing._table import ArrayLike, Table
+from landing._internal.args import integer
+from landing._internal.limits import require_memory
+from landing._internal.table import ArrayLike, Table
 
 __all__ = ["Dispersion", "Normal", "Uniform"]
 

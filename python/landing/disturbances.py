@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import Any, ClassVar, Iterable, Sequence, Union
 
 from landing import _core
-from landing._table import ArrayLike, Table
+from landing._internal.table import ArrayLike, Table
 
 __all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "CommandNoise", "Sum", "compiled"]
 

@@ -20,8 +20,8 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from landing import _core
-from landing._args import choice, integer, pair, real, real_array, short
-from landing._table import ArrayLike, Table
+from landing._internal.args import choice, integer, pair, real, real_array, short
+from landing._internal.table import ArrayLike, Table
 from landing.errors import ParameterError, ParameterTypeError
 
 __all__ = ["Variable", "Mamdani", "variable_rate_system", "SET_NAMES_5", "SET_NAMES_7"]

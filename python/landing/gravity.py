@@ -13,8 +13,8 @@ from typing import ClassVar
 import numpy as np
 
 from landing import _core
-from landing._args import real_array
-from landing._table import ArrayLike, Table
+from landing._internal.args import real_array
+from landing._internal.table import ArrayLike, Table
 from landing.errors import ParameterError
 
 __all__ = ["Gravity", "PointMass", "TwoPointMass", "Harmonic2", "G", "EROS_MASS"]

@@ -10,9 +10,9 @@ from typing import TYPE_CHECKING, Any, Callable, Optional, Sequence, Union
 
 import numpy as np
 
-from landing._progress import ProgressBar
-from landing._args import boolean, integer
-from landing._limits import require_memory
+from landing._internal.progress import ProgressBar
+from landing._internal.args import boolean, integer
+from landing._internal.limits import require_memory
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
 from landing.simulation import Metrics, SimulationResult, describe_diverged, diverged_cases

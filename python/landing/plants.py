@@ -13,9 +13,9 @@ from typing import Any, ClassVar, Literal, Optional
 import numpy as np
 
 from landing import _core
-from landing._args import real, real_array
-from landing._limits import require_memory
-from landing._table import ArrayLike, Table
+from landing._internal.args import real, real_array
+from landing._internal.limits import require_memory
+from landing._internal.table import ArrayLike, Table
 from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
 

@@ -8,8 +8,8 @@ from typing import Any, ClassVar
 import numpy as np
 
 from landing import _core
-from landing._args import integer, real, real_array
-from landing._table import ArrayLike, Table, as_float_array
+from landing._internal.args import integer, real, real_array
+from landing._internal.table import ArrayLike, Table, as_float_array
 from landing.errors import ParameterError
 
 __all__ = ["Reference", "Constant", "Cubic"]

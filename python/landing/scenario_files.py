@@ -42,7 +42,7 @@ from typing import Any, Mapping, Optional, Union
 import numpy as np
 
 from landing import _core, controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
-from landing._table import Table
+from landing._internal.table import Table
 from landing.errors import LandingError, ParameterError
 
 if sys.version_info >= (3, 11):

@@ -15,8 +15,8 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from landing import _core, controllers, disturbances, dispersions, plants
-from landing._args import choice, integer, pair, real, real_array, short
-from landing._limits import require_memory
+from landing._internal.args import choice, integer, pair, real, real_array, short
+from landing._internal.limits import require_memory
 from landing.controllers import Controller
 from landing.dispersions import Dispersion
 from landing.disturbances import DisturbanceLike, compiled

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any, Iterator, Mapping, Optional, Sequence, Un
 import numpy as np
 
 from landing import _core
-from landing._args import integer, real, real_array
+from landing._internal.args import integer, real, real_array
 from landing.controllers import Controller
 from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError

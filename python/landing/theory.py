@@ -34,8 +34,8 @@ import numpy as np
 from landing import _core
 from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
 from landing.disturbances import DisturbanceLike, Sinusoid, compiled
-from landing._args import integer, real, real_array
-from landing._limits import require_memory
+from landing._internal.args import integer, real, real_array
+from landing._internal.limits import require_memory
 from landing.errors import ParameterError, ParameterTypeError
 from landing.plants import DoubleIntegrator, Plant
 from landing.simulation import SimulationResult, simulate_batch

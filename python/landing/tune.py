@@ -730,7 +730,7 @@ def tune(
         progress = budget * K * sum(s.t_final / s.dt for s in setups.values()) > 2e8
     bar = None
     if progress:
-        from landing._progress import ProgressBar
+        from landing._internal.progress import ProgressBar
 
         bar = ProgressBar(int(budget), label=f"tuning {first.name}")
         bar._bar.unit = "candidate"

@@ -3,7 +3,7 @@
 Real numbers only where numbers are meant (no bool, complex, strings or objects, as Python
 values or numpy dtypes), integers where counts are meant (Python or numpy integers, through
 ``operator.index``: ``1.5`` and ``True`` are refused), finite values where the model needs
-them, and the caps of :mod:`landing._limits`. Every refusal is a
+them, and the caps of :mod:`landing._internal.limits`. Every refusal is a
 :class:`~landing.errors.ParameterError` (a ValueError) or
 :class:`~landing.errors.ParameterTypeError` (a TypeError) whose message names the argument,
 the value and the rule.
@@ -17,7 +17,7 @@ from typing import Any, Optional, Sequence
 
 import numpy as np
 
-from landing._limits import LIMITS
+from landing._internal.limits import LIMITS
 from landing.errors import ParameterError, ParameterTypeError
 
 __all__ = ["integer", "real", "real_array", "boolean", "choice", "finite_array", "pair", "short"]

@@ -15,7 +15,7 @@ from typing import Any, Callable, ClassVar, Sequence, Union
 
 import numpy as np
 
-from landing._args import real_array
+from landing._internal.args import real_array
 
 ArrayLike = Union[float, Sequence[float], Sequence[Sequence[float]], np.ndarray]
 
