@@ -20,16 +20,8 @@ from landing.errors import (
     ParameterTypeError,
     SimulationError,
 )
-from landing.simulation import DIVERGENCE_REASONS, Metrics, SimulationResult, simulate, simulate_batch
-
-MAX_COMMAND: float = _core.MAX_COMMAND
-"""Largest magnitude of a command component a case may apply before it is stopped."""
-
-
-def kernel_levels() -> list[str]:
-    """The instruction-set levels of the compiled kernel this CPU runs, lowest first (every
-    level gives the same bits; ``simulate_batch(..., kernel=...)`` forces one)."""
-    return list(_core.kernel_levels())
+from landing.results import DIVERGENCE_REASONS, Metrics, SimulationResult
+from landing.simulation import MAX_COMMAND, kernel_levels, simulate, simulate_batch
 
 from landing import plots, scenarios, theory
 from landing.montecarlo import MonteCarloResult, monte_carlo

@@ -46,7 +46,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from landing._internal.progress import ProgressBar
     from landing.montecarlo import MonteCarloResult
     from landing.scenarios import Scenario
-    from landing.simulation import SimulationResult
+    from landing.results import SimulationResult
     from landing.store import CampaignStore
 
 __all__ = ["require_dask", "connect", "default_chunk_size", "run_chunk", "run_campaign"]

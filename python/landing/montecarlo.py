@@ -15,7 +15,7 @@ from landing._internal.args import boolean, integer
 from landing._internal.limits import require_memory
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
-from landing.simulation import Metrics, SimulationResult, describe_diverged, diverged_cases
+from landing.results import Metrics, SimulationResult, describe_diverged, diverged_cases, result_dataset
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray
@@ -194,8 +194,6 @@ class MonteCarloResult:
         """An xarray Dataset of the campaign: the kept signals (case, time, component), the
         final and initial states, every metric, with names, time (s) and units (see
         :meth:`SimulationResult.to_xarray`). Needs ``pip install "landing[io]"``."""
-        from landing.store import result_dataset
-
         return result_dataset(self.result, x0=self.x0, seed=self.seed,
                               attrs={"scenario": self.scenario.name, "keep": list(self.keep)})
 

@@ -13,7 +13,7 @@ from typing import Any, Mapping, Optional, Union
 import numpy as np
 
 from landing.montecarlo import MonteCarloResult
-from landing.simulation import SimulationResult
+from landing.results import SimulationResult
 
 __all__ = [
     "trajectories_3d",

@@ -23,7 +23,8 @@ from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import ParameterError, ParameterTypeError
 from landing.plants import Plant
 from landing.reference import Reference
-from landing.simulation import SimulationResult, simulate, simulate_batch
+from landing.results import SimulationResult
+from landing.simulation import simulate, simulate_batch
 
 __all__ = [
     "Scenario",

@@ -41,18 +41,15 @@ from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
 import numpy as np
 
 from landing.errors import ParameterError, ParameterTypeError
+from landing.results import dataset_coords, flat_columns, require_io
 
 if TYPE_CHECKING:  # pragma: no cover
-    import xarray
-
     from landing.montecarlo import MonteCarloResult
+    from landing.results import SimulationResult
     from landing.scenarios import Scenario
-    from landing.simulation import Metrics, SimulationResult
 
-__all__ = ["load", "require_io", "IO_PACKAGES", "STORE_FORMAT"]
+__all__ = ["load", "STORE_FORMAT"]
 
-#: The optional packages of ``landing[io]``.
-IO_PACKAGES: tuple[str, ...] = ("pyarrow", "zarr", "xarray", "pandas")
 #: Version of the directory layout written here.
 STORE_FORMAT = 1
 
@@ -62,81 +59,8 @@ TRAJECTORIES = "trajectories.zarr"
 METRICS_DIR = Path("chunks") / "metrics"
 INITIAL_DIR = Path("chunks") / "initial"
 
-#: Signals a campaign may keep (``monte_carlo(..., keep=...)``).
-SIGNALS: tuple[str, ...] = ("states", "controls", "diagnostics")
 
-#: Units of the state and control components, by name (where known).
-UNITS: dict[str, str] = {
-    # Mars lander
-    "rx": "m", "ry": "m", "rz": "m", "vx": "m/s", "vy": "m/s", "vz": "m/s", "m": "kg",
-    "Fx": "N", "Fy": "N", "Fz": "N",
-    # small body
-    "x": "m", "y": "m", "z": "m", "ux": "m/s^2", "uy": "m/s^2", "uz": "m/s^2",
-    # tethered satellite
-    "phi": "rad", "theta": "rad", "phi_dot": "rad/s", "theta_dot": "rad/s", "thrust": "N", "torque": "N m",
-}
-
-#: Units of the metrics whose unit does not depend on the plant.
-METRIC_UNITS: dict[str, str] = {
-    "settle_time": "s", "touchdown_time": "s", "diverged_time": "s",
-    "fuel_used": "kg", "fuel_to_settle": "kg", "chattering_variation": "command units/s",
-}
-
-
-# --- optional imports ----------------------------------------------------------------------------
-
-
-def require_io(*names: str, what: str = "this") -> Any:
-    """Import the named optional packages (one module, or a tuple of them), or raise an
-    ImportError saying how to install them."""
-    modules = []
-    for name in names:
-        try:
-            modules.append(importlib.import_module(name))
-        except ImportError as e:
-            raise ImportError(
-                f"{what} needs {name.split('.')[0]}, part of the optional extra landing[io] "
-                f"({', '.join(IO_PACKAGES)}): pip install \"landing[io]\""
-            ) from e
-    return modules[0] if len(modules) == 1 else tuple(modules)
-
-
-# --- names, columns, units --------------------------------------------------------------------------
-
-
-def axis_names(metrics: Mapping[str, np.ndarray], state_names: Sequence[str]) -> tuple[str, ...]:
-    """x, y, z for three axes; the first state names (the generalized coordinates, e.g. phi and
-    theta) otherwise."""
-    if "final_error" not in metrics:
-        return ()
-    d = int(np.shape(metrics["final_error"])[-1]) if np.ndim(metrics["final_error"]) else 0
-    if d == 3:
-        return ("x", "y", "z")
-    if len(state_names) >= d:
-        return tuple(state_names[:d])
-    return tuple(str(j) for j in range(d))
-
-
-def _single_case(columns: Mapping[str, np.ndarray]) -> bool:
-    return np.ndim(columns["diverged"]) == 0 if "diverged" in columns else False
-
-
-def flat_columns(columns: Mapping[str, np.ndarray], axes: Sequence[str] = ()) -> dict[str, np.ndarray]:
-    """Per-case columns, the per-axis ones split into ``name_<axis>`` (one row for a single
-    case's scalar metrics)."""
-    single = _single_case(columns)
-    flat: dict[str, np.ndarray] = {}
-    for k, v in columns.items():
-        v = np.asarray(v)
-        if single:
-            v = v[None, ...]
-        if v.ndim == 1:
-            flat[k] = v
-            continue
-        names = axes if len(axes) == v.shape[1] else tuple(str(j) for j in range(v.shape[1]))
-        for j, a in enumerate(names):
-            flat[f"{k}_{a}"] = v[:, j]
-    return flat
+# --- metric columns ----------------------------------------------------------------------------------
 
 
 def metrics_layout(columns: Mapping[str, np.ndarray], axes: Sequence[str]) -> list[list[Any]]:
@@ -152,60 +76,6 @@ def metrics_layout(columns: Mapping[str, np.ndarray], axes: Sequence[str]) -> li
             out.append([k, v.dtype.str, [f"{k}_{a}" for a in names]])
     return out
 
-
-def _units(names: Sequence[str]) -> list[str]:
-    return [UNITS.get(n, "") for n in names]
-
-
-def result_dataset(
-    result: "SimulationResult",
-    *,
-    x0: Optional[np.ndarray] = None,
-    seed: Optional[int] = None,
-    attrs: Optional[dict[str, Any]] = None,
-) -> "xarray.Dataset":
-    """The xarray Dataset of a result (see :meth:`SimulationResult.to_xarray`)."""
-    xr = require_io("xarray", what="to_xarray")
-    single = result.final_state.ndim == 1
-    case: tuple[str, ...] = () if single else ("case",)
-    axes = result.axis_names
-    coords: dict[str, Any] = {
-        "time": ("time", result.t, {"units": "s", "long_name": "control instant"}),
-        "state": ("state", list(result.state_names)),
-        "control": ("control", list(result.control_names)),
-        "state_units": ("state", _units(result.state_names)),
-        "control_units": ("control", _units(result.control_names)),
-    }
-    if axes:
-        coords["axis"] = ("axis", list(axes))
-    if not single:
-        coords["case"] = ("case", np.arange(result.n_cases))
-    data: dict[str, Any] = {}
-    if result.states is not None:
-        data["states"] = (case + ("time", "state"), result.states,
-                          {"long_name": "state at the recorded instants", "units_by": "state_units"})
-    if result.controls is not None:
-        data["controls"] = (case + ("time", "control"), result.controls,
-                            {"long_name": "command applied after saturation", "units_by": "control_units"})
-    for name, v in result.diagnostics.items():
-        dims = case + ("time",) + (("axis",) if v.ndim == len(case) + 2 else ())
-        data[name] = (dims, v, {"long_name": f"law diagnostic {name}"})
-    data["final_state"] = (case + ("state",), result.final_state,
-                           {"long_name": "state at t_final", "units_by": "state_units"})
-    if x0 is not None:
-        data["x0"] = (case + ("state",), x0, {"long_name": "initial state", "units_by": "state_units"})
-    for name, v in result.metrics.items():
-        v = np.asarray(v)
-        dims = case + (("axis",) if v.ndim == len(case) + 1 else ())
-        meta = {"long_name": f"metric {name}"}
-        if name in METRIC_UNITS:
-            meta["units"] = METRIC_UNITS[name]
-        data[name if name not in data else f"metric_{name}"] = (dims, v, meta)
-    ds_attrs = {"kernel": result.kernel}
-    if seed is not None:
-        ds_attrs["seed"] = int(seed)
-    ds_attrs.update(attrs or {})
-    return xr.Dataset(data, coords=coords, attrs=ds_attrs)
 
 
 # --- provenance ----------------------------------------------------------------------------------------
@@ -465,16 +335,8 @@ class CampaignStore:
         n, T = self.key.n, part.t.size
         root = self.path / TRAJECTORIES
         axes = part.axis_names
-        coords: dict[str, Any] = {
-            "case": ("case", np.arange(n, dtype=np.int64)),
-            "time": ("time", part.t, {"units": "s", "long_name": "control instant"}),
-            "state": ("state", list(part.state_names)),
-            "control": ("control", list(part.control_names)),
-            "state_units": ("state", _units(part.state_names)),
-            "control_units": ("control", _units(part.control_names)),
-        }
-        if axes:
-            coords["axis"] = ("axis", list(axes))
+        coords = {"case": ("case", np.arange(n, dtype=np.int64)),
+                  **dataset_coords(part.t, part.state_names, part.control_names, axes)}
         # Zarr format 2: its fixed-width strings and consolidated metadata are part of the
         # format (zarr-python 3 still writes it; xarray reads either)
         fmt = {"zarr_format": 2} if int(zarr.__version__.split(".")[0]) >= 3 else {}
@@ -569,7 +431,7 @@ class CampaignStore:
 
     def read_chunk(self, index: int) -> "SimulationResult":
         """A completed chunk as the batch result it was (what was not kept is None/empty)."""
-        from landing.simulation import Metrics, SimulationResult
+        from landing.results import Metrics, SimulationResult
 
         c = self.completed[index]
         start, stop = c["start"], c["stop"]

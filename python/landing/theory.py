@@ -38,7 +38,8 @@ from landing._internal.args import integer, real, real_array
 from landing._internal.limits import require_memory
 from landing.errors import ParameterError, ParameterTypeError
 from landing.plants import DoubleIntegrator, Plant
-from landing.simulation import SimulationResult, simulate_batch
+from landing.results import SimulationResult
+from landing.simulation import simulate_batch
 
 __all__ = [
     "fixed_time_bound",

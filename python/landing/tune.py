@@ -58,7 +58,7 @@ import numpy as np
 from landing import controllers, disturbances
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
-from landing.simulation import Metrics, SimulationResult
+from landing.results import Metrics, SimulationResult
 
 __all__ = ["Expression", "TuneResult", "tune", "pareto_front", "BOUND_NAMES"]
 

@@ -1,0 +1,537 @@
+"""What a batch produced: :class:`SimulationResult`, its per-case :class:`Metrics`, and their
+xarray and pandas views.
+
+A result is one set of arrays with a case axis first; :meth:`SimulationResult.cases` takes some
+cases (a view for a range), :meth:`SimulationResult.concat` joins batches, and
+:meth:`SimulationResult.empty` with :meth:`SimulationResult.put` fills a preallocated output
+chunk by chunk (what a campaign does). The conversions to xarray and pandas need the optional
+extra ``landing[io]``; nothing here imports it until one is asked for.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from landing import _core
+from landing._internal.args import integer
+from landing.errors import ParameterError, ParameterTypeError
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas
+    import xarray
+
+__all__ = [
+    "DIVERGENCE_REASONS",
+    "IO_PACKAGES",
+    "METRIC_UNITS",
+    "SIGNALS",
+    "UNITS",
+    "Metrics",
+    "SimulationResult",
+    "axis_names",
+    "describe_diverged",
+    "diverged_cases",
+    "flat_columns",
+    "require_io",
+]
+
+
+DIVERGENCE_REASONS: tuple[str, ...] = tuple(_core.DIVERGENCE_REASONS)
+"""Names of the codes in ``metrics["diverged_reason"]`` (index 0: not diverged)."""
+
+
+def diverged_cases(metrics: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """The indices of the diverged cases, by reason name (only the reasons that occur)."""
+    codes = np.atleast_1d(metrics["diverged_reason"])
+    return {DIVERGENCE_REASONS[c]: np.flatnonzero(codes == c) for c in np.unique(codes) if c != 0}
+
+
+def describe_diverged(metrics: Mapping[str, np.ndarray], shown: int = 10) -> str:
+    """"k of n cases diverged (reason: cases ...; ...)", or "0 of n"."""
+    n = np.atleast_1d(metrics["diverged"]).size
+    groups = diverged_cases(metrics)
+    k = sum(v.size for v in groups.values())
+    if k == 0:
+        return f"0 of {n}"
+    parts = []
+    for name, idx in groups.items():
+        listed = ", ".join(str(i) for i in idx[:shown]) + (", ..." if idx.size > shown else "")
+        parts.append(f"{name}: {idx.size} (cases {listed})")
+    return f"{k} of {n} cases diverged ({'; '.join(parts)})"
+
+
+
+#: The optional packages of ``landing[io]``.
+IO_PACKAGES: tuple[str, ...] = ("pyarrow", "zarr", "xarray", "pandas")
+
+#: The recorded signals a result may hold besides its final states and metrics (what a
+#: campaign may keep: ``monte_carlo(..., keep=...)``).
+SIGNALS: tuple[str, ...] = ("states", "controls", "diagnostics")
+
+#: Units of the state and control components, by name (where known).
+UNITS: dict[str, str] = {
+    # Mars lander
+    "rx": "m", "ry": "m", "rz": "m", "vx": "m/s", "vy": "m/s", "vz": "m/s", "m": "kg",
+    "Fx": "N", "Fy": "N", "Fz": "N",
+    # small body
+    "x": "m", "y": "m", "z": "m", "ux": "m/s^2", "uy": "m/s^2", "uz": "m/s^2",
+    # tethered satellite
+    "phi": "rad", "theta": "rad", "phi_dot": "rad/s", "theta_dot": "rad/s", "thrust": "N", "torque": "N m",
+}
+
+#: Units of the metrics whose unit does not depend on the plant.
+METRIC_UNITS: dict[str, str] = {
+    "settle_time": "s", "touchdown_time": "s", "diverged_time": "s",
+    "fuel_used": "kg", "fuel_to_settle": "kg", "chattering_variation": "command units/s",
+}
+
+
+# --- optional imports ----------------------------------------------------------------------------
+
+
+
+def require_io(*names: str, what: str = "this") -> Any:
+    """Import the named optional packages (one module, or a tuple of them), or raise an
+    ImportError saying how to install them."""
+    modules = []
+    for name in names:
+        try:
+            modules.append(importlib.import_module(name))
+        except ImportError as e:
+            raise ImportError(
+                f"{what} needs {name.split('.')[0]}, part of the optional extra landing[io] "
+                f"({', '.join(IO_PACKAGES)}): pip install \"landing[io]\""
+            ) from e
+    return modules[0] if len(modules) == 1 else tuple(modules)
+
+
+# --- names, columns, units --------------------------------------------------------------------------
+
+
+def axis_names(metrics: Mapping[str, np.ndarray], state_names: Sequence[str]) -> tuple[str, ...]:
+    """x, y, z for three axes; the first state names (the generalized coordinates, e.g. phi and
+    theta) otherwise."""
+    if "final_error" not in metrics:
+        return ()
+    d = int(np.shape(metrics["final_error"])[-1]) if np.ndim(metrics["final_error"]) else 0
+    if d == 3:
+        return ("x", "y", "z")
+    if len(state_names) >= d:
+        return tuple(state_names[:d])
+    return tuple(str(j) for j in range(d))
+
+
+def _single_case(columns: Mapping[str, np.ndarray]) -> bool:
+    return np.ndim(columns["diverged"]) == 0 if "diverged" in columns else False
+
+
+def flat_columns(columns: Mapping[str, np.ndarray], axes: Sequence[str] = ()) -> dict[str, np.ndarray]:
+    """Per-case columns, the per-axis ones split into ``name_<axis>`` (one row for a single
+    case's scalar metrics)."""
+    single = _single_case(columns)
+    flat: dict[str, np.ndarray] = {}
+    for k, v in columns.items():
+        v = np.asarray(v)
+        if single:
+            v = v[None, ...]
+        if v.ndim == 1:
+            flat[k] = v
+            continue
+        names = axes if len(axes) == v.shape[1] else tuple(str(j) for j in range(v.shape[1]))
+        for j, a in enumerate(names):
+            flat[f"{k}_{a}"] = v[:, j]
+    return flat
+
+
+
+def component_units(names: Sequence[str]) -> list[str]:
+    """The unit of each state or control component (empty where unknown)."""
+    return [UNITS.get(n, "") for n in names]
+
+
+def dataset_coords(t: np.ndarray, state_names: Sequence[str], control_names: Sequence[str],
+                   axes: Sequence[str]) -> dict[str, Any]:
+    """The coordinates of a result's xarray Dataset, and of a campaign store's trajectories:
+    the recorded times (s), the component names with their units and the axis names."""
+    coords: dict[str, Any] = {
+        "time": ("time", t, {"units": "s", "long_name": "control instant"}),
+        "state": ("state", list(state_names)),
+        "control": ("control", list(control_names)),
+        "state_units": ("state", component_units(state_names)),
+        "control_units": ("control", component_units(control_names)),
+    }
+    if axes:
+        coords["axis"] = ("axis", list(axes))
+    return coords
+
+
+def result_dataset(
+    result: "SimulationResult",
+    *,
+    x0: Optional[np.ndarray] = None,
+    seed: Optional[int] = None,
+    attrs: Optional[dict[str, Any]] = None,
+) -> "xarray.Dataset":
+    """The xarray Dataset of a result (see :meth:`SimulationResult.to_xarray`)."""
+    xr = require_io("xarray", what="to_xarray")
+    single = result.final_state.ndim == 1
+    case: tuple[str, ...] = () if single else ("case",)
+    axes = result.axis_names
+    coords = dataset_coords(result.t, result.state_names, result.control_names, axes)
+    if not single:
+        coords["case"] = ("case", np.arange(result.n_cases))
+    data: dict[str, Any] = {}
+    if result.states is not None:
+        data["states"] = (case + ("time", "state"), result.states,
+                          {"long_name": "state at the recorded instants", "units_by": "state_units"})
+    if result.controls is not None:
+        data["controls"] = (case + ("time", "control"), result.controls,
+                            {"long_name": "command applied after saturation", "units_by": "control_units"})
+    for name, v in result.diagnostics.items():
+        dims = case + ("time",) + (("axis",) if v.ndim == len(case) + 2 else ())
+        data[name] = (dims, v, {"long_name": f"law diagnostic {name}"})
+    data["final_state"] = (case + ("state",), result.final_state,
+                           {"long_name": "state at t_final", "units_by": "state_units"})
+    if x0 is not None:
+        data["x0"] = (case + ("state",), x0, {"long_name": "initial state", "units_by": "state_units"})
+    for name, v in result.metrics.items():
+        v = np.asarray(v)
+        dims = case + (("axis",) if v.ndim == len(case) + 1 else ())
+        meta = {"long_name": f"metric {name}"}
+        if name in METRIC_UNITS:
+            meta["units"] = METRIC_UNITS[name]
+        data[name if name not in data else f"metric_{name}"] = (dims, v, meta)
+    ds_attrs = {"kernel": result.kernel}
+    if seed is not None:
+        ds_attrs["seed"] = int(seed)
+    ds_attrs.update(attrs or {})
+    return xr.Dataset(data, coords=coords, attrs=ds_attrs)
+
+
+# --- the result types ------------------------------------------------------------------------------
+
+
+class Metrics(Mapping[str, np.ndarray]):
+    """Per-case figures of merit: a table of columns, one row per case.
+
+    Columns (N cases, D axes):
+
+    - ``final_position_error`` (N,), ``final_velocity_error`` (N,): norms of the tracking
+      error and its rate at t_final; ``final_error``, ``final_rate_error`` (N, D) per axis.
+    - ``fuel_used`` (N,): m(0) - m(t_final), for plants with mass (NaN otherwise).
+    - ``fuel_to_settle`` (N,): m(0) - m(settle_time), the propellant spent until the error
+      settles (NaN if it does not, or the plant has no mass).
+    - ``peak_command`` (N,): largest |u| applied (for the Mars lander, the peak thrust in N);
+      ``peak_command_axis`` (N, D): largest |u_i|.
+    - ``control_effort`` (N,): integral of |u| dt.
+    - ``settle_time`` (N,): first control instant from which |q - q_ref| stays within the
+      settle tolerance until t_final (NaN if it is outside at t_final); seed 000's "time to
+      track".
+    - ``iae`` (N,), ``iae_axis`` (N, D): integral of |e_i| dt over the run (rectangle rule at
+      the control instants), summed over the axes or per axis.
+    - ``chattering_variation`` (N,), ``chattering_variation_axis`` (N, D): total variation of
+      the applied command per unit time, sum_k |u(k+1) - u(k)| / T.
+    - ``chattering_hf_share`` (N,), ``chattering_hf_share_axis`` (N, D): share of the applied
+      command's energy above the chattering cut-off (2nd-order Butterworth high-pass).
+    - ``touchdown_time``, ``touchdown_speed`` (N,), ``touchdown_position``,
+      ``touchdown_velocity`` (N, D): first crossing of the surface, interpolated within the
+      step; NaN if none (or the plant has no surface).
+    - ``diverged`` (N,) bool, ``diverged_time`` (N,), ``diverged_reason`` (N,) uint8: cases
+      stopped before t_final, when and why. The reason codes index
+      :data:`landing.DIVERGENCE_REASONS` (0 ``none``; ``non_finite_command``: the law returned
+      NaN or infinity; ``command_out_of_range``: a command component beyond
+      ``landing.MAX_COMMAND`` = 1e100; ``non_finite_state``; ``out_of_domain``: the state left
+      the plant's domain, listed in docs/parameters.md; ``non_finite_metric``: a statistic
+      overflowed). Their final errors and fuel are NaN; no metric is infinite without the flag.
+      :meth:`Metrics.diverged_cases` groups them by reason.
+
+    Columns are also attributes: ``res.metrics.fuel_used``.
+    """
+
+    def __init__(self, columns: Mapping[str, np.ndarray]):
+        self._columns = dict(columns)
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self._columns[name]
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        try:
+            return self.__dict__["_columns"][name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._columns)
+
+    def __len__(self) -> int:
+        return len(self._columns)
+
+    def __dir__(self) -> list[str]:
+        return sorted(set(super().__dir__()) | set(self._columns))
+
+    def diverged_cases(self) -> dict[str, np.ndarray]:
+        """The indices of the diverged cases, by reason name (only the reasons that occur)."""
+        return diverged_cases(self._columns)
+
+    def row(self, case: int) -> dict[str, Any]:
+        """The metrics of one case."""
+        return {k: v[case] for k, v in self._columns.items()}
+
+    def cases(self, start: Any, stop: Optional[int] = None) -> "Metrics":
+        """Some of the cases: ``m.cases(a, b)`` is cases a .. b - 1 (views of these columns),
+        ``m.cases(index)`` those of an integer index array or a boolean mask (copies)."""
+        key = _case_key(start, stop)
+        return self._map(lambda a: a[key])
+
+    def _map(self, fn: Callable[[np.ndarray], np.ndarray]) -> "Metrics":
+        """The columns with ``fn`` applied to each (without the context of :meth:`to_pandas`)."""
+        return Metrics({k: fn(np.asarray(v)) for k, v in self._columns.items()})
+
+    def to_pandas(
+        self,
+        *,
+        axis_names: Optional[Sequence[str]] = None,
+        x0: Optional[np.ndarray] = None,
+        state_names: Optional[Sequence[str]] = None,
+        seed: Optional[int] = None,
+        first_case: int = 0,
+    ) -> "pandas.DataFrame":
+        """A pandas DataFrame, one row per case (index ``case``; a single case gives one row).
+
+        Per-axis columns are split with the axis names, ``final_error_x`` ... (``_0``, ``_1``
+        ... when the axes have no names). The arguments default to what the result that made
+        these metrics knows (a :class:`SimulationResult` or a Monte Carlo campaign fills them):
+        ``seed`` adds a ``seed`` column, ``x0`` (N, n_state) the initial states as
+        ``x0_<state name>`` columns. Needs pandas (``pip install "landing[io]"``).
+        """
+        pd = require_io("pandas", what="Metrics.to_pandas")
+        ctx = self.__dict__.get("_context", {})
+        axis_names = tuple(axis_names if axis_names is not None else ctx.get("axis_names", ()))
+        x0 = x0 if x0 is not None else ctx.get("x0")
+        state_names = tuple(state_names if state_names is not None else ctx.get("state_names", ()))
+        seed = seed if seed is not None else ctx.get("seed")
+        first_case = first_case or int(ctx.get("first_case", 0))
+        flat = flat_columns(self._columns, axis_names)
+        n = len(next(iter(flat.values()))) if flat else 0
+        front: dict[str, np.ndarray] = {}
+        if seed is not None:
+            front["seed"] = np.full(n, int(seed), dtype=np.uint64)
+        if x0 is not None:
+            x = np.atleast_2d(np.asarray(x0))
+            names = state_names if len(state_names) == x.shape[1] else tuple(str(j) for j in range(x.shape[1]))
+            for j, name in enumerate(names):
+                front[f"x0_{name}"] = x[:, j]
+        index = pd.RangeIndex(first_case, first_case + n, name="case")
+        return pd.DataFrame({**front, **flat}, index=index)
+
+    def _with_context(self, **context: Any) -> "Metrics":
+        """The same columns, knowing what :meth:`to_pandas` adds (axis names, seed, x0)."""
+        out = Metrics(self._columns)
+        out.__dict__["_context"] = {**self.__dict__.get("_context", {}), **context}
+        return out
+
+    def __repr__(self) -> str:
+        cols = {k: np.atleast_1d(v) for k, v in self._columns.items()}
+        n = len(cols["diverged"])
+        lines = [f"Metrics({n} case{'s' if n != 1 else ''})"]
+        for k, v in cols.items():
+            if v.ndim == 1 and v.dtype != bool and (n > 1 or np.ndim(self._columns[k]) == 0):
+                finite = v[np.isfinite(v)]
+                if finite.size:
+                    lines.append(f"  {k:<22} mean {finite.mean():.6g}  min {finite.min():.6g}  max {finite.max():.6g}")
+                else:
+                    lines.append(f"  {k:<22} (none)")
+        lines.append(f"  {'diverged':<22} {describe_diverged(self._columns)}")
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationResult:
+    """What a batch produced.
+
+    Attributes
+    ----------
+    t : (T,) recorded control instants, s (empty with ``record_every=0``).
+    states : (N, T, n_state) states at the recorded instants.
+    controls : (N, T, n_control) the command applied over ``[t_k, t_k + dt)``, after
+        saturation (thrust in N for the Mars lander). The last entry is the command computed
+        at t_final, which would be held next.
+    final_state : (N, n_state) state at t_final.
+    diagnostics : name -> (N, T, D) internal signals of the law (sliding variables, ...), or
+        (N, T) for scalar ones (blending coefficients).
+    metrics : per-case table, see :class:`Metrics`.
+
+    ``result[i]`` is case i alone, with the case axis dropped. A Monte Carlo campaign run with
+    ``keep=`` leaves out what it did not keep: ``states`` or ``controls`` are then None and
+    ``diagnostics`` is empty.
+    """
+
+    t: np.ndarray
+    states: Optional[np.ndarray]
+    controls: Optional[np.ndarray]
+    final_state: np.ndarray
+    diagnostics: dict[str, np.ndarray]
+    metrics: Metrics
+    state_names: tuple[str, ...]
+    control_names: tuple[str, ...]
+    #: The instruction-set level the batch ran at (the same bits at every level).
+    kernel: str = ""
+
+    def __post_init__(self) -> None:
+        # the metrics know their axis names (and the initial states, when recorded) for to_pandas
+        context: dict[str, Any] = {"axis_names": self.axis_names, "state_names": self.state_names}
+        if self.states is not None and self.t.size and self.t[0] == 0.0:
+            context["x0"] = self.states[..., 0, :]
+        object.__setattr__(self, "metrics", self.metrics._with_context(**context))
+
+    @property
+    def n_cases(self) -> int:
+        return int(self.final_state.shape[0]) if self.final_state.ndim == 2 else 1
+
+    @property
+    def axis_names(self) -> tuple[str, ...]:
+        """Names of the axes of the per-axis metrics and diagnostics (x, y, z for the
+        three-axis plants, the generalized coordinates' names otherwise)."""
+        return axis_names(self.metrics, self.state_names)
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """An xarray Dataset: ``states`` (case, time, state), ``controls`` (case, time,
+        control), each diagnostic (case, time[, axis]), ``final_state`` (case, state) and every
+        metric (case[, axis]), with the time (s), component and axis names as coordinates and
+        units where known (a single case has no ``case`` dimension). Needs xarray
+        (``pip install "landing[io]"``)."""
+        return result_dataset(self)
+
+    @property
+    def diverged(self) -> np.ndarray:
+        return self.metrics["diverged"]
+
+    def __len__(self) -> int:
+        return self.n_cases
+
+    def __getitem__(self, case: int) -> "SimulationResult":
+        self._require_batch()
+        return self._map(lambda a: a[case])
+
+    def cases(self, start: Any, stop: Optional[int] = None) -> "SimulationResult":
+        """Some of the cases, the case axis kept: ``res.cases(a, b)`` is cases a .. b - 1 (views
+        of this result's arrays, as a slice is), ``res.cases(index)`` those of an integer index
+        array or a boolean mask (copies)."""
+        self._require_batch()
+        key = _case_key(start, stop)
+        return self._map(lambda a: a[key])
+
+    def keeping(self, signals: Sequence[str]) -> "SimulationResult":
+        """This result with only the recorded signals named in ``signals`` (of :data:`SIGNALS`);
+        the final states and the metrics are always kept."""
+        return dataclasses.replace(
+            self,
+            states=self.states if "states" in signals else None,
+            controls=self.controls if "controls" in signals else None,
+            diagnostics=self.diagnostics if "diagnostics" in signals else {},
+        )
+
+    @classmethod
+    def empty(cls, n: int, like: "SimulationResult") -> "SimulationResult":
+        """``n`` cases of uninitialised arrays shaped and typed like those of the batch ``like``,
+        with its times, names, kernel and signals (what ``like`` lacks is absent here too):
+        an output allocated once, which :meth:`put` fills."""
+        like._require_batch()
+        n = integer("n", n, minimum=0)
+        return like._map(lambda a: np.empty((n,) + a.shape[1:], dtype=a.dtype))
+
+    def put(self, start: int, part: "SimulationResult") -> None:
+        """Copies the cases of the batch ``part`` into cases ``start .. start + len(part)`` of
+        this one, every signal this result holds (``part`` may hold more)."""
+        part._require_batch()
+        start = integer("start", start, minimum=0)
+        into = self.cases(start, start + part.n_cases)
+        if into.n_cases != part.n_cases:
+            raise ParameterError(
+                f"put: cases {start} .. {start + part.n_cases - 1} are beyond this result's {self.n_cases}"
+            )
+        for name in ("states", "controls"):
+            dest = getattr(into, name)
+            if dest is not None:
+                dest[...] = _signal(part, name)
+        into.final_state[...] = part.final_state
+        for k, v in into.diagnostics.items():
+            v[...] = _signal(part, "diagnostics", k)
+        for k, v in into.metrics.items():
+            v[...] = part.metrics[k]
+
+    @classmethod
+    def concat(cls, parts: Sequence["SimulationResult"]) -> "SimulationResult":
+        """The cases of the batches ``parts`` one after the other (say, the chunks of one
+        campaign). They must share their recorded times, component names and signals; the
+        kernel named is the first part's (every level gives the same bits)."""
+        parts = list(parts)
+        if not parts or not all(isinstance(p, SimulationResult) for p in parts):
+            raise ParameterTypeError("concat takes a non-empty sequence of SimulationResult batches")
+        first = parts[0]
+        for i, p in enumerate(parts):
+            p._require_batch()
+            same = (np.array_equal(p.t, first.t) and p.state_names == first.state_names
+                    and p.control_names == first.control_names
+                    and (p.states is None) == (first.states is None)
+                    and (p.controls is None) == (first.controls is None)
+                    and list(p.diagnostics) == list(first.diagnostics) and list(p.metrics) == list(first.metrics))
+            if not same:
+                raise ParameterError(f"concat: part {i} differs from part 0 in its times, names or signals")
+        out = cls.empty(sum(p.n_cases for p in parts), like=first)
+        start = 0
+        for p in parts:
+            out.put(start, p)
+            start += p.n_cases
+        return out
+
+    def _require_batch(self) -> None:
+        if self.final_state.ndim != 2:
+            raise TypeError("this result holds a single case")
+
+    def _map(self, fn: Callable[[np.ndarray], np.ndarray]) -> "SimulationResult":
+        """This result with ``fn`` applied to each per-case array (states, controls, final
+        state, diagnostics, metrics); the times, names and kernel are kept. Every slice,
+        allocation and selection of cases goes through here."""
+        return dataclasses.replace(
+            self,
+            states=None if self.states is None else fn(self.states),
+            controls=None if self.controls is None else fn(self.controls),
+            final_state=fn(self.final_state),
+            diagnostics={k: fn(v) for k, v in self.diagnostics.items()},
+            metrics=self.metrics._map(fn),
+        )
+
+    def state(self, name: str) -> np.ndarray:
+        """One state component by name, e.g. ``res.state("rz")``: (N, T) or (T,)."""
+        if self.states is None:
+            raise ParameterError(f"state {name!r}: the states were not kept (keep=...)")
+        return self.states[..., self.state_names.index(name)]
+
+
+def _case_key(start: Any, stop: Optional[int]) -> Union[slice, np.ndarray]:
+    """The index of :meth:`SimulationResult.cases`: a slice from ``(start, stop)``, else the
+    integer index array or boolean mask ``start``."""
+    if stop is not None:
+        return slice(integer("start", start, minimum=0), integer("stop", stop, minimum=0))
+    key = np.asarray(start)
+    if key.ndim == 1 and key.size == 0:
+        return key.astype(np.intp)
+    if key.ndim != 1 or key.dtype.kind not in "iub":
+        raise ParameterTypeError(
+            f"cases takes (start, stop) or a 1-d integer index array or boolean mask, got {start!r}"
+        )
+    return key
+
+
+def _signal(part: SimulationResult, name: str, key: Optional[str] = None) -> np.ndarray:
+    """A recorded signal of ``part`` that an output holds, or a ParameterError if ``part`` lacks it."""
+    value = getattr(part, name) if key is None else part.diagnostics.get(key)
+    if value is None:
+        raise ParameterError(f"put: the part lacks {name if key is None else f'the diagnostic {key!r}'}")
+    return value
