@@ -153,8 +153,6 @@ def run_chunk(
 ) -> "SimulationResult":
     """One chunk, on a worker: cases ``start .. start + len(x0)`` of the campaign, with the
     signals not kept dropped (the task the client submits)."""
-    import dataclasses
-
     from landing import __version__
 
     if version != __version__:
@@ -169,12 +167,7 @@ def run_chunk(
         # the client warns once for the whole campaign
         warnings.simplefilter("ignore", DivergenceWarning)
         part = scenario.simulate_batch(x0, seed=seed, first_case=start, threads=threads, record_every=record_every)
-    return dataclasses.replace(
-        part,
-        states=part.states if "states" in keep else None,
-        controls=part.controls if "controls" in keep else None,
-        diagnostics=part.diagnostics if "diagnostics" in keep else {},
-    )
+    return part.keeping(keep)
 
 
 # --- the client's side -----------------------------------------------------------------------------
@@ -229,7 +222,7 @@ def run_campaign(
         stop = min(n, start + chunk_size)
         if store is not None and store.is_complete(index):
             part = store.read_chunk(index)
-            out.put(start, stop, part)
+            out.put(start, part)
             del part
             if bar:
                 bar.update(stop - start)
@@ -265,7 +258,7 @@ def run_campaign(
                 draws = (None if scenario.dispersion is None
                          else scenario.dispersion.sample(stop - start, seed=seed, first_case=start))
                 store.write_chunk(index, start, stop, part, x0[start:stop], draws)
-            out.put(start, stop, part)
+            out.put(start, part)
             del part, future
             if bar:
                 bar.update(stop - start)
@@ -282,6 +275,6 @@ def run_campaign(
             except Exception:  # noqa: BLE001 - the original error matters more
                 pass
         raise
-    if out.first is None:  # pragma: no cover - n >= 1 gives at least one chunk
+    if out.out is None:  # pragma: no cover - n >= 1 gives at least one chunk
         raise ParameterError(f"n = {n} gave no chunk")
     return finish_campaign(scenario, seed, x0, out.result(), keep, store, check_bounds)

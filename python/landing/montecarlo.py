@@ -253,56 +253,17 @@ class _Assembly:
     def __init__(self, n: int, keep: tuple[str, ...]):
         self.n = n
         self.keep = keep
-        self.first: Optional[SimulationResult] = None
-        self.states: Optional[np.ndarray] = None
-        self.controls: Optional[np.ndarray] = None
-        self.final_state: Optional[np.ndarray] = None
-        self.diagnostics: dict[str, np.ndarray] = {}
-        self.metrics: dict[str, np.ndarray] = {}
+        self.out: Optional[SimulationResult] = None
 
-    def _alloc(self, part: np.ndarray) -> np.ndarray:
-        return np.empty((self.n,) + part.shape[1:], dtype=part.dtype)
-
-    def put(self, start: int, stop: int, part: SimulationResult) -> None:
-        if self.first is None:
-            # the first chunk's time and names, not its arrays (they are copied in below)
-            self.first = SimulationResult(
-                t=part.t, states=None, controls=None, final_state=part.final_state[:0].copy(), diagnostics={},
-                metrics=Metrics({k: np.asarray(v)[:0].copy() for k, v in part.metrics.items()}),
-                state_names=part.state_names, control_names=part.control_names, kernel=part.kernel,
-            )
-            if "states" in self.keep:
-                self.states = self._alloc(part.states)
-            if "controls" in self.keep:
-                self.controls = self._alloc(part.controls)
-            if "diagnostics" in self.keep:
-                self.diagnostics = {k: self._alloc(v) for k, v in part.diagnostics.items()}
-            self.final_state = self._alloc(part.final_state)
-            self.metrics = {k: self._alloc(np.asarray(v)) for k, v in part.metrics.items()}
-        if self.states is not None:
-            self.states[start:stop] = part.states
-        if self.controls is not None:
-            self.controls[start:stop] = part.controls
-        for k, v in self.diagnostics.items():
-            v[start:stop] = part.diagnostics[k]
-        self.final_state[start:stop] = part.final_state
-        for k, v in self.metrics.items():
-            v[start:stop] = part.metrics[k]
+    def put(self, start: int, part: SimulationResult) -> None:
+        part = part.keeping(self.keep)
+        if self.out is None:
+            self.out = SimulationResult.empty(self.n, like=part)
+        self.out.put(start, part)
 
     def result(self) -> SimulationResult:
-        first = self.first
-        assert first is not None and self.final_state is not None
-        return SimulationResult(
-            t=first.t,
-            states=self.states,
-            controls=self.controls,
-            final_state=self.final_state,
-            diagnostics=self.diagnostics,
-            metrics=Metrics(self.metrics),
-            state_names=first.state_names,
-            control_names=first.control_names,
-            kernel=first.kernel,
-        )
+        assert self.out is not None
+        return self.out
 
 
 def _check_in_slices(result: SimulationResult, bounds: Any, step: int = 256) -> dict:
@@ -311,16 +272,7 @@ def _check_in_slices(result: SimulationResult, bounds: Any, step: int = 256) -> 
     from landing.theory import check_mss
 
     n = result.n_cases
-    parts = []
-    for a in range(0, n, step):
-        b = min(n, a + step)
-        view = SimulationResult(
-            t=result.t, states=None, controls=None, final_state=result.final_state[a:b],
-            diagnostics={k: v[a:b] for k, v in result.diagnostics.items()},
-            metrics=Metrics({k: v[a:b] for k, v in result.metrics.items()}),
-            state_names=result.state_names, control_names=result.control_names, kernel=result.kernel,
-        )
-        parts.append(check_mss(view, bounds))
+    parts = [check_mss(result.cases(a, min(n, a + step)), bounds) for a in range(0, n, step)]
     if len(parts) == 1:
         return parts[0]
 
@@ -374,7 +326,7 @@ def assemble_campaign(
                 draws = (None if scenario.dispersion is None
                          else scenario.dispersion.sample(stop - start, seed=seed, first_case=start))
                 store.write_chunk(index, start, stop, part, x0[start:stop], draws)
-        out.put(start, stop, part)
+        out.put(start, part)
         del part
         if bar:
             bar.update(stop - start)

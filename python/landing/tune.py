@@ -856,8 +856,7 @@ def _evaluate(scenario: Scenario, specs: tuple[GainSpec, ...], G: np.ndarray, x0
             **{s.name: _per_case(np.repeat(G[:, j], K), _column_shape(scenario.controller, s.name))
                for j, s in enumerate(specs)})
         res = _run(scenario, law, np.tile(x0_cases, (P, 1)), seed, opts, threads)
-    m = res.metrics
-    return [Metrics({k: v[i * K:(i + 1) * K] for k, v in m.items()}) for i in range(P)]
+    return [res.metrics.cases(i * K, (i + 1) * K) for i in range(P)]
 
 
 def _run(scenario: Scenario, law: controllers.Controller, x0: np.ndarray, seed: int, opts: dict[str, Any],
