@@ -14,8 +14,8 @@ import pytest
 
 import landing
 from landing import cli
-from landing.scenario_files import FileError, load_scenario, preset_path, scenario_from_dict, tomllib
-from landing.scenarios import PRESETS, Scenario, preset
+from landing.scenarios import PRESETS, FileError, Scenario, load_scenario, preset, preset_path
+from landing.scenarios.files import scenario_from_dict, tomllib
 
 
 def _short(s: Scenario, steps: int = 40) -> dict:

@@ -182,14 +182,14 @@ def test_a_client_of_another_type_is_refused():
 
 
 def test_a_scenario_that_cannot_reach_the_workers_is_refused_by_name(client, monkeypatch):
-    import landing.scenario_files
+    import landing.scenarios.files
     from landing.errors import LandingError, ParameterError
 
     def unreadable(*args, **kwargs):
         raise LandingError("not a scenario file")
 
     # its TOML does not read back, and a scenario (compiled core handles) does not pickle
-    monkeypatch.setattr(landing.scenario_files, "scenario_from_dict", unreadable)
+    monkeypatch.setattr(landing.scenarios.files, "scenario_from_dict", unreadable)
     with pytest.raises(ParameterError, match="scenario = 'mars_monte_carlo' cannot be sent to the cluster"):
         landing.monte_carlo(small(), 4, client=client)
 

@@ -132,7 +132,7 @@ def _tune_config(path: str) -> tuple[Any, dict[str, Any]]:
     """A tuning file: a scenario TOML file with a ``[tune]`` table (gains, objective,
     constraints, cases, budget, seed, popsize, sigma0), or a ``[tune]`` table alone whose
     ``scenario`` key names a preset or another scenario file."""
-    from landing.scenario_files import FileError, scenario_from_dict, tomllib
+    from landing.scenarios.files import FileError, scenario_from_dict, tomllib
     from landing.scenarios import Scenario
 
     file = Path(path)

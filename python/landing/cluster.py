@@ -101,7 +101,7 @@ def scenario_payload(scenario: "Scenario") -> tuple[str, Any]:
     """What a task carries of the scenario: ``("toml", text)`` when the text reads back to the
     same scenario, else ``("pickle", bytes)``."""
     from landing.errors import LandingError
-    from landing.scenario_files import scenario_from_dict, tomllib
+    from landing.scenarios.files import scenario_from_dict, tomllib
 
     text = scenario.to_toml()
     try:
@@ -130,7 +130,7 @@ def _scenario_on_worker(payload: tuple[str, Any]) -> "Scenario":
     scenario = _SCENARIOS.get(digest)
     if scenario is None:
         if kind == "toml":
-            from landing.scenario_files import scenario_from_dict, tomllib
+            from landing.scenarios.files import scenario_from_dict, tomllib
 
             scenario = scenario_from_dict(tomllib.loads(data), "<the campaign's scenario>")
         else:

@@ -90,7 +90,7 @@ def _scenario_text(scenario: "Scenario") -> str:
 def _scenario_from_text(text: str) -> Optional["Scenario"]:
     """The scenario back from its TOML text, or None when the text is not a scenario file."""
     from landing.errors import LandingError
-    from landing.scenario_files import scenario_from_dict, tomllib
+    from landing.scenarios.files import scenario_from_dict, tomllib
 
     try:
         return scenario_from_dict(tomllib.loads(text), "<the store's provenance.json>")

@@ -39,6 +39,7 @@ from landing._internal.limits import require_memory
 from landing.errors import ParameterError, ParameterTypeError
 from landing.plants import DoubleIntegrator, Plant
 from landing.results import SimulationResult
+from landing.scenarios import Scenario
 from landing.simulation import simulate_batch
 
 __all__ = [
@@ -48,6 +49,7 @@ __all__ = [
     "MSSBounds",
     "mss_bounds",
     "disturbance_bound",
+    "scenario_bounds",
     "min_final_time",
     "min_time_to_rest",
     "chattering_band",
@@ -211,6 +213,16 @@ def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2
         for k in keys:
             out[k][idx] = b[k]
     return MSSBounds(**out, ap_max=args[-1], theta1=float(theta1), theta2=float(theta2))
+
+
+def scenario_bounds(scenario: Scenario) -> Optional[MSSBounds]:
+    """Seed 001's practical fixed-time bounds for a scenario's law and disturbance (what
+    :meth:`Scenario.bounds` returns): None unless the law is FixedTimeMSS and the scenario's
+    ``theta`` is set."""
+    if scenario.theta is None or not isinstance(scenario.controller, FixedTimeMSS):
+        return None
+    ap_max = disturbance_bound(scenario.disturbance, scenario.plant.axes)
+    return mss_bounds(scenario.controller, ap_max, *scenario.theta)
 
 
 def disturbance_bound(disturbance: DisturbanceLike, axes: int = 3) -> np.ndarray:

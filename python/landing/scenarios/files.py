@@ -35,26 +35,22 @@ import json
 import math
 import re
 import sys
-from pathlib import Path
 from types import ModuleType
-from typing import Any, Mapping, Optional, Union
+from typing import Any, Mapping
 
 import numpy as np
 
 from landing import _core, controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
 from landing._internal.table import Table
 from landing.errors import LandingError, ParameterError
+from landing.scenarios._scenario import Scenario
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - exercised on Python < 3.11 only
     import tomli as tomllib
 
-__all__ = ["FileError", "scenario_to_dict", "scenario_to_toml", "scenario_from_dict", "load_scenario",
-           "preset_path", "PRESET_DIR"]
-
-#: Where the presets' TOML files ship (inside the package).
-PRESET_DIR = Path(__file__).parent / "presets"
+__all__ = ["FileError", "dumps", "scenario_to_dict", "scenario_to_toml", "scenario_from_dict", "tomllib"]
 
 #: The part tables of a file and the module their ``kind`` is looked up in.
 SECTIONS: dict[str, ModuleType] = {
@@ -133,7 +129,7 @@ def _encode_table(obj: Table) -> dict[str, Any]:
     return out
 
 
-def scenario_to_dict(scenario: Any) -> dict[str, Any]:
+def scenario_to_dict(scenario: Scenario) -> dict[str, Any]:
     """The scenario as the nested dict a TOML file holds."""
     out: dict[str, Any] = {}
     for key in _SETTINGS:
@@ -159,7 +155,7 @@ def scenario_to_dict(scenario: Any) -> dict[str, Any]:
     return out
 
 
-def scenario_to_toml(scenario: Any) -> str:
+def scenario_to_toml(scenario: Scenario) -> str:
     """The scenario as TOML text (what ``landing show`` prints and a store keeps)."""
     header = f"# landing scenario{': ' + scenario.description if scenario.description else ''}\n"
     return header + dumps(scenario_to_dict(scenario))
@@ -331,11 +327,9 @@ def _check_settings(d: Mapping[str, Any], source: str) -> None:
             raise FileError(f"{source}: theta = {t!r} violates theta a pair of numbers in (0, 1)")
 
 
-def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Any:
+def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Scenario:
     """A :class:`~landing.scenarios.Scenario` from the nested dict of a file; ``source`` names
     the file in error messages."""
-    from landing.scenarios import Scenario
-
     allowed = set(_SETTINGS) | set(SECTIONS)
     for key in d:
         if key not in allowed:
@@ -370,28 +364,3 @@ def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Any:
         if key in settings:
             settings[key] = float(settings[key])
     return Scenario(x0=x0, **settings, **parts)
-
-
-def preset_path(name: str) -> Path:
-    """The shipped TOML file of preset ``name``."""
-    return PRESET_DIR / f"{name}.toml"
-
-
-def load_scenario(spec: Union[str, Path]) -> Any:
-    """A scenario from a preset name (``landing.scenarios.PRESETS``) or a TOML file's path."""
-    from landing.scenarios import PRESETS
-
-    path = Path(spec)
-    if isinstance(spec, str) and spec in PRESETS and not path.exists():
-        path = preset_path(spec)
-    if not path.exists():
-        raise FileError(
-            f"{spec}: no such file, and not a preset (the presets: {', '.join(sorted(PRESETS))})"
-        )
-    try:
-        d = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise FileError(f"{path}: not valid TOML ({exc})") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise FileError(f"{path}: cannot be read ({exc})") from None
-    return scenario_from_dict(d, str(path))

@@ -1,0 +1,174 @@
+"""The :class:`Scenario`: a plant, a law, a reference, dispersions, a horizon and a step, as data."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Optional
+
+import numpy as np
+
+from landing import _core
+from landing._internal.args import choice, integer, pair, real, real_array, short
+from landing._internal.limits import require_memory
+from landing.controllers import Controller
+from landing.dispersions import Dispersion
+from landing.disturbances import DisturbanceLike, compiled
+from landing.errors import ParameterError, ParameterTypeError
+from landing.plants import Plant
+from landing.reference import Reference
+from landing.results import SimulationResult
+from landing.simulation import simulate, simulate_batch
+
+if TYPE_CHECKING:  # pragma: no cover
+    from landing.theory import MSSBounds
+
+__all__ = ["Scenario"]
+
+
+@dataclass(eq=False)
+class Scenario:
+    """Everything a run needs but the number of cases and the seed.
+
+    ``x0`` is the nominal initial state; ``dispersion`` (if any) draws the initial states of
+    a Monte Carlo campaign. ``theta`` holds the splitting constants (theta1, theta2) of seed
+    001's practical fixed-time analysis, for the bounds a campaign is checked against.
+    """
+
+    name: str
+    plant: Plant
+    controller: Controller
+    x0: Any
+    t_final: float
+    dt: float
+    dispersion: Optional[Dispersion] = None
+    reference: Optional[Reference] = None
+    disturbance: DisturbanceLike = None
+    integrator: str = "rk4"
+    substeps: int = 1
+    record_every: int = 1
+    settle_tolerance: Optional[float] = None
+    chatter_cutoff: Optional[float] = None
+    theta: Optional[tuple[float, float]] = None
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        """Checks every field as :func:`landing.simulate_batch` would, so that a bad scenario
+        is refused when it is made, naming the field."""
+        owner = f"Scenario {self.name!r}" if isinstance(self.name, str) else "Scenario"
+        if not isinstance(self.name, str):
+            raise ParameterTypeError(f"Scenario: name must be a string, got {short(self.name)}")
+        for name, cls, what, optional in (
+            ("plant", Plant, "a landing.plants plant", False),
+            ("controller", Controller, "a landing.controllers law", False),
+            ("dispersion", Dispersion, "a landing.dispersions dispersion or None", True),
+            ("reference", Reference, "a landing.reference reference or None", True),
+        ):
+            value = getattr(self, name)
+            if not (isinstance(value, cls) or (optional and value is None)):
+                raise ParameterTypeError(f"{owner}: {name} must be {what}, got {short(value)}")
+        x0 = real_array("x0", self.x0, finite=True, owner=owner)
+        if x0.ndim != 1:
+            # its length is checked against the plant when it is run: a campaign that replaces
+            # the plant draws its states from the dispersion and never uses this one
+            raise ParameterError(f"{owner}: x0 has shape {x0.shape}; it takes one state (n_state,)")
+        real("t_final", self.t_final, positive=True, owner=owner)
+        real("dt", self.dt, positive=True, owner=owner)
+        compiled(self.disturbance)
+        choice("integrator", self.integrator, tuple(_core.INTEGRATORS), owner=owner)
+        integer("substeps", self.substeps, minimum=1, cap="max_substeps", owner=owner)
+        integer("record_every", self.record_every, minimum=0, maximum=2**63 - 1, owner=owner)
+        for name in ("settle_tolerance", "chatter_cutoff"):
+            if getattr(self, name) is not None:
+                real(name, getattr(self, name), positive=True, owner=owner)
+        if self.theta is not None:
+            for i, v in enumerate(pair("theta", self.theta, owner=owner)):
+                t = real(f"theta[{i}]", v, owner=owner)
+                if not 0 < t < 1:
+                    raise ParameterError(f"{owner}: theta[{i}] = {t:g} violates 0 < theta < 1")
+        if not isinstance(self.description, str):
+            raise ParameterTypeError(f"{owner}: description must be a string, got {short(self.description)}")
+
+    def replace(self, **changes: Any) -> "Scenario":
+        """A copy with some fields changed: ``s.replace(dt=1e-2)``. A dict given for a part
+        (plant, controller, reference, dispersion) changes some of its parameters and keeps the
+        others: ``s.replace(controller={"alpha1": 6.0})`` is
+        ``s.replace(controller=s.controller.replace(alpha1=6.0))``."""
+        known = {f.name for f in dataclasses.fields(self)}
+        unknown = sorted(set(changes) - known)
+        if unknown:
+            raise ParameterTypeError(
+                f"Scenario {self.name!r}: unknown field {unknown[0]!r}; the fields are {sorted(known)}"
+            )
+        for key, value in changes.items():
+            current = getattr(self, key)
+            if isinstance(value, dict) and hasattr(current, "replace"):
+                changes[key] = current.replace(**value)
+        return dataclasses.replace(self, **changes)
+
+    def to_toml(self) -> str:
+        """The scenario as a TOML file's text, which :meth:`load` reads back (``landing show``
+        prints it)."""
+        from landing.scenarios.files import scenario_to_toml  # noqa: PLC0415 - one-line delegation up
+
+        return scenario_to_toml(self)
+
+    @staticmethod
+    def load(spec: Any) -> "Scenario":
+        """A preset by name (:data:`landing.scenarios.PRESETS`) or a scenario TOML file by path."""
+        from landing.scenarios._presets import load_scenario  # noqa: PLC0415 - one-line delegation up
+
+        return load_scenario(spec)
+
+    def run_options(self, **overrides: Any) -> dict[str, Any]:
+        """The keyword arguments of :func:`landing.simulate_batch` this scenario stands for."""
+        opts = dict(
+            t_final=self.t_final, dt=self.dt, integrator=self.integrator, substeps=self.substeps,
+            reference=self.reference, disturbance=self.disturbance, record_every=self.record_every,
+            settle_tolerance=self.settle_tolerance, chatter_cutoff=self.chatter_cutoff,
+        )
+        opts.update(overrides)
+        return opts
+
+    def simulate(self, **overrides: Any) -> SimulationResult:
+        """The nominal case (``x0``) alone."""
+        return simulate(self.plant, self.controller, np.asarray(self.x0, dtype=float), **self.run_options(**overrides))
+
+    def simulate_batch(self, x0: Any, **overrides: Any) -> SimulationResult:
+        """Given initial states under this scenario."""
+        return simulate_batch(self.plant, self.controller, x0, **self.run_options(**overrides))
+
+    def initial_states(self, n: int, seed: int = 0, first_case: int = 0) -> np.ndarray:
+        """Cases ``first_case .. first_case + n`` of the dispersion (the nominal state repeated
+        if there is none)."""
+        owner = f"scenario {self.name!r}"
+        n = integer("n", n, minimum=0, cap="max_cases", owner=owner)
+        dim = self.plant.state_dim
+        # the draws, then the states built from them
+        require_memory(f"{owner}: the initial states of {n} cases", 2 * 8 * n * dim)
+        if self.dispersion is None:
+            return np.tile(np.asarray(self.x0, dtype=float), (n, 1))
+        x = self.plant.states_from_draws(self.dispersion.sample(n, seed=seed, first_case=first_case))
+        if x.shape[1] != self.plant.state_dim:
+            raise ParameterError(
+                f"scenario {self.name!r}: the dispersion has {x.shape[1]} components, the plant's "
+                f"state has {self.plant.state_dim}"
+            )
+        return x
+
+    def bounds(self) -> Optional["MSSBounds"]:
+        """Seed 001's practical fixed-time bounds for this scenario's law and disturbance (None
+        unless the law is FixedTimeMSS and ``theta`` is set)."""
+        from landing.theory import scenario_bounds  # noqa: PLC0415 - one-line delegation up
+
+        return scenario_bounds(self)
+
+    def __str__(self) -> str:
+        lines = [f"Scenario {self.name!r}" + (f": {self.description}" if self.description else "")]
+        for f in dataclasses.fields(self):
+            if f.name in ("name", "description"):
+                continue
+            value = getattr(self, f.name)
+            text = np.array2string(np.asarray(value), precision=6) if f.name == "x0" else repr(value)
+            lines.append(f"  {f.name:<16} {text}")
+        return "\n".join(lines)
