@@ -83,7 +83,7 @@ SIMULATION = [
     (dict(t_final=np.inf), ValueError, "t_final"),
     (dict(t_final=1.05), ValueError, "t_final an integer multiple of dt"),
     (dict(t_final=0.05), ValueError, "t_final >= dt"),
-    (dict(integrator="rk45"), ValueError, "integrator = \"rk45\" is not one of"),
+    (dict(integrator="rk45"), ValueError, r"integrator = 'rk45' is not one of \('rk4', 'euler'\)"),
     (dict(integrator=4), TypeError, "integrator must be a string"),
     (dict(substeps=0), ValueError, "substeps = 0 violates substeps >= 1"),
     (dict(substeps=2.5), TypeError, "substeps must be an integer"),

@@ -21,7 +21,7 @@ from landing.errors import (
     SimulationError,
 )
 from landing.results import DIVERGENCE_REASONS, Metrics, SimulationResult
-from landing.simulation import MAX_COMMAND, kernel_levels, simulate, simulate_batch
+from landing.simulation import MAX_COMMAND, RunOptions, kernel_levels, simulate, simulate_batch
 
 from landing import plots, scenarios, theory
 from landing.montecarlo import MonteCarloResult, monte_carlo
@@ -48,6 +48,7 @@ __all__ = [
     "TuneResult",
     "simulate",
     "simulate_batch",
+    "RunOptions",
     "kernel_levels",
     "Metrics",
     "DIVERGENCE_REASONS",

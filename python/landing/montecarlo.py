@@ -414,12 +414,11 @@ def monte_carlo(
         raise ParameterError(f"scenario must be a landing.scenarios.Scenario, got {type(scenario).__name__}")
     n = integer("n", n, minimum=1, cap="max_cases")
     seed = integer("seed", seed, minimum=0, maximum=2**64 - 1)
-    if record_every is not None:
-        record_every = integer("record_every", record_every, minimum=0, maximum=2**63 - 1)
+    # the scenario's run options with this campaign's decimation and threads, checked once
+    options = scenario.options.replace(
+        threads=threads, **({} if record_every is None else {"record_every": record_every}))
     if chunk_size is not None:
         chunk_size = integer("chunk_size", chunk_size, minimum=1, cap="max_cases")
-    if threads is not None:
-        threads = integer("threads", threads, minimum=1, cap="max_threads")
     if progress is not None:
         progress = boolean("progress", progress)
     check_bounds = boolean("check_bounds", check_bounds)
@@ -435,7 +434,7 @@ def monte_carlo(
         progress = work > 2e7
     if chunk_size is None:
         chunk_size = max(1, -(-n // 50)) if progress else n
-    every = scenario.record_every if record_every is None else record_every
+    every, threads = options.record_every, options.threads
     # the campaign's output and one chunk's batch: refused up front if they cannot fit
     require_memory(
         f"monte_carlo({scenario.name!r}, n={n}): the recorded runs",
@@ -444,15 +443,12 @@ def monte_carlo(
 
     keep = _keep(keep)
     x0 = scenario.initial_states(n, seed=seed)
-    opts = scenario.run_options()
-    if record_every is not None:
-        opts["record_every"] = record_every
     campaign_store = None
     if store is not None:
         from landing.store import open_campaign_store
 
         campaign_store = open_campaign_store(
-            store, scenario, seed=seed, n=n, x0=x0, keep=keep, record_every=opts["record_every"],
+            store, scenario, seed=seed, n=n, x0=x0, keep=keep, record_every=every,
             chunk_size=chunk_size if chunk_given else None, threads=threads, check_bounds=check_bounds,
         )
         chunk_size = campaign_store.key.chunk_size
@@ -463,7 +459,8 @@ def monte_carlo(
         nonlocal diverged_warnings
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", DivergenceWarning)
-            part = scenario.simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads, **opts)
+            part = scenario.simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads,
+                                           record_every=every)
         diverged_warnings += sum(issubclass(w.category, DivergenceWarning) for w in caught)
         return part
 
@@ -472,7 +469,7 @@ def monte_carlo(
             from landing.cluster import run_campaign
 
             mc = run_campaign(client, scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
-                              record_every=opts["record_every"], threads=threads, store=campaign_store,
+                              record_every=every, threads=threads, store=campaign_store,
                               check_bounds=check_bounds, bar=bar)
         else:
             mc = assemble_campaign(scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,

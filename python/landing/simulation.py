@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
-from typing import Any, Optional
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, ClassVar, Mapping, Optional
 
 import numpy as np
 
 from landing import _core
-from landing._internal.args import integer, real, real_array
+from landing._internal.args import choice, integer, real, real_array
 from landing.controllers import Controller
 from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
@@ -16,7 +19,7 @@ from landing.plants import Plant
 from landing.reference import Reference
 from landing.results import Metrics, SimulationResult, describe_diverged
 
-__all__ = ["MAX_COMMAND", "kernel_levels", "simulate_batch", "simulate"]
+__all__ = ["MAX_COMMAND", "RunOptions", "kernel_levels", "simulate_batch", "simulate"]
 
 MAX_COMMAND: float = _core.MAX_COMMAND
 """Largest magnitude of a command component a case may apply before it is stopped."""
@@ -26,6 +29,82 @@ def kernel_levels() -> list[str]:
     """The instruction-set levels of the compiled kernel this CPU runs, lowest first (every
     level gives the same bits; ``simulate_batch(..., kernel=...)`` forces one)."""
     return list(_core.kernel_levels())
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How a batch runs: its horizon and step, the integrator, what is recorded and how the
+    settle and chattering metrics are measured, and the machine's share of it (threads, the
+    kernel level). The keywords of :func:`simulate_batch` of the same names, which builds one;
+    a :class:`~landing.scenarios.Scenario` holds one for its settings.
+
+    Checked when made, each field by the rule the messages name (``t_final = 0 violates
+    t_final > 0``); what relates them (t_final a whole number of steps, the cut-off below the
+    Nyquist frequency) the core checks when it runs them. ``options.replace(dt=1e-2)`` is a
+    copy, checked again.
+    """
+
+    t_final: float
+    dt: float
+    integrator: str = "rk4"
+    substeps: int = 1
+    record_every: int = 1
+    settle_tolerance: Optional[float] = None
+    chatter_cutoff: Optional[float] = None
+    threads: Optional[int] = None
+    kernel: Optional[str] = None
+
+    #: The least value of each count (a scenario file's reader names it when a count is not
+    #: written as an integer).
+    MINIMUM: ClassVar[Mapping[str, int]] = MappingProxyType({"substeps": 1, "record_every": 0, "threads": 1})
+
+    def __post_init__(self) -> None:
+        least = self.MINIMUM
+        checked: dict[str, Any] = {
+            "t_final": real("t_final", self.t_final, positive=True),
+            "dt": real("dt", self.dt, positive=True),
+            "integrator": choice("integrator", self.integrator, tuple(_core.INTEGRATORS)),
+            "substeps": integer("substeps", self.substeps, minimum=least["substeps"], cap="max_substeps"),
+            "record_every": integer("record_every", self.record_every, minimum=least["record_every"],
+                                    maximum=2**63 - 1),
+        }
+        if self.settle_tolerance is not None:
+            # 0 is a tolerance too (settled means exactly on the reference); None is relative
+            checked["settle_tolerance"] = real("settle_tolerance", self.settle_tolerance, nonnegative=True)
+        if self.chatter_cutoff is not None:
+            checked["chatter_cutoff"] = real("chatter_cutoff", self.chatter_cutoff, positive=True)
+        if self.threads is not None:
+            checked["threads"] = integer("threads", self.threads, minimum=least["threads"], cap="max_threads")
+        if self.kernel is not None:
+            if not isinstance(self.kernel, str):
+                raise ParameterTypeError(f"kernel must be a string or None, got {self.kernel!r}")
+            choice("kernel", self.kernel, tuple(_core.KERNEL_LEVELS))
+        # the checked Python values (a numpy integer becomes an int): what the core is given
+        for name, value in checked.items():
+            object.__setattr__(self, name, value)
+
+    @property
+    def settle_relative(self) -> bool:
+        """Whether the settle tolerance is relative: 2 % of the initial error norm, the
+        default (``settle_tolerance`` None)."""
+        return self.settle_tolerance is None
+
+    def replace(self, **changes: Any) -> "RunOptions":
+        """A copy with some options changed, checked like a new one."""
+        return dataclasses.replace(self, **changes)
+
+    def keywords(self) -> dict[str, Any]:
+        """These options as the keyword arguments of :func:`simulate_batch`."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    def _core_arguments(self) -> dict[str, Any]:
+        return dict(
+            t_final=self.t_final, dt=self.dt, integrator=self.integrator, substeps=self.substeps,
+            record_every=self.record_every,
+            settle_tolerance=0.02 if self.settle_tolerance is None else self.settle_tolerance,
+            settle_relative=self.settle_relative, chatter_cutoff=self.chatter_cutoff, threads=self.threads,
+            kernel=self.kernel,
+        )
 
 
 def simulate_batch(
@@ -100,36 +179,21 @@ def simulate_batch(
         raise ParameterTypeError(
             f"reference must be a landing.reference reference or None, got {type(reference).__name__}"
         )
-    if not isinstance(integrator, str):
-        raise ParameterTypeError(f"integrator must be a string, got {integrator!r}")
+    options = RunOptions(t_final=t_final, dt=dt, integrator=integrator, substeps=substeps, record_every=record_every,
+                         settle_tolerance=settle_tolerance, chatter_cutoff=chatter_cutoff, threads=threads,
+                         kernel=kernel)
     seed_i = integer("seed", seed, minimum=0, maximum=2**64 - 1)
     first = integer("first_case", first_case, minimum=0, maximum=2**63 - 1)
-    if kernel is not None and not isinstance(kernel, str):
-        raise ParameterTypeError(f"kernel must be a string or None, got {kernel!r}")
-    if kernel is not None and kernel not in _core.KERNEL_LEVELS:
-        raise ParameterError(f"kernel = {kernel!r} is not one of {tuple(_core.KERNEL_LEVELS)}")
-    substeps_i = integer("substeps", substeps, minimum=1, cap="max_substeps")
-    record_every_i = integer("record_every", record_every, minimum=0, maximum=2**63 - 1)
-    threads_i = None if threads is None else integer("threads", threads, minimum=1, cap="max_threads")
     integer("x0 cases N", x.shape[0], cap="max_cases")
     out = _core.simulate_batch(
         plant._core,  # type: ignore[attr-defined]
         controller._core,  # type: ignore[attr-defined]
         x,
-        t_final=real("t_final", t_final),
-        dt=real("dt", dt),
-        integrator=integrator,
-        substeps=substeps_i,
         reference=None if reference is None else reference._core,  # type: ignore[attr-defined]
         disturbance=compiled(disturbance),
-        record_every=record_every_i,
         seed=seed_i,
         first_case=first,
-        settle_tolerance=0.02 if settle_tolerance is None else real("settle_tolerance", settle_tolerance),
-        settle_relative=settle_tolerance is None,
-        chatter_cutoff=None if chatter_cutoff is None else real("chatter_cutoff", chatter_cutoff),
-        threads=threads_i,
-        kernel=kernel,
+        **options._core_arguments(),
     )
     diag = out["diagnostics"]
     diagnostics = {}

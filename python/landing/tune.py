@@ -58,7 +58,9 @@ import numpy as np
 from landing import controllers, disturbances
 from landing.errors import DivergenceWarning, ParameterError
 from landing.scenarios import Scenario
+from landing._internal.args import integer, real
 from landing.results import Metrics, SimulationResult
+from landing.simulation import RunOptions, simulate_batch
 
 __all__ = ["Expression", "TuneResult", "tune", "pareto_front", "BOUND_NAMES"]
 
@@ -657,15 +659,16 @@ def tune(
         import cma
     except ImportError:  # pragma: no cover - depends on the installation
         raise ImportError("landing.tune needs the cma package: pip install cma (or landing[tune])") from None
-    for name, v, lo in (("cases", cases, 1), ("budget", budget, 1)):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < lo:
-            raise ParameterError(f"{name} = {v!r} violates {name} an integer >= {lo}")
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**32:
-        raise ParameterError(f"seed = {seed!r} violates 0 <= seed < 2**32 (an integer)")
-    if popsize is not None and (isinstance(popsize, bool) or not isinstance(popsize, (int, np.integer)) or popsize < 2):
-        raise ParameterError(f"popsize = {popsize!r} violates popsize an integer >= 2")
-    if isinstance(sigma0, bool) or not (isinstance(sigma0, (int, float)) and 0 < sigma0 <= 1):
-        raise ParameterError(f"sigma0 = {sigma0!r} violates 0 < sigma0 <= 1")
+    cases = integer("cases", cases, minimum=1, cap="max_cases")
+    budget = integer("budget", budget, minimum=1)
+    seed = integer("seed", seed, minimum=0, maximum=2**32 - 1)  # CMA-ES's own seed is seed + 1
+    if popsize is not None:
+        popsize = integer("popsize", popsize, minimum=2)
+    sigma0 = real("sigma0", sigma0, positive=True)
+    if sigma0 > 1:
+        raise ParameterError(f"sigma0 = {sigma0:g} violates sigma0 <= 1")
+    # every set-up's run options, with nothing recorded but the metrics, checked once
+    run = {label: s.options.replace(record_every=0, threads=threads) for label, s in setups.items()}
     specs = _parse_gains(gains, first.controller)
     mss = isinstance(first.controller, controllers.FixedTimeMSS)
 
@@ -750,7 +753,7 @@ def tune(
             U = np.asarray(us[: budget - done], dtype=float)[:, :dim]
             G = np.column_stack([specs[j].decode(U[:, j]) for j in range(dim)])
             P = G.shape[0]
-            per_setup = {label: _evaluate(s, specs, G, x0s[label], K, int(seed), threads)
+            per_setup = {label: _evaluate(s, specs, G, x0s[label], K, int(seed), run[label])
                          for label, s in setups.items()}
             bounds: dict[str, np.ndarray] = {}
             if need_bounds:
@@ -840,27 +843,25 @@ def tune(
 
 
 def _evaluate(scenario: Scenario, specs: tuple[GainSpec, ...], G: np.ndarray, x0_cases: np.ndarray, K: int,
-              seed: int, threads: Optional[int]) -> list[Metrics]:
+              seed: int, options: RunOptions) -> list[Metrics]:
     """Every candidate (row of G) on the K cases of one set-up: one Metrics per candidate."""
     P = G.shape[0]
-    opts = scenario.run_options(record_every=0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DivergenceWarning)
         if _is_random(scenario.disturbance):
             out = []
             for i in range(P):
                 law = scenario.controller.replace(**{s.name: float(G[i, j]) for j, s in enumerate(specs)})
-                out.append(_run(scenario, law, x0_cases, seed, opts, threads).metrics)
+                out.append(_run(scenario, law, x0_cases, seed, options).metrics)
             return out
         law = scenario.controller.replace(
             **{s.name: _per_case(np.repeat(G[:, j], K), _column_shape(scenario.controller, s.name))
                for j, s in enumerate(specs)})
-        res = _run(scenario, law, np.tile(x0_cases, (P, 1)), seed, opts, threads)
+        res = _run(scenario, law, np.tile(x0_cases, (P, 1)), seed, options)
     return [res.metrics.cases(i * K, (i + 1) * K) for i in range(P)]
 
 
-def _run(scenario: Scenario, law: controllers.Controller, x0: np.ndarray, seed: int, opts: dict[str, Any],
-         threads: Optional[int]) -> SimulationResult:
-    from landing.simulation import simulate_batch
-
-    return simulate_batch(scenario.plant, law, x0, seed=seed, threads=threads, **opts)
+def _run(scenario: Scenario, law: controllers.Controller, x0: np.ndarray, seed: int,
+         options: RunOptions) -> SimulationResult:
+    """One batch of a set-up's cases under another law."""
+    return simulate_batch(scenario.plant, law, x0, seed=seed, **scenario.run_options(**options.keywords()))

@@ -3,22 +3,21 @@
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, ClassVar, Optional
 
 import numpy as np
 
-from landing import _core
-from landing._internal.args import choice, integer, pair, real, real_array, short
+from landing._internal.args import integer, pair, real, real_array, short
 from landing._internal.limits import require_memory
 from landing.controllers import Controller
 from landing.dispersions import Dispersion
 from landing.disturbances import DisturbanceLike, compiled
-from landing.errors import ParameterError, ParameterTypeError
+from landing.errors import LandingError, ParameterError, ParameterTypeError
 from landing.plants import Plant
 from landing.reference import Reference
 from landing.results import SimulationResult
-from landing.simulation import simulate, simulate_batch
+from landing.simulation import RunOptions, simulate, simulate_batch
 
 if TYPE_CHECKING:  # pragma: no cover
     from landing.theory import MSSBounds
@@ -26,14 +25,24 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["Scenario"]
 
 
-@dataclass(eq=False)
+@dataclass(frozen=True, eq=False)
 class Scenario:
     """Everything a run needs but the number of cases and the seed.
 
     ``x0`` is the nominal initial state; ``dispersion`` (if any) draws the initial states of
     a Monte Carlo campaign. ``theta`` holds the splitting constants (theta1, theta2) of seed
     001's practical fixed-time analysis, for the bounds a campaign is checked against.
+    ``options`` is the :class:`~landing.simulation.RunOptions` of ``t_final``, ``dt``,
+    ``integrator``, ``substeps``, ``record_every``, ``settle_tolerance`` and
+    ``chatter_cutoff``, checked once when the scenario is made. A scenario is changed by
+    making a new one, :meth:`replace`.
     """
+
+    #: The fields that are run options (the threads and the kernel level are the machine's,
+    #: given per run).
+    RUN_OPTIONS: ClassVar[tuple[str, ...]] = (
+        "t_final", "dt", "integrator", "substeps", "record_every", "settle_tolerance", "chatter_cutoff",
+    )
 
     name: str
     plant: Plant
@@ -51,6 +60,7 @@ class Scenario:
     chatter_cutoff: Optional[float] = None
     theta: Optional[tuple[float, float]] = None
     description: str = ""
+    options: RunOptions = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         """Checks every field as :func:`landing.simulate_batch` would, so that a bad scenario
@@ -72,15 +82,13 @@ class Scenario:
             # its length is checked against the plant when it is run: a campaign that replaces
             # the plant draws its states from the dispersion and never uses this one
             raise ParameterError(f"{owner}: x0 has shape {x0.shape}; it takes one state (n_state,)")
-        real("t_final", self.t_final, positive=True, owner=owner)
-        real("dt", self.dt, positive=True, owner=owner)
+        try:
+            options = RunOptions(**{name: getattr(self, name) for name in self.RUN_OPTIONS})
+        except LandingError as exc:
+            # the scenario's name in front, as in every other refusal here
+            raise type(exc)(f"{owner}: {exc}") from None
+        object.__setattr__(self, "options", options)
         compiled(self.disturbance)
-        choice("integrator", self.integrator, tuple(_core.INTEGRATORS), owner=owner)
-        integer("substeps", self.substeps, minimum=1, cap="max_substeps", owner=owner)
-        integer("record_every", self.record_every, minimum=0, maximum=2**63 - 1, owner=owner)
-        for name in ("settle_tolerance", "chatter_cutoff"):
-            if getattr(self, name) is not None:
-                real(name, getattr(self, name), positive=True, owner=owner)
         if self.theta is not None:
             for i, v in enumerate(pair("theta", self.theta, owner=owner)):
                 t = real(f"theta[{i}]", v, owner=owner)
@@ -94,7 +102,7 @@ class Scenario:
         (plant, controller, reference, dispersion) changes some of its parameters and keeps the
         others: ``s.replace(controller={"alpha1": 6.0})`` is
         ``s.replace(controller=s.controller.replace(alpha1=6.0))``."""
-        known = {f.name for f in dataclasses.fields(self)}
+        known = {f.name for f in dataclasses.fields(self) if f.init}
         unknown = sorted(set(changes) - known)
         if unknown:
             raise ParameterTypeError(
@@ -121,12 +129,10 @@ class Scenario:
         return load_scenario(spec)
 
     def run_options(self, **overrides: Any) -> dict[str, Any]:
-        """The keyword arguments of :func:`landing.simulate_batch` this scenario stands for."""
-        opts = dict(
-            t_final=self.t_final, dt=self.dt, integrator=self.integrator, substeps=self.substeps,
-            reference=self.reference, disturbance=self.disturbance, record_every=self.record_every,
-            settle_tolerance=self.settle_tolerance, chatter_cutoff=self.chatter_cutoff,
-        )
+        """The keyword arguments of :func:`landing.simulate_batch` this scenario stands for (its
+        run options, reference and disturbance), with ``overrides``."""
+        opts: dict[str, Any] = {name: getattr(self.options, name) for name in self.RUN_OPTIONS}
+        opts.update(reference=self.reference, disturbance=self.disturbance)
         opts.update(overrides)
         return opts
 
@@ -166,7 +172,7 @@ class Scenario:
     def __str__(self) -> str:
         lines = [f"Scenario {self.name!r}" + (f": {self.description}" if self.description else "")]
         for f in dataclasses.fields(self):
-            if f.name in ("name", "description"):
+            if f.name in ("name", "description") or not f.init:
                 continue
             value = getattr(self, f.name)
             text = np.array2string(np.asarray(value), precision=6) if f.name == "x0" else repr(value)

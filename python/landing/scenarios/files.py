@@ -40,10 +40,11 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from landing import _core, controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
+from landing import controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
 from landing._internal.table import Table
 from landing.errors import LandingError, ParameterError
 from landing.scenarios._scenario import Scenario
+from landing.simulation import RunOptions
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -298,28 +299,20 @@ def _decode_table(table: Any, module: ModuleType, source: str, path: str) -> Tab
         raise FileError(f"{_where(source, path)}: {exc}") from None
 
 
-def _number(d: Mapping[str, Any], key: str, source: str, rule: str, ok: Any) -> None:
-    if key not in d:
-        return
-    v = d[key]
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not ok(v):
-        raise FileError(f"{source}: {key} = {v!r} violates {rule}")
-
-
 def _check_settings(d: Mapping[str, Any], source: str) -> None:
+    """The scenario's own settings: what a TOML value must be (a string, an integer), then the
+    run options' rules (:class:`~landing.simulation.RunOptions`), each refusal naming the file."""
     for key in ("name", "description", "integrator"):
         if key in d and not isinstance(d[key], str):
             raise FileError(f"{source}: {key} = {d[key]!r} must be a string")
-    if "integrator" in d and d["integrator"] not in _core.INTEGRATORS:
-        raise FileError(f"{source}: integrator = {d['integrator']!r} is not one of {list(_core.INTEGRATORS)}")
-    finite_positive = lambda v: math.isfinite(v) and v > 0  # noqa: E731
-    _number(d, "t_final", source, "t_final > 0 and finite", finite_positive)
-    _number(d, "dt", source, "dt > 0 and finite", finite_positive)
-    _number(d, "settle_tolerance", source, "settle_tolerance >= 0 and finite", lambda v: math.isfinite(v) and v >= 0)
-    _number(d, "chatter_cutoff", source, "chatter_cutoff > 0 and finite", finite_positive)
-    for key, low in (("substeps", 1), ("record_every", 0)):
-        if key in d and (isinstance(d[key], bool) or not isinstance(d[key], int) or d[key] < low):
+    for key, low in RunOptions.MINIMUM.items():
+        # a TOML float where a count is meant (substeps = 1.5) is refused as written
+        if key in d and (isinstance(d[key], bool) or not isinstance(d[key], int)):
             raise FileError(f"{source}: {key} = {d[key]!r} violates {key} an integer >= {low}")
+    try:
+        RunOptions(**{key: d[key] for key in Scenario.RUN_OPTIONS if key in d})
+    except LandingError as exc:
+        raise FileError(f"{source}: {exc}") from None
     if "theta" in d:
         t = d["theta"]
         if (not isinstance(t, list) or len(t) != 2
