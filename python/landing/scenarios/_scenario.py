@@ -20,7 +20,7 @@ from landing.results import SimulationResult
 from landing.simulation import RunOptions, simulate, simulate_batch
 
 if TYPE_CHECKING:  # pragma: no cover
-    from landing.theory import MSSBounds
+    from landing.theory.bounds import MSSBounds
 
 __all__ = ["Scenario"]
 
@@ -165,7 +165,7 @@ class Scenario:
     def bounds(self) -> Optional["MSSBounds"]:
         """Seed 001's practical fixed-time bounds for this scenario's law and disturbance (None
         unless the law is FixedTimeMSS and ``theta`` is set)."""
-        from landing.theory import scenario_bounds  # noqa: PLC0415 - one-line delegation up
+        from landing.theory.bounds import scenario_bounds  # noqa: PLC0415 - one-line delegation up
 
         return scenario_bounds(self)
 

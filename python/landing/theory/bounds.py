@@ -1,0 +1,338 @@
+"""The convergence bounds of the fixed-time laws, computed by the Rust core
+(``landing_core::theory``) and broadcast here over arrays: seed 001's fixed-time and practical
+bounds (Lemma 2, Theorems 1-4, Remark 1) and seed 003's FNTSMC bounds (Theorem 1, made sound),
+with the printed eq. 42 and 47 for the record."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Callable, Optional, Union
+
+import numpy as np
+
+from landing import _core
+from landing._internal.args import integer, real, real_array
+from landing._internal.limits import require_memory
+from landing._internal.table import ArrayLike
+from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
+from landing.disturbances import DisturbanceLike, compiled
+from landing.errors import ParameterError, ParameterTypeError
+from landing.scenarios import Scenario
+
+__all__ = [
+    "fixed_time_bound",
+    "practical_time_bound",
+    "practical_radius",
+    "MSSBounds",
+    "mss_bounds",
+    "disturbance_bound",
+    "scenario_bounds",
+    "min_final_time",
+    "min_time_to_rest",
+    "chattering_band",
+    "FNTSMCBounds",
+    "fntsmc_bounds",
+    "fntsmc_ts_printed",
+    "fntsmc_td_printed",
+    "FNTSMC_GAINS",
+    "law_gains",
+]
+
+#: What a broadcasting bound returns: a number for numbers, an array for arrays.
+Real = Union[float, np.ndarray]
+
+
+def _reals(owner: str, **args: Any) -> list[np.ndarray]:
+    """Each argument as a finite float64 array (named in the error), checked to broadcast."""
+    arrays = [real_array(name, value, finite=True, owner=owner) for name, value in args.items()]
+    try:
+        shape = np.broadcast_shapes(*[a.shape for a in arrays])
+    except ValueError:
+        shapes = ", ".join(f"{n} {a.shape}" for n, a in zip(args, arrays))
+        raise ParameterError(f"{owner}: the shapes {shapes} violate shapes that broadcast together") from None
+    # the broadcast inputs and the results
+    require_memory(f"{owner} over arrays of shape {shape}", 8 * (len(arrays) + 2) * math.prod(shape))
+    return arrays
+
+
+def _vectorized(fn: Callable[..., float], owner: str, **args: Any) -> Real:
+    out = np.vectorize(fn, otypes=[float])(*_reals(owner, **args))
+    return float(out) if out.ndim == 0 else out
+
+
+def fixed_time_bound(c1: ArrayLike, e1: ArrayLike, c2: ArrayLike, e2: ArrayLike) -> Real:
+    """Seed 001 Lemma 2 with k = 1 on V = s^2/2 for ``s' = -c1 sig^e1(s) - c2 sig^e2(s)``:
+    ``T <= 1/(c1 (1-e1) 2^((e1-1)/2)) + 1/(c2 (e2-1) 2^((e2-1)/2))``, whatever s(0).
+
+    Eq. 18 is this with (beta1, q1, beta2, q2), eq. 26 with (alpha1, gamma1, alpha2, gamma2).
+    Arrays broadcast."""
+    return _vectorized(_core.fixed_time_bound, "fixed_time_bound", c1=c1, e1=e1, c2=c2, e2=e2)
+
+
+def practical_time_bound(c1: ArrayLike, e1: ArrayLike, c2: ArrayLike, e2: ArrayLike, theta: ArrayLike) -> Real:
+    """Theorem 1 (k = 1): time to reach the practical neighbourhood, the fixed-time bound / theta."""
+    return _vectorized(_core.practical_time_bound, "practical_time_bound", c1=c1, e1=e1, c2=c2, e2=e2,
+                       theta=theta)
+
+
+def practical_radius(c1: ArrayLike, e1: ArrayLike, c2: ArrayLike, e2: ArrayLike, d_max: ArrayLike,
+                     theta: ArrayLike) -> Real:
+    """Eq. 38-39: ``min{(d_max/((1-theta) c1))^(1/e1), (d_max/((1-theta) c2))^(1/e2)}``, the
+    neighbourhood that ``s' = -c1 sig^e1(s) - c2 sig^e2(s) + d``, |d| <= d_max, reaches."""
+    return _vectorized(_core.practical_radius, "practical_radius", c1=c1, e1=e1, c2=c2, e2=e2, d_max=d_max,
+                       theta=theta)
+
+
+@dataclass(frozen=True)
+class MSSBounds:
+    """Seed 001's bounds for FixedTimeMSS, per axis (shape (3,), or (N, 3) for per-case gains).
+
+    t1, t2 : eq. 18 and 26, without disturbance (s).
+    s2_radius, s2_time : eq. 39 and 40, the neighbourhood of s2 under |a_p| <= ap_max.
+    s1_radius, s1_time : eq. 31 and 45, that of s1 = r - r_d once s2 is in its own.
+    printed_time : eq. 32 as printed, max(s2_time, s1_time).
+    settle_time : s2_time + s1_time, the sound bound: s1 obeys its perturbed reaching law
+        only once s2 is in its neighbourhood.
+    """
+
+    t1: np.ndarray
+    t2: np.ndarray
+    s2_radius: np.ndarray
+    s2_time: np.ndarray
+    s1_radius: np.ndarray
+    s1_time: np.ndarray
+    printed_time: np.ndarray
+    settle_time: np.ndarray
+    ap_max: np.ndarray
+    theta1: float
+    theta2: float
+
+    def __str__(self) -> str:
+        fmt = _fmt_cases
+        return (
+            f"MSSBounds(theta1={self.theta1}, theta2={self.theta2}, ap_max={fmt(self.ap_max)})\n"
+            f"  T1 (eq. 18)            {fmt(self.t1)} s\n"
+            f"  T2 (eq. 26)            {fmt(self.t2)} s\n"
+            f"  |s2| radius (eq. 39)   {fmt(self.s2_radius)} m/s, reached by {fmt(self.s2_time)} s (eq. 40)\n"
+            f"  |s1| radius (eq. 31)   {fmt(self.s1_radius)} m, {fmt(self.s1_time)} s later (eq. 45)\n"
+            f"  eq. 32 as printed      {fmt(self.printed_time)} s; sound total {fmt(self.settle_time)} s"
+        )
+
+
+def _fmt(a: Any) -> str:
+    """A bound as the printed tables show it."""
+    return np.array2string(np.asarray(a), precision=4, floatmode="maxprec")
+
+
+def _fmt_cases(a: Any) -> str:
+    """A bound as :func:`_fmt` shows it, per-case bounds (N, D) as their range over the cases."""
+    a = np.asarray(a)
+    if a.ndim == 2:
+        return f"{_fmt(a.min(axis=0))} to {_fmt(a.max(axis=0))} over {a.shape[0]} cases"
+    return _fmt(a)
+
+
+def _axes_or_cases(value: Any, axes: int) -> np.ndarray:
+    """A law parameter as the core reads it: a scalar for every axis, ``(axes,)`` per axis,
+    ``(N,)`` or ``(N, 1)`` per case (a 1-D array of length ``axes`` is per axis), ``(N, axes)``
+    per case and axis. Returns ``(axes,)`` or ``(N, axes)``."""
+    g = np.asarray(value, dtype=float)
+    if g.ndim == 0:
+        return np.full(axes, float(g))
+    if g.ndim == 1:
+        return g if g.size == axes else np.repeat(g[:, None], axes, axis=1)
+    return np.broadcast_to(g, (g.shape[0], axes))
+
+
+def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2: float = 0.5) -> MSSBounds:
+    """The bounds of seed 001 Theorems 2-4 for a FixedTimeMSS law (per axis), under a
+    disturbance bounded by ``ap_max`` per axis (see :func:`disturbance_bound`)."""
+    if not isinstance(law, FixedTimeMSS):
+        raise ParameterTypeError(f"mss_bounds takes a FixedTimeMSS law, got {type(law).__name__}")
+    names = ("beta1", "q1", "beta2", "q2", "alpha1", "gamma1", "alpha2", "gamma2")
+    gains = [_axes_or_cases(getattr(law, n), 3) for n in names]
+    ap = real_array("ap_max", ap_max, finite=True, owner="mss_bounds")
+    theta1 = real("theta1", theta1, owner="mss_bounds")
+    theta2 = real("theta2", theta2, owner="mss_bounds")
+    try:
+        args = np.broadcast_arrays(*gains, ap)
+    except ValueError:
+        raise ParameterError(
+            f"mss_bounds: ap_max has shape {ap.shape}; it takes a scalar, (3,) or the gains' (N, 3)"
+        ) from None
+    shape = args[0].shape
+    keys = ("t1", "t2", "s2_radius", "s2_time", "s1_radius", "s1_time", "printed_time", "settle_time")
+    out = {k: np.empty(shape) for k in keys}
+    for idx in np.ndindex(shape):
+        b1, q1, b2, q2, a1, g1, a2, g2, ap_i = (float(a[idx]) for a in args)
+        b = _core.mss_bounds(b1, q1, b2, q2, a1, g1, a2, g2, ap_i, float(theta1), float(theta2))
+        for k in keys:
+            out[k][idx] = b[k]
+    return MSSBounds(**out, ap_max=args[-1], theta1=float(theta1), theta2=float(theta2))
+
+
+def scenario_bounds(scenario: Scenario) -> Optional[MSSBounds]:
+    """Seed 001's practical fixed-time bounds for a scenario's law and disturbance (what
+    :meth:`Scenario.bounds` returns): None unless the law is FixedTimeMSS and the scenario's
+    ``theta`` is set."""
+    if scenario.theta is None or not isinstance(scenario.controller, FixedTimeMSS):
+        return None
+    ap_max = disturbance_bound(scenario.disturbance, scenario.plant.axes)
+    return mss_bounds(scenario.controller, ap_max, *scenario.theta)
+
+
+def disturbance_bound(disturbance: DisturbanceLike, axes: int = 3) -> np.ndarray:
+    """Per-axis bound on |d_i(t)|: |constant| + sum of |amplitudes| + noise bound."""
+    axes = integer("axes", axes, owner="disturbance_bound")
+    if axes not in (2, 3):
+        raise ParameterError(f"disturbance_bound: axes = {axes} violates axes in (2, 3)")
+    handle = compiled(disturbance)
+    if handle is None:
+        return np.zeros(axes)
+    return np.asarray(handle.bound(axes))
+
+
+def min_final_time(r0: ArrayLike, v0: ArrayLike, a_max: ArrayLike, g: ArrayLike = 0.0) -> tuple[Real, Real]:
+    """Seed 001 Remark 1, sign-consistent, per axis: ``(tf1, tf2)`` with tf1 the first time the
+    position can reach 0 at full thrust towards the target (with gravity g on that axis,
+    negative for z up) and tf2 the time to null the velocity at full thrust. A soft landing
+    needs ``t_f >= max(tf1, tf2)`` over the axes. Arrays broadcast."""
+    f = np.vectorize(lambda *a: _core.min_final_time(*a), otypes=[float, float])
+    tf1, tf2 = f(*_reals("min_final_time", r0=r0, v0=v0, a_max=a_max, g=g))
+    return tf1, tf2
+
+
+def min_time_to_rest(r0: ArrayLike, v0: ArrayLike, a_max: ArrayLike, g: ArrayLike = 0.0) -> Real:
+    """The shortest time to bring one axis from (r0, v0) to rest at 0 with thrust up to
+    ``a_max`` either way plus gravity ``g`` (time-optimal bang-bang, one switch): a lower bound
+    on any landing time on that axis. Infinite when the thrust cannot overcome gravity. Arrays
+    broadcast."""
+    return _vectorized(_core.min_time_to_rest, "min_time_to_rest", r0=r0, v0=v0, a_max=a_max, g=g)
+
+
+def chattering_band(c1: float, e1: float, dt: float) -> float:
+    """Half-width of the band a sampled ``s' = -c1 sig^e1(s)`` (e1 < 1) chatters in: where
+    one held step ``c1 |s|^e1 dt`` equals ``|s|``, ``(c1 dt)^(1/(1-e1))``. Continuous time
+    reaches 0; the sampled law cannot get further."""
+    c1 = real("c1", c1, positive=True, owner="chattering_band")
+    e1 = real("e1", e1, owner="chattering_band")
+    if not 0 < e1 < 1:
+        raise ParameterError(f"chattering_band: e1 = {e1:g} violates 0 < e1 < 1")
+    dt = real("dt", dt, positive=True, owner="chattering_band")
+    return float((c1 * dt) ** (1.0 / (1.0 - e1)))
+
+
+# Seed 003: the fixed-time NTSMC with RBF compensation (law 9).
+
+#: The FixedTimeNTSMC gains its bounds read, in the core's order.
+FNTSMC_GAINS = ("k1", "p1", "k2", "p2", "k3", "alpha_s", "beta_s", "sigma_phi")
+
+
+def fntsmc_ts_printed(c_v: ArrayLike, alpha_s: ArrayLike, beta_s: ArrayLike) -> Real:
+    """Seed 003 eq. 42 as printed, ``2/(c_v (z4 - 1)) + 2/(c_v (1 - z3))`` with
+    ``z3 = (3 alpha_s - 1)/(2 alpha_s)``, ``z4 = (3 beta_s - 1)/(2 beta_s)`` (the seed's
+    degrees). The seed never gives Lemma 2's ``c_v``, so this is a function of it. Arrays
+    broadcast."""
+    return _vectorized(_core.fntsmc_ts_printed, "fntsmc_ts_printed", c_v=c_v, alpha_s=alpha_s, beta_s=beta_s)
+
+
+def fntsmc_td_printed(k1: ArrayLike, p1: ArrayLike, k2: ArrayLike, p2: ArrayLike, d: ArrayLike = 0.5) -> Real:
+    """Seed 003 eq. 47 as printed, ``2/(d g1 (1 - p1)) + 2/(d g2 (p2 - 1))`` with
+    ``g1 = 2^((p1+1)/2) k1``, ``g2 = 2^((p2+1)/2) (k2 - 1/(p2+1))``. Not a bound for the law:
+    Lemma 4 needs p1 < 1 < p2 and g2 > 0, eq. 21 and Table 2 have p1 > 1 > p2 and g2 < 0 (see
+    :func:`fntsmc_bounds`). Returned as printed, whatever its sign. Arrays broadcast."""
+    return _vectorized(_core.fntsmc_td_printed, "fntsmc_td_printed", k1=k1, p1=p1, k2=k2, p2=p2, d=d)
+
+
+@dataclass(frozen=True)
+class FNTSMCBounds:
+    """Seed 003 Theorem 1 made sound, per axis (shape (D,), or (N, D) for per-case gains).
+
+    ts : time for s to reach its neighbourhood s_radius (eq. 42's role), from any state.
+    td : then, time for |e1| to reach max(sigma_phi, e1_radius) (eq. 47's role).
+    t_inside : then, time to reach ``tol`` inside sigma_phi, where e1 decays at least at
+        ``inside_rate`` (the fixed-time part of the law ends at sigma_phi by design).
+    total : ts + td + t_inside: from then on |e1| <= tol, whatever the initial state.
+    printed_td : eq. 47 as printed with ``d`` (not a bound; kept for the record).
+    With ``d_max = 0`` (no disturbance of the s dynamics) the radii are 0 and the times are
+    the nominal fixed-time bounds; with ``d_max > 0`` they are the practical ones (times
+    divided by ``theta``). The law's derivation assumes an unsaturated actuator.
+    """
+
+    ts: np.ndarray
+    s_radius: np.ndarray
+    td: np.ndarray
+    e1_radius: np.ndarray
+    inside_rate: np.ndarray
+    t_inside: np.ndarray
+    total: np.ndarray
+    printed_td: np.ndarray
+    tol: np.ndarray
+    d_max: np.ndarray
+    theta: float
+    d: float
+
+    def __str__(self) -> str:
+        fmt = _fmt
+        return (
+            f"FNTSMCBounds(tol={fmt(self.tol)}, d_max={fmt(self.d_max)}, theta={self.theta})\n"
+            f"  T_s, s reaches {fmt(self.s_radius)}         {fmt(self.ts)} s\n"
+            f"  T_d, |e1| reaches max(sigma_phi, {fmt(self.e1_radius)})  {fmt(self.td)} s\n"
+            f"  then |e1| reaches tol at rate {fmt(self.inside_rate)} 1/s  {fmt(self.t_inside)} s\n"
+            f"  total                                 {fmt(self.total)} s\n"
+            f"  eq. 47 as printed (d = {self.d}, not a bound)  {fmt(self.printed_td)} s"
+        )
+
+
+def law_gains(law: FixedTimeNTSMC, names: tuple[str, ...], axes: Optional[int]) -> list[np.ndarray]:
+    """The gains ``names`` of ``law`` per axis, ``(axes,)`` (or ``(N, axes)`` per case); ``axes``
+    defaults to the gains' own length (2, the tethered satellite's, when they are scalars)."""
+    gains = [np.asarray(getattr(law, n), dtype=float) for n in names]
+    if axes is None:
+        sizes = {g.shape[-1] for g in gains if g.ndim >= 1 and g.shape[-1] > 1}
+        axes = sizes.pop() if len(sizes) == 1 else 2
+    return [np.broadcast_to(g, np.broadcast_shapes(g.shape, (axes,))) if g.ndim <= 1 else g for g in gains]
+
+
+def fntsmc_bounds(law: FixedTimeNTSMC, tol: Any, *, d_max: Any = 0.0, theta: float = 0.5, d: float = 0.5,
+                  axes: Optional[int] = None) -> FNTSMCBounds:
+    """Sound fixed-time bounds of a :class:`~landing.controllers.FixedTimeNTSMC` per axis
+    (seed 003 Theorem 1): after ``total`` seconds ``|e1_i| <= tol_i`` from any initial state,
+    when the lumped disturbance of the s dynamics, ``M^-1 (f - W^T Phi - eps_max sign s)``, is
+    bounded by ``d_max`` (0: the theorem's nominal case) and the actuator does not saturate.
+
+    ``axes`` defaults to the gains' length (2 for the tethered satellite's defaults)."""
+    if not isinstance(law, FixedTimeNTSMC):
+        raise ParameterTypeError(f"fntsmc_bounds takes a FixedTimeNTSMC law, got {type(law).__name__}")
+    owner = "fntsmc_bounds"
+    if axes is not None:
+        axes = integer("axes", axes, minimum=1, maximum=3, owner=owner)
+    tol_a = real_array("tol", tol, finite=True, owner=owner)
+    d_max_a = real_array("d_max", d_max, finite=True, owner=owner)
+    theta = real("theta", theta, owner=owner)
+    d = real("d", d, owner=owner)
+    try:
+        gains = law_gains(law, FNTSMC_GAINS, axes)
+    except ValueError:
+        raise ParameterError(f"{owner}: axes = {axes} violates the law's gains having 1 or axes values") from None
+    try:
+        args = np.broadcast_arrays(*gains, tol_a, d_max_a)
+    except ValueError:
+        raise ParameterError(
+            f"{owner}: tol {tol_a.shape} and d_max {d_max_a.shape} violate shapes that broadcast with the "
+            f"gains' {gains[0].shape}"
+        ) from None
+    shape = args[0].shape
+    keys = ("ts", "s_radius", "td", "e1_radius", "inside_rate", "t_inside", "total")
+    out = {k: np.empty(shape) for k in keys}
+    printed = np.empty(shape)
+    for idx in np.ndindex(shape):
+        k1, p1, k2, p2, k3, a_s, b_s, sg, tl, dm = (float(a[idx]) for a in args)
+        b = _core.fntsmc_bounds(k1, p1, k2, p2, k3, a_s, b_s, sg, tl, dm, float(theta))
+        for k in keys:
+            out[k][idx] = b[k]
+        printed[idx] = _core.fntsmc_td_printed(k1, p1, k2, p2, float(d))
+    return FNTSMCBounds(**out, printed_td=printed, tol=args[-2], d_max=args[-1], theta=float(theta), d=float(d))
+
+
