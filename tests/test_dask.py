@@ -101,7 +101,7 @@ def test_a_store_written_by_the_cluster_loads_as_the_local_run(client, local, tm
 
 def test_ctrl_c_cancels_the_outstanding_chunks_and_a_rerun_resumes(client, local, tmp_path, monkeypatch):
     need_io()
-    from landing.store import CampaignStore
+    from landing.campaign.store import CampaignStore
 
     written: list[int] = []
     interrupted: list[bool] = []
@@ -210,7 +210,7 @@ LOCAL_PATH = textwrap.dedent(
     import landing
 
     def loaded():
-        return sorted(m for m in sys.modules if m.split(".")[0] in ("dask", "distributed") or m == "landing.cluster")
+        return sorted(m for m in sys.modules if m.split(".")[0] in ("dask", "distributed") or m == "landing.campaign.dask")
 
     s = landing.scenarios.mars_monte_carlo(t_final=1.0, dt=2e-3)
     landing.monte_carlo(s, 4, seed=1, chunk_size=2)

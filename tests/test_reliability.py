@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import landing
-from landing.montecarlo import summarize
+from landing.campaign.result import summarize
 
 # A digest of a small batch's bits, computed in a fresh interpreter and after an interrupted
 # batch: the interruption must leave nothing behind.

@@ -23,7 +23,7 @@ xr = pytest.importorskip("xarray")
 pytest.importorskip("pyarrow")
 pytest.importorskip("zarr")
 
-from landing.store import CampaignStore  # noqa: E402
+from landing.campaign.store import CampaignStore  # noqa: E402
 
 
 def small(**kw):

@@ -24,8 +24,7 @@ from landing.results import DIVERGENCE_REASONS, Metrics, SimulationResult
 from landing.simulation import MAX_COMMAND, RunOptions, kernel_levels, simulate, simulate_batch
 
 from landing import plots, scenarios, theory
-from landing.montecarlo import MonteCarloResult, monte_carlo
-from landing.store import load
+from landing.campaign import MonteCarloResult, load, monte_carlo
 from landing.tune import TuneResult, tune
 
 __all__ = [

@@ -83,7 +83,7 @@ def cmd_mc(args: argparse.Namespace) -> int:
         kwargs["progress"] = False
     client = None
     if args.scheduler is not None:
-        from landing.cluster import connect
+        from landing.campaign.dask import connect
 
         client = kwargs["client"] = connect(args.scheduler)
     start = time.perf_counter()

@@ -12,7 +12,7 @@ from typing import Any, Mapping, Optional, Union
 
 import numpy as np
 
-from landing.montecarlo import MonteCarloResult
+from landing.campaign import MonteCarloResult
 from landing.results import SimulationResult
 
 __all__ = [

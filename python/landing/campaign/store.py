@@ -18,8 +18,9 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
                               components' units; written chunk by chunk (region writes)
 
 ``xarray.open_zarr(path / "trajectories.zarr")`` and ``pandas.read_parquet(path / "chunks" /
-"metrics")`` read it without this package; :func:`load` gives back the
-:class:`~landing.montecarlo.MonteCarloResult` bit for bit.
+"metrics")`` read it without this package; :func:`read_campaign_store` opens it for the
+campaign's assembly, which gives back the
+:class:`~landing.campaign.MonteCarloResult` bit for bit (:func:`landing.load`).
 
 Parquet, Zarr, xarray and pandas are the optional extra ``landing[io]``; nothing here imports
 them until a store or a conversion is asked for.
@@ -30,25 +31,22 @@ from __future__ import annotations
 import dataclasses
 import datetime
 import hashlib
-import importlib
 import json
 import os
 import platform
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Mapping, Optional, Sequence, Union
+from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
-from landing.errors import ParameterError, ParameterTypeError
-from landing.results import dataset_coords, flat_columns, require_io
+from landing._core import __version__
+from landing.errors import LandingError, ParameterError, ParameterTypeError
+from landing.results import Metrics, SimulationResult, dataset_coords, flat_columns, require_io
+from landing.scenarios import Scenario, files
 
-if TYPE_CHECKING:  # pragma: no cover
-    from landing.montecarlo import MonteCarloResult
-    from landing.results import SimulationResult
-    from landing.scenarios import Scenario
-
-__all__ = ["load", "STORE_FORMAT"]
+__all__ = ["CampaignKey", "CampaignStore", "STORE_FORMAT", "default_chunk_size", "open_campaign_store",
+           "read_campaign_store"]
 
 #: Version of the directory layout written here.
 STORE_FORMAT = 1
@@ -81,20 +79,17 @@ def metrics_layout(columns: Mapping[str, np.ndarray], axes: Sequence[str]) -> li
 # --- provenance ----------------------------------------------------------------------------------------
 
 
-def _scenario_text(scenario: "Scenario") -> str:
+def _scenario_text(scenario: Scenario) -> str:
     """The scenario as TOML in the provenance record (what a resumed run must match, and what
-    :func:`load` rebuilds the scenario from)."""
+    :func:`read_campaign_store` rebuilds the scenario from)."""
     return scenario.to_toml()
 
 
-def _scenario_from_text(text: str) -> Optional["Scenario"]:
+def _scenario_from_text(text: str) -> Optional[Scenario]:
     """The scenario back from its TOML text, or None when the text is not a scenario file."""
-    from landing.errors import LandingError
-    from landing.scenarios.files import scenario_from_dict, tomllib
-
     try:
-        return scenario_from_dict(tomllib.loads(text), "<the store's provenance.json>")
-    except (tomllib.TOMLDecodeError, LandingError):
+        return files.scenario_from_dict(files.tomllib.loads(text), "<the store's provenance.json>")
+    except (files.tomllib.TOMLDecodeError, LandingError):
         return None
 
 
@@ -137,10 +132,8 @@ class CampaignKey:
     x0_sha256: str
 
     @staticmethod
-    def of(scenario: "Scenario", *, seed: int, n: int, chunk_size: int, record_every: int,
+    def of(scenario: Scenario, *, seed: int, n: int, chunk_size: int, record_every: int,
            keep: Sequence[str], x0: np.ndarray) -> "CampaignKey":
-        from landing import __version__
-
         return CampaignKey(
             version=__version__, scenario=_scenario_text(scenario), seed=int(seed), n=int(n),
             chunk_size=int(chunk_size), record_every=int(record_every), keep=tuple(keep),
@@ -327,7 +320,7 @@ class CampaignStore:
         zarr = require_io("zarr", what="the campaign store")
         return zarr.open_group(str(self.path / TRAJECTORIES), mode=mode)
 
-    def _create_trajectories(self, part: "SimulationResult") -> None:
+    def _create_trajectories(self, part: SimulationResult) -> None:
         """The Zarr store's arrays, for the whole campaign, from the first chunk's shapes; the
         chunking along ``case`` is the campaign's (a divisor of it for large chunks), so each
         campaign chunk writes whole Zarr chunks."""
@@ -375,7 +368,7 @@ class CampaignStore:
 
     # -- writing and reading chunks --
 
-    def write_chunk(self, index: int, start: int, stop: int, part: "SimulationResult", x0: np.ndarray,
+    def write_chunk(self, index: int, start: int, stop: int, part: SimulationResult, x0: np.ndarray,
                     draws: Optional[np.ndarray]) -> None:
         """Write chunk ``index`` (cases start..stop): Parquet files and the Zarr region, made
         durable, then the manifest naming it complete."""
@@ -429,10 +422,8 @@ class CampaignStore:
                 out[name] = np.stack([_column(table, p, dtype) for p in parts], axis=1)
         return out
 
-    def read_chunk(self, index: int) -> "SimulationResult":
+    def read_chunk(self, index: int) -> SimulationResult:
         """A completed chunk as the batch result it was (what was not kept is None/empty)."""
-        from landing.results import Metrics, SimulationResult
-
         c = self.completed[index]
         start, stop = c["start"], c["stop"]
         group = self._zarr_group("r")
@@ -461,9 +452,16 @@ class CampaignStore:
         return x0
 
 
+def default_chunk_size(n: int) -> int:
+    """Cases per chunk of a stored or cluster campaign when none is given: max(1000, n / 50)
+    (at most n); at a few ms of scheduling per chunk that keeps the overhead small for any
+    scenario longer than a few steps (BENCHMARKS.md measures it)."""
+    return min(n, max(1000, -(-n // 50)))
+
+
 def open_campaign_store(
     path: Union[str, os.PathLike],
-    scenario: "Scenario",
+    scenario: Scenario,
     *,
     seed: int,
     n: int,
@@ -486,7 +484,7 @@ def open_campaign_store(
         if prov_path.is_file():
             chunk_size = int(json.loads(prov_path.read_text())["key"]["chunk_size"])
         else:
-            chunk_size = min(n, max(1000, -(-n // 50)))
+            chunk_size = default_chunk_size(n)
     key = CampaignKey.of(scenario, seed=seed, n=n, chunk_size=chunk_size, record_every=record_every,
                          keep=keep, x0=x0)
     return CampaignStore.open(path, key, threads=threads, check_bounds=check_bounds, record_every=record_every)
@@ -496,21 +494,17 @@ def _column(table: Any, name: str, dtype: str) -> np.ndarray:
     return np.asarray(table.column(name).to_numpy(), dtype=np.dtype(dtype))
 
 
-# --- loading -----------------------------------------------------------------------------------------
+# --- reading ------------------------------------------------------------------------------------------
 
 
-def load(path: Union[str, os.PathLike], *, scenario: Optional["Scenario"] = None) -> "MonteCarloResult":
-    """The campaign stored at ``path`` (by ``landing.monte_carlo(..., store=path)``), bit for bit
-    the result of the run that wrote it.
-
-    ``scenario`` is the campaign's scenario; it is checked against the stored one. Without it
-    the scenario is rebuilt from the stored text when it is a preset's. A store whose run was
-    interrupted is refused (re-run ``monte_carlo`` with the same ``store`` to complete it).
-    Needs ``pip install "landing[io]"``.
-    """
+def read_campaign_store(
+    path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None
+) -> tuple[CampaignStore, Scenario, np.ndarray, bool]:
+    """The complete campaign stored at ``path``, open for reading: its store, its scenario (the
+    one given, checked against the stored text, or rebuilt from that text), its initial states
+    (checked against the provenance record) and whether its run checked the bounds. An
+    interrupted campaign is refused. What :func:`landing.load` assembles the result from."""
     require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="landing.load")
-    from landing.montecarlo import assemble_campaign
-
     path = Path(path)
     prov_path = path / PROVENANCE
     if not prov_path.is_file():
@@ -543,7 +537,4 @@ def load(path: Union[str, os.PathLike], *, scenario: Optional["Scenario"] = None
                               record_every=key.record_every, keep=key.keep, x0=x0)
     if expected.x0_sha256 != key.x0_sha256:
         raise ParameterError(f"the initial states stored at '{path}' do not match its provenance record")
-    return assemble_campaign(
-        scenario, n=key.n, seed=key.seed, x0=x0, chunk_size=key.chunk_size, keep=key.keep,
-        run_chunk=None, store=store, check_bounds=bool(prov.get("check_bounds", True)),
-    )
+    return store, scenario, x0, bool(prov.get("check_bounds", True))

@@ -25,7 +25,8 @@ How a campaign runs on a cluster:
 - Ctrl-C (or any error) cancels the outstanding chunks; the completed ones are in the store,
   and re-running the same call resumes from them.
 
-Dask is the optional extra ``landing[dask]``; nothing here is imported by a local campaign.
+Dask is the optional extra ``landing[dask]``: this module imports it only when a cluster
+campaign starts, and a local campaign never imports this module.
 """
 
 from __future__ import annotations
@@ -36,18 +37,18 @@ import pickle
 import time
 import uuid
 import warnings
-from typing import TYPE_CHECKING, Any, Optional
+from typing import Any, Optional
 
 import numpy as np
 
-from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
-
-if TYPE_CHECKING:  # pragma: no cover
-    from landing._internal.progress import ProgressBar
-    from landing.montecarlo import MonteCarloResult
-    from landing.scenarios import Scenario
-    from landing.results import SimulationResult
-    from landing.store import CampaignStore
+from landing._core import __version__
+from landing._internal.progress import ProgressBar
+from landing.campaign._assembly import Assembly, finish_campaign, write_chunk
+from landing.campaign.result import MonteCarloResult
+from landing.campaign.store import CampaignStore, default_chunk_size
+from landing.errors import DivergenceWarning, LandingError, ParameterError, ParameterTypeError
+from landing.results import SimulationResult
+from landing.scenarios import Scenario, files
 
 __all__ = ["require_dask", "connect", "default_chunk_size", "run_chunk", "run_campaign"]
 
@@ -87,27 +88,17 @@ def check_client(client: Any) -> Any:
     return distributed
 
 
-def default_chunk_size(n: int) -> int:
-    """Cases per chunk on a cluster when none is given: the store's rule, max(1000, n / 50)
-    cases (at most n); at a few ms of scheduling per chunk that keeps the overhead small for
-    any scenario longer than a few steps (BENCHMARKS.md measures it)."""
-    return min(n, max(1000, -(-n // 50)))
-
-
 # --- the scenario on the workers ------------------------------------------------------------------
 
 
-def scenario_payload(scenario: "Scenario") -> tuple[str, Any]:
+def scenario_payload(scenario: Scenario) -> tuple[str, Any]:
     """What a task carries of the scenario: ``("toml", text)`` when the text reads back to the
     same scenario, else ``("pickle", bytes)``."""
-    from landing.errors import LandingError
-    from landing.scenarios.files import scenario_from_dict, tomllib
-
     text = scenario.to_toml()
     try:
-        if scenario_from_dict(tomllib.loads(text)).to_toml() == text:
+        if files.scenario_from_dict(files.tomllib.loads(text)).to_toml() == text:
             return ("toml", text)
-    except (tomllib.TOMLDecodeError, LandingError):
+    except (files.tomllib.TOMLDecodeError, LandingError):
         pass
     try:
         return ("pickle", pickle.dumps(scenario, protocol=pickle.HIGHEST_PROTOCOL))
@@ -120,19 +111,17 @@ def scenario_payload(scenario: "Scenario") -> tuple[str, Any]:
 
 
 #: Scenarios rebuilt on this worker, by payload digest (a campaign's chunks share one).
-_SCENARIOS: dict[str, "Scenario"] = {}
+_SCENARIOS: dict[str, Scenario] = {}
 
 
-def _scenario_on_worker(payload: tuple[str, Any]) -> "Scenario":
+def _scenario_on_worker(payload: tuple[str, Any]) -> Scenario:
     kind, data = payload
     raw = data.encode() if kind == "toml" else data
     digest = kind + ":" + hashlib.sha256(raw).hexdigest()
     scenario = _SCENARIOS.get(digest)
     if scenario is None:
         if kind == "toml":
-            from landing.scenarios.files import scenario_from_dict, tomllib
-
-            scenario = scenario_from_dict(tomllib.loads(data), "<the campaign's scenario>")
+            scenario = files.scenario_from_dict(files.tomllib.loads(data), "<the campaign's scenario>")
         else:
             scenario = pickle.loads(data)
         if len(_SCENARIOS) >= 8:
@@ -150,11 +139,9 @@ def run_chunk(
     record_every: int,
     threads: Optional[int],
     keep: tuple[str, ...],
-) -> "SimulationResult":
+) -> SimulationResult:
     """One chunk, on a worker: cases ``start .. start + len(x0)`` of the campaign, with the
     signals not kept dropped (the task the client submits)."""
-    from landing import __version__
-
     if version != __version__:
         raise RuntimeError(
             f"this worker runs landing {__version__}, the client {version}: install the same version "
@@ -196,7 +183,7 @@ class _InFlight:
 
 def run_campaign(
     client: Any,
-    scenario: "Scenario",
+    scenario: Scenario,
     *,
     n: int,
     seed: int,
@@ -205,18 +192,15 @@ def run_campaign(
     keep: tuple[str, ...],
     record_every: int,
     threads: Optional[int],
-    store: Optional["CampaignStore"],
+    store: Optional[CampaignStore],
     check_bounds: bool,
-    bar: Optional["ProgressBar"] = None,
-) -> "MonteCarloResult":
+    bar: Optional[ProgressBar] = None,
+) -> MonteCarloResult:
     """The campaign's chunks on the cluster behind ``client``, assembled as the local run's
     (see the module's docstring)."""
-    from landing import __version__
-    from landing.montecarlo import _Assembly, finish_campaign
-
     distributed = check_client(client)
     payload = scenario_payload(scenario)
-    out = _Assembly(n, keep)
+    out = Assembly(n, keep)
     todo: list[tuple[int, int, int]] = []
     for index, start in enumerate(range(0, n, chunk_size)):
         stop = min(n, start + chunk_size)
@@ -255,9 +239,7 @@ def run_campaign(
             del outstanding[future.key]
             future.release()
             if store is not None:
-                draws = (None if scenario.dispersion is None
-                         else scenario.dispersion.sample(stop - start, seed=seed, first_case=start))
-                store.write_chunk(index, start, stop, part, x0[start:stop], draws)
+                write_chunk(store, scenario, seed, x0, index, start, stop, part)
             out.put(start, part)
             del part, future
             if bar:

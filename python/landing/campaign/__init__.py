@@ -1,0 +1,11 @@
+"""Monte Carlo campaigns: :func:`monte_carlo` runs one (in this process or on a Dask cluster,
+into a store or not), :func:`load` reads a stored one back, bit for bit.
+
+:mod:`landing.campaign.store` is the store's directory layout, :mod:`landing.campaign.dask`
+the cluster runner (docs/cluster.md).
+"""
+
+from landing.campaign.api import load, monte_carlo
+from landing.campaign.result import Bands, MonteCarloResult, Summary
+
+__all__ = ["Bands", "MonteCarloResult", "Summary", "load", "monte_carlo"]

@@ -1,0 +1,186 @@
+"""Monte Carlo campaigns: dispersions -> batched rollouts -> tables, statistics and checks;
+:func:`monte_carlo` runs one (here or on a Dask cluster, into a store or not) and :func:`load`
+reads a stored one back."""
+
+from __future__ import annotations
+
+import os
+import warnings
+from typing import Any, Optional, Sequence, Union
+
+from landing._internal.args import boolean, integer
+from landing._internal.limits import require_memory
+from landing._internal.progress import ProgressBar
+from landing.campaign._assembly import assemble_campaign
+from landing.campaign.result import MonteCarloResult
+from landing.campaign.store import default_chunk_size, open_campaign_store, read_campaign_store
+from landing.errors import DivergenceWarning, ParameterError
+from landing.results import SIGNALS, SimulationResult, describe_diverged
+from landing.scenarios import Scenario
+
+__all__ = ["campaign_bytes", "load", "monte_carlo"]
+
+
+def _keep(keep: Union[str, Sequence[str]]) -> tuple[str, ...]:
+    items = (keep,) if isinstance(keep, str) else tuple(keep)
+    bad = [k for k in items if k not in SIGNALS]
+    if bad:
+        raise ParameterError(f"keep = {keep!r}: {bad[0]!r} is not one of {SIGNALS}")
+    return tuple(k for k in SIGNALS if k in items)  # canonical order, no repeats
+
+
+def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int) -> int:
+    """Bytes a campaign's results take: the recorded states, commands and diagnostics of the
+    ``n`` cases plus their final states and metrics, in the output allocated once, plus one
+    chunk's batch output before it is copied in. An estimate from above."""
+    steps = round(scenario.t_final / scenario.dt)
+    if record_every == 0:
+        instants = 0
+    else:
+        instants = steps // record_every + 1 + (steps % record_every != 0)
+    axes = scenario.plant.axes
+    widths = sum(w for _, w in scenario.controller._core.diagnostic_layout(axes))  # type: ignore[attr-defined]
+    per_instant = scenario.plant.state_dim + axes + widths
+    # final state plus about 40 metric columns, some per axis
+    per_case = instants * per_instant + scenario.plant.state_dim + 40 * (axes + 1)
+    return 8 * (n + (min(chunk, n) if chunk < n else 0)) * per_case
+
+
+def monte_carlo(
+    scenario: Scenario,
+    n: int,
+    *,
+    seed: int = 0,
+    record_every: Optional[int] = None,
+    chunk_size: Optional[int] = None,
+    threads: Optional[int] = None,
+    progress: Optional[bool] = None,
+    check_bounds: bool = True,
+    keep: Union[str, Sequence[str]] = SIGNALS,
+    store: Union[str, "os.PathLike[str]", None] = None,
+    client: Any = None,
+) -> MonteCarloResult:
+    """Run ``n`` dispersed cases of ``scenario``.
+
+    Case i's initial state and random disturbances depend only on (seed, i): the result is
+    the same for any ``chunk_size`` (cases per batch) and thread count.
+
+    Parameters
+    ----------
+    record_every : decimation of the kept trajectories (default: the scenario's); 0 keeps
+        final states and metrics only.
+    chunk_size : cases per batch (default: all at once, or about 2 % of them with a progress
+        bar).
+    progress : show progress on stderr, a bar in terminals and notebooks and a line every 30 s
+        in logs (default: when the campaign is long, more than 2e7 case-steps).
+    check_bounds : check the run against the scenario's theoretical bounds, if any (needs the
+        diagnostics kept).
+    keep : the recorded signals kept, among ``"states"``, ``"controls"`` and ``"diagnostics"``
+        (default all); the others are dropped chunk by chunk. Metrics and final states are
+        always kept. The output is allocated once and filled chunk by chunk.
+    store : a directory to write the campaign to as each chunk completes (metrics, initial
+        states and draws as Parquet, trajectories as Zarr, a provenance record; see
+        :mod:`landing.campaign.store`), and to resume from: completed chunks are read back, not re-run,
+        and the result is the uninterrupted run's bit for bit. A store of another campaign
+        (scenario, seed, n, chunk_size, record settings) is refused. Without ``chunk_size`` a
+        new store is cut into ``max(1000, n / 50)``-case chunks and a resumed one keeps its own.
+        :func:`landing.load` reads it back. Needs ``pip install "landing[io]"``.
+    client : a ``distributed.Client``: run the chunks on its Dask cluster, ``threads`` threads
+        each on a worker (default: all the worker machine's cores), the store (if any) written
+        by this process as chunks arrive. The result is the local run's bit for bit; a lost
+        worker costs only its chunks, which are re-run; Ctrl-C cancels the outstanding chunks
+        and keeps the completed ones in the store. Without ``chunk_size`` (and no store to
+        resume) the chunks are of ``max(1000, n / 50)`` cases. See :mod:`landing.campaign.dask` and
+        docs/cluster.md. Needs ``pip install "landing[dask]"``.
+    """
+    chunk_given = chunk_size is not None
+    if not isinstance(scenario, Scenario):
+        raise ParameterError(f"scenario must be a landing.scenarios.Scenario, got {type(scenario).__name__}")
+    n = integer("n", n, minimum=1, cap="max_cases")
+    seed = integer("seed", seed, minimum=0, maximum=2**64 - 1)
+    # the scenario's run options with this campaign's decimation and threads, checked once
+    options = scenario.options.replace(
+        threads=threads, **({} if record_every is None else {"record_every": record_every}))
+    if chunk_size is not None:
+        chunk_size = integer("chunk_size", chunk_size, minimum=1, cap="max_cases")
+    if progress is not None:
+        progress = boolean("progress", progress)
+    check_bounds = boolean("check_bounds", check_bounds)
+    if client is not None:
+        # the Dask runner, loaded for a cluster campaign only (it is the landing[dask] extra's side)
+        from landing.campaign import dask as cluster  # noqa: PLC0415 - the optional extra's runner, on demand
+
+        cluster.check_client(client)
+        if chunk_size is None and store is None:
+            chunk_size = default_chunk_size(n)
+    work = n * scenario.t_final / scenario.dt
+    if progress is None:
+        # wherever stderr goes: a bar in terminals and notebooks, a line every 30 s in logs
+        progress = work > 2e7
+    if chunk_size is None:
+        chunk_size = max(1, -(-n // 50)) if progress else n
+    every, threads = options.record_every, options.threads
+    # the campaign's output and one chunk's batch: refused up front if they cannot fit
+    require_memory(
+        f"monte_carlo({scenario.name!r}, n={n}): the recorded runs",
+        campaign_bytes(scenario, n, every, chunk=chunk_size),
+    )
+
+    keep = _keep(keep)
+    x0 = scenario.initial_states(n, seed=seed)
+    campaign_store = None
+    if store is not None:
+        campaign_store = open_campaign_store(
+            store, scenario, seed=seed, n=n, x0=x0, keep=keep, record_every=every,
+            chunk_size=chunk_size if chunk_given else None, threads=threads, check_bounds=check_bounds,
+        )
+        chunk_size = campaign_store.key.chunk_size
+    bar = ProgressBar(n, label=scenario.name) if progress else None
+    diverged_warnings = 0
+
+    def run_chunk(start: int, stop: int) -> SimulationResult:
+        nonlocal diverged_warnings
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", DivergenceWarning)
+            part = scenario.simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads,
+                                           record_every=every)
+        diverged_warnings += sum(issubclass(w.category, DivergenceWarning) for w in caught)
+        return part
+
+    try:
+        if client is not None:
+            mc = cluster.run_campaign(client, scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
+                              record_every=every, threads=threads, store=campaign_store,
+                              check_bounds=check_bounds, bar=bar)
+        else:
+            mc = assemble_campaign(scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
+                                   run_chunk=run_chunk, store=campaign_store, check_bounds=check_bounds,
+                                   bar=bar)
+    finally:
+        if bar:
+            bar.close()
+    if mc.metrics["diverged"].any():
+        warnings.warn(
+            f"{describe_diverged(mc.metrics)}; they are flagged in metrics['diverged'] (why: "
+            "metrics['diverged_reason']) and left out of the summary's statistics",
+            DivergenceWarning,
+            stacklevel=2,
+        )
+    return mc
+
+
+def load(path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None) -> MonteCarloResult:
+    """The campaign stored at ``path`` (by ``landing.monte_carlo(..., store=path)``), bit for bit
+    the result of the run that wrote it.
+
+    ``scenario`` is the campaign's scenario; it is checked against the stored one. Without it
+    the scenario is rebuilt from the stored text when it is a preset's. A store whose run was
+    interrupted is refused (re-run ``monte_carlo`` with the same ``store`` to complete it).
+    Needs ``pip install "landing[io]"``.
+    """
+    store, scenario, x0, check_bounds = read_campaign_store(path, scenario=scenario)
+    key = store.key
+    return assemble_campaign(
+        scenario, n=key.n, seed=key.seed, x0=x0, chunk_size=key.chunk_size, keep=key.keep,
+        run_chunk=None, store=store, check_bounds=check_bounds,
+    )

@@ -1,0 +1,237 @@
+"""A Monte Carlo campaign's result: the runs, the statistics of their metrics, per-instant
+bands of their signals and the theory's bounds with their checks."""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Optional, Sequence
+
+import numpy as np
+
+from landing.errors import ParameterError
+from landing.results import SIGNALS, Metrics, SimulationResult, describe_diverged, diverged_cases, result_dataset
+from landing.scenarios import Scenario
+from landing.theory import BoundCheck, MSSBounds
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray
+
+__all__ = ["Bands", "MonteCarloResult", "Summary", "summarize", "SUMMARY_COLUMNS"]
+
+#: The per-case columns the summary describes.
+SUMMARY_COLUMNS = (
+    "final_position_error",
+    "final_velocity_error",
+    "fuel_used",
+    "fuel_to_settle",
+    "peak_command",
+    "control_effort",
+    "settle_time",
+    "touchdown_time",
+    "touchdown_speed",
+)
+
+
+class Summary(dict):
+    """Statistics of the per-case metrics: ``summary[column]`` is a dict with ``n`` (cases
+    with a finite value), ``mean``, ``std``, ``min``, ``p50``, ``p95`` and ``max``.
+
+    Diverged cases have NaN metrics and are left out of every statistic; ``diverged`` names
+    them by reason (``{reason: case indices}``), and the printed table says so first."""
+
+    diverged: dict[str, np.ndarray]
+
+    def __init__(self, *args: Any, diverged: Optional[dict[str, np.ndarray]] = None, **kwargs: Any):
+        super().__init__(*args, **kwargs)
+        self.diverged = diverged or {}
+
+    def __str__(self) -> str:
+        head = f"  {'metric':<22} {'n':>5} {'mean':>11} {'std':>11} {'min':>11} {'p50':>11} {'p95':>11} {'max':>11}"
+        rows = []
+        if self.diverged:
+            k = sum(v.size for v in self.diverged.values())
+            rows.append(
+                f"  left out of the statistics: {k} diverged case{'s' if k != 1 else ''} ("
+                + "; ".join(f"{name}: {v.size}" for name, v in self.diverged.items()) + ")"
+            )
+        rows.append(head)
+        for k, s in self.items():
+            if s["n"] == 0:
+                rows.append(f"  {k:<22} {0:>5}")
+                continue
+            rows.append(
+                f"  {k:<22} {s['n']:>5} "
+                + " ".join(f"{s[x]:>11.5g}" for x in ("mean", "std", "min", "p50", "p95", "max"))
+            )
+        return "\n".join(rows)
+
+
+def summarize(metrics: Metrics, columns: tuple[str, ...] = SUMMARY_COLUMNS) -> Summary:
+    """Statistics over the cases with a finite value (a diverged case has NaN metrics and is
+    named in ``Summary.diverged``)."""
+    out = Summary(diverged=diverged_cases(metrics))
+    for k in columns:
+        v = np.asarray(metrics[k], dtype=float)
+        v = v[np.isfinite(v)]
+        if v.size == 0:
+            out[k] = {"n": 0}
+            continue
+        out[k] = {
+            "n": int(v.size),
+            "mean": float(v.mean()),
+            "std": float(v.std(ddof=1)) if v.size > 1 else 0.0,
+            "min": float(v.min()),
+            "p50": float(np.percentile(v, 50)),
+            "p95": float(np.percentile(v, 95)),
+            "max": float(v.max()),
+        }
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class Bands:
+    """Percentiles of a recorded signal over the cases, at every recorded instant.
+
+    ``values[k]`` is the ``percentiles[k]``-th percentile, shape (T,) or (T, D) for a per-axis
+    signal; ``n`` (T,) counts the cases with a finite value at each instant (diverged cases are
+    NaN from their divergence on and left out). ``bands[50]`` is the median."""
+
+    signal: str
+    t: np.ndarray
+    percentiles: tuple[float, ...]
+    values: np.ndarray
+    n: np.ndarray
+
+    def __getitem__(self, percentile: float) -> np.ndarray:
+        try:
+            return self.values[self.percentiles.index(percentile)]
+        except ValueError:
+            raise KeyError(f"percentile {percentile!r} not among {self.percentiles}") from None
+
+
+@dataclass(frozen=True, eq=False)
+class MonteCarloResult:
+    """A campaign: the scenario, the sampled initial states, the recorded runs (decimated),
+    the per-case metrics, their statistics and the theory's bounds with their checks."""
+
+    scenario: Scenario
+    seed: int
+    x0: np.ndarray
+    result: SimulationResult
+    bounds: Optional[MSSBounds] = None
+    checks: Optional[dict[str, BoundCheck]] = None
+    #: The recorded signals kept (``monte_carlo(..., keep=...)``).
+    keep: tuple[str, ...] = SIGNALS
+    #: The directory the campaign is stored in, if any.
+    store: Optional[str] = None
+
+    @property
+    def n_cases(self) -> int:
+        return self.x0.shape[0]
+
+    @property
+    def metrics(self) -> Metrics:
+        """Per-case metrics; ``.to_pandas()`` adds the seed and the initial states."""
+        return self.result.metrics._with_context(seed=self.seed, x0=self.x0)
+
+    @property
+    def t(self) -> np.ndarray:
+        return self.result.t
+
+    @property
+    def states(self) -> Optional[np.ndarray]:
+        return self.result.states
+
+    @property
+    def controls(self) -> Optional[np.ndarray]:
+        return self.result.controls
+
+    @property
+    def diagnostics(self) -> dict[str, np.ndarray]:
+        return self.result.diagnostics
+
+    def summary(self) -> Summary:
+        return summarize(self.metrics)
+
+    def bands(self, signal: str, percentiles: Sequence[float] = (5, 50, 95)) -> Bands:
+        """Per-instant percentiles over the cases of a recorded signal: a state or control
+        component by name (``"rz"``, ``"Fz"``) or a diagnostic (``"s1"``, per axis). NaN-aware:
+        a diverged case counts until it diverges."""
+        pct = tuple(float(p) for p in percentiles)
+        if not pct or not all(0.0 <= p <= 100.0 for p in pct):
+            raise ParameterError(f"percentiles = {percentiles!r} violates 0 <= p <= 100 (at least one)")
+        res = self.result
+        if res.states is not None and signal in res.state_names:
+            x = res.states[..., res.state_names.index(signal)]
+        elif res.controls is not None and signal in res.control_names:
+            x = res.controls[..., res.control_names.index(signal)]
+        elif signal in res.diagnostics:
+            x = res.diagnostics[signal]
+        else:
+            known = [*(res.state_names if res.states is not None else ()),
+                     *(res.control_names if res.controls is not None else ()), *res.diagnostics]
+            raise ParameterError(
+                f"signal = {signal!r} is not a recorded signal of this campaign (kept: {self.keep}); "
+                f"one of {known}"
+            )
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN instants give NaN
+            values = np.nanpercentile(x, pct, axis=0)
+        finite = np.isfinite(x)
+        n = finite.reshape(finite.shape[0], finite.shape[1], -1).all(axis=2).sum(axis=0)
+        return Bands(signal=signal, t=res.t, percentiles=pct, values=values, n=n)
+
+    def to_xarray(self) -> "xarray.Dataset":
+        """An xarray Dataset of the campaign: the kept signals (case, time, component), the
+        final and initial states, every metric, with names, time (s) and units (see
+        :meth:`SimulationResult.to_xarray`). Needs ``pip install "landing[io]"``."""
+        return result_dataset(self.result, x0=self.x0, seed=self.seed,
+                              attrs={"scenario": self.scenario.name, "keep": list(self.keep)})
+
+    def within_bounds(self) -> Optional[np.ndarray]:
+        """Per case: s1 and s2 stay in their theoretical neighbourhoods from the bound times
+        on (None when the scenario has no bounds or nothing was recorded)."""
+        if not self.checks:
+            return None
+        ok = np.ones(self.n_cases, dtype=bool)
+        for check in self.checks.values():
+            ok[check.violations] = False
+        return ok
+
+    def within_radius_at_end(self) -> Optional[np.ndarray]:
+        """Per case: |s1_i(t_final)| (the position error) within the s1 neighbourhood."""
+        if self.bounds is None:
+            return None
+        err = np.abs(self.metrics["final_error"])
+        return np.all(err <= np.asarray(self.bounds.s1_radius), axis=-1)
+
+    def report(self) -> str:
+        m = self.metrics
+        n = self.n_cases
+        lines = [
+            f"{self.scenario.name}: {n} cases, seed {self.seed}, {self.scenario.t_final:g} s at dt = "
+            f"{self.scenario.dt:g} s ({self.scenario.integrator})",
+            f"  diverged: {describe_diverged(m)}",
+            str(self.summary()),
+        ]
+        fe = np.abs(m["final_error"])
+        lines.append(
+            "  final |error| per axis: max " + np.array2string(np.nanmax(fe, axis=0), precision=4)
+            + ", mean " + np.array2string(np.nanmean(fe, axis=0), precision=4)
+        )
+        touched = np.isfinite(m["touchdown_time"])
+        lines.append(f"  touched down (rz crossed 0): {int(touched.sum())} of {n}")
+        if self.bounds is not None:
+            b = self.bounds
+            lines.append("  theory (seed 001 Theorem 4), per axis:")
+            lines.extend("    " + row for row in str(b).splitlines()[1:])
+            end = self.within_radius_at_end()
+            lines.append(f"  final position error within the s1 radius: {int(end.sum())} of {n}")
+            if self.checks:
+                for name, c in self.checks.items():
+                    checkable = bool(np.all(c.extra["checkable"]))
+                    stays = n - c.violations.size
+                    note = "" if checkable else " (bound time beyond the horizon: only the end of the run is seen)"
+                    lines.append(f"  {name} stays in its neighbourhood from its bound time on: {stays} of {n}{note}")
+        return "\n".join(lines)
