@@ -7,6 +7,9 @@ from __future__ import annotations
 import sys
 from typing import Any, Optional, TextIO
 
+from tqdm import tqdm as plain
+from tqdm.auto import tqdm
+
 #: Seconds between two lines of progress in a log.
 LOG_INTERVAL = 30.0
 
@@ -35,20 +38,16 @@ class _Lines:
 
 
 class ProgressBar:
-    """Counts cases done out of ``total``: ``update(k)`` after each chunk, ``close()`` at the
-    end (also on error)."""
+    """Counts the ``unit``s (cases, by default) done out of ``total``: ``update(k)`` after each
+    chunk, ``close()`` at the end (also on error)."""
 
-    def __init__(self, total: int, label: str = "", stream: Optional[TextIO] = None):
-        from tqdm.auto import tqdm
-
+    def __init__(self, total: int, label: str = "", stream: Optional[TextIO] = None, unit: str = "case"):
         stream = stream if stream is not None else sys.stderr
-        options: dict[str, Any] = dict(total=total, desc=label or None, unit="case", smoothing=0.1)
+        options: dict[str, Any] = dict(total=total, desc=label or None, unit=unit, smoothing=0.1)
         if _interactive(stream):
             self._bar = tqdm(file=stream, **options)
         else:
             # plain tqdm (no widget), one line per LOG_INTERVAL seconds
-            from tqdm import tqdm as plain
-
             self._bar = plain(file=_Lines(stream), ascii=True, mininterval=LOG_INTERVAL,
                               maxinterval=LOG_INTERVAL, ncols=100, **options)
 
