@@ -10,9 +10,25 @@ laws, references and disturbances, runs batches and reads the results.
 >>> res = landing.simulate(plant, law, x0, t_final=10.0, dt=0.01)
 """
 
-from landing import _core
+import importlib
+from types import ModuleType
+
+from landing import (
+    _core,
+    campaign,
+    controllers,
+    dispersions,
+    disturbances,
+    errors,
+    fuzzy,
+    gravity,
+    plants,
+    reference,
+    scenarios,
+    theory,
+)
 from landing._core import __version__
-from landing import controllers, dispersions, disturbances, errors, fuzzy, gravity, plants, reference
+from landing.campaign import MonteCarloResult, load, monte_carlo
 from landing.errors import (
     DivergenceWarning,
     LandingError,
@@ -22,9 +38,6 @@ from landing.errors import (
 )
 from landing.results import DIVERGENCE_REASONS, Metrics, SimulationResult
 from landing.simulation import MAX_COMMAND, RunOptions, kernel_levels, simulate, simulate_batch
-
-from landing import plots, scenarios, theory
-from landing.campaign import MonteCarloResult, load, monte_carlo
 from landing.tune import TuneResult, tune
 
 __all__ = [
@@ -37,12 +50,14 @@ __all__ = [
     "gravity",
     "plants",
     "plots",
+    "optimal",
     "reference",
     "scenarios",
     "theory",
     "monte_carlo",
     "load",
     "MonteCarloResult",
+    "campaign",
     "tune",
     "TuneResult",
     "simulate",
@@ -59,3 +74,13 @@ __all__ = [
     "SimulationError",
     "DivergenceWarning",
 ]
+
+#: Modules loaded on first use, so that ``import landing`` leaves matplotlib (the figures) and
+#: CasADi (the fuel-optimal baseline) out.
+_LAZY = ("plots", "optimal")
+
+
+def __getattr__(name: str) -> ModuleType:
+    if name in _LAZY:
+        return importlib.import_module(f"landing.{name}")
+    raise AttributeError(f"module 'landing' has no attribute {name!r}")

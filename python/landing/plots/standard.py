@@ -1,0 +1,57 @@
+"""The usual figures of a run or campaign for its plant (what ``landing run``, ``landing mc``
+and ``landing report`` write)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Callable, Optional, Union
+
+from landing.plants import MarsLander, Plant, TetheredSatellite
+from landing.plots._common import Result, result_and_bounds, save_figures
+from landing.plots.comparison import commands, tracking_errors, trajectory_with_reference
+from landing.plots.mars import final_velocities, landing_sites, mass, positions, sliding_variables, thrust, trajectories_3d
+from landing.plots.tether import tether_angles, tether_commands, tether_rates
+from landing.reference import Reference
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+__all__ = ["save_all", "standard_figures"]
+
+
+def save_all(result: Result, folder: Union[str, Path], dpi: int = 120) -> list[Path]:
+    """Write the standard figures of a Mars campaign as PNG files into ``folder``."""
+    return save_figures(standard_figures(result), folder, dpi=dpi)
+
+
+def standard_figures(result: Result, plant: Optional[Plant] = None,
+                     reference: Optional[Reference] = None) -> dict[str, Figure]:
+    """The usual figures of a run or campaign for its plant, by name (what ``landing run``,
+    ``landing mc`` and ``landing report`` write): the Mars figures of :func:`save_all` for the
+    lander, tracking errors and commands for the small body and the double integrator, angles,
+    rates and commands for the tethered satellite. Nothing for a run that recorded nothing."""
+    res, _ = result_and_bounds(result)
+    if res.t.size == 0:
+        return {}
+    if plant is None or isinstance(plant, MarsLander):
+        makers: dict[str, Callable[[Result], Figure]] = {
+            "trajectories_3d": trajectories_3d,
+            "landing_sites": landing_sites,
+            "final_velocities": final_velocities,
+            "positions": positions,
+            "thrust": thrust,
+            "mass": mass,
+        }
+        if {"s1", "s2"} <= set(res.diagnostics):
+            makers["sliding_variables"] = sliding_variables
+        return {name: make(result) for name, make in makers.items()}
+    if isinstance(plant, TetheredSatellite):
+        return {
+            "tether_angles": tether_angles(res, plant),
+            "tether_rates": tether_rates(res, plant),
+            "tether_commands": tether_commands(res),
+        }
+    figs = {"tracking_errors": tracking_errors(res, reference), "commands": commands(res)}
+    if reference is not None and res.states is not None and res.states.shape[-1] >= 6:
+        figs["trajectory"] = trajectory_with_reference(res, reference)
+    return figs

@@ -1,0 +1,97 @@
+"""The tethered satellite's figures (seed 003, figures 3 to 7): angles, rates and commands
+against time, and the worst settle time against the initial spread with the fixed-time bound."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Callable, Mapping, Optional, Union
+
+import numpy as np
+
+from landing._internal.table import ArrayLike
+from landing.plants import TetheredSatellite
+from landing.plots._common import Runs, batched, named_runs, need_records, new_figure
+from landing.results import SimulationResult
+from landing.theory import FNTSMCBounds
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+__all__ = ["tether_angles", "tether_rates", "tether_commands", "tether_fixed_time"]
+
+_TETHER_AXES = (("in-plane angle", "phi"), ("attitude angle", "theta"))
+
+
+def _tether_coordinates(res: SimulationResult,
+                        plant: Optional[TetheredSatellite] = None) -> tuple[np.ndarray, np.ndarray]:
+    """(q, q') of a tethered-satellite result, (N, T, 2) each. The flexible model's state holds
+    positions; its angles come from the core (they do not depend on the physical parameters,
+    so a default plant with the result's node count serves when none is given)."""
+    states = batched(res.states, 3)
+    if res.state_names[:2] == ("phi", "theta"):
+        return states[..., :2], states[..., 2:4]
+    if plant is None:
+        plant = TetheredSatellite(fidelity="flexible", nodes=(len(res.state_names) - 6) // 4)
+    return plant.coordinates(states)
+
+
+def _tether_pair(results: Runs, pick: Callable[[SimulationResult, Optional[TetheredSatellite]], np.ndarray],
+                 ylabels: tuple[str, str], title: tuple[str, str], plant: Optional[TetheredSatellite], scale: float,
+                 max_cases: int) -> Figure:
+    runs = named_runs(results)
+    fig = new_figure(figsize=(11, 4), layout="constrained")
+    axes = [fig.add_subplot(1, 2, j + 1) for j in range(2)]
+    for label, res in runs.items():
+        need_records(res)
+        data = pick(res, plant)[:max_cases]
+        for j, ax in enumerate(axes):
+            lines = ax.plot(res.t, data[:, :, j].T * scale, lw=0.9)
+            if label:
+                lines[0].set_label(label)
+    for j, ax in enumerate(axes):
+        ax.set_title(f"{title[j]}")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel(ylabels[j])
+        ax.axhline(0.0, color="0.7", lw=0.5)
+        if any(runs):
+            ax.legend()
+    return fig
+
+
+def tether_angles(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50) -> Figure:
+    """In-plane and attitude angles against time, degrees (seed 003 Fig. 3 and 5). ``results``
+    is a result or a mapping label -> result (e.g. {"FNTSMC": ..., "NTSMC": ...})."""
+    return _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[0], ("phi (deg)", "theta (deg)"),
+                        ("In-plane angle", "Attitude angle"), plant, 180.0 / np.pi, max_cases)
+
+
+def tether_rates(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50) -> Figure:
+    """In-plane and attitude angular rates against time, deg/s (seed 003 Fig. 4 and 6)."""
+    return _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[1], ("phi' (deg/s)", "theta' (deg/s)"),
+                        ("In-plane angular rate", "Attitude angular rate"), plant, 180.0 / np.pi, max_cases)
+
+
+def tether_commands(results: Runs, max_cases: int = 50) -> Figure:
+    """Applied thrust (N) and torque (N m) against time (seed 003 Fig. 7 (a), (b))."""
+    return _tether_pair(results, lambda r, p: batched(r.controls, 3), ("thrust (N)", "torque (N m)"),
+                        ("(a) Thrust of the sub-satellite", "(b) Torque of the sub-satellite"), None, 1.0, max_cases)
+
+
+def tether_fixed_time(worst: Mapping[str, Mapping[float, np.ndarray]],
+                      bound: Union[FNTSMCBounds, ArrayLike]) -> Figure:
+    """Worst settle time of each angle against the initial-error spread of a campaign, per law,
+    with the fixed-time bound (dashed): ``worst[law][spread_deg]`` is a (2,) array (phi, theta);
+    ``bound`` the (2,) bound of :func:`landing.theory.fntsmc_bounds` (``.total``)."""
+    fig = new_figure(figsize=(11, 4), layout="constrained")
+    total = np.ravel(getattr(bound, "total", bound))
+    for j, (name, sym) in enumerate(_TETHER_AXES):
+        ax = fig.add_subplot(1, 2, j + 1)
+        for law, by_spread in worst.items():
+            spreads = sorted(by_spread)
+            ax.plot(spreads, [by_spread[k][j] for k in spreads], marker="o", label=law)
+        ax.axhline(total[j], ls="--", color="tab:red", label=f"bound {total[j]:.4g} s")
+        ax.set_yscale("log")
+        ax.set_xlabel("initial spread (deg)")
+        ax.set_ylabel(f"worst settle time of {sym} (s)")
+        ax.set_title(f"Fixed-time property, {name}")
+        ax.legend()
+    return fig

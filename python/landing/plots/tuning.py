@@ -1,0 +1,74 @@
+"""A tuning's figures: the search's convergence and the Pareto front (:func:`landing.tune`)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from landing.plots._common import new_figure
+from landing.tune import TuneResult
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+__all__ = ["tuning_convergence", "tuning_front"]
+
+
+def tuning_convergence(result: TuneResult) -> Figure:
+    """A :class:`landing.tune.TuneResult`'s search: every evaluation's first objective against
+    its generation (feasible filled, infeasible hollow) and the best feasible so far (line);
+    below, the share of each generation that is feasible."""
+    fig = new_figure(figsize=(8, 6), layout="constrained")
+    ax = fig.add_subplot(2, 1, 1)
+    g = result.generation
+    obj = result.objective_values[:, 0]
+    f = result.feasible
+    ax.scatter(g[f], obj[f], s=10, color="tab:blue", label="feasible")
+    ax.scatter(g[~f], obj[~f], s=10, facecolors="none", edgecolors="tab:gray", label="infeasible")
+    best = result.best_so_far()
+    ax.plot(np.arange(best.size), best, color="tab:red", label="best feasible so far")
+    finite = obj[np.isfinite(obj)]
+    if finite.size and finite.min() > 0 and finite.max() / finite.min() > 100:
+        ax.set_yscale("log")
+    ax.set_ylabel(result.objectives[0])
+    ax.set_title(f"Tuning {result.base.name}: {result.n_evaluations} evaluations, seed {result.seed}")
+    ax.legend()
+    ax2 = fig.add_subplot(2, 1, 2, sharex=ax)
+    gens = np.arange(int(g.max()) + 1 if g.size else 0)
+    share = [float(f[g == k].mean()) for k in gens]
+    ax2.bar(gens, share, color="tab:green")
+    ax2.set_ylim(0, 1)
+    ax2.set_xlabel("generation")
+    ax2.set_ylabel("feasible share")
+    return fig
+
+
+def tuning_front(result: TuneResult, objectives: tuple[int, int] = (0, 1)) -> Figure:
+    """The Pareto front of a several-objective tuning (the front of the feasible evaluations):
+    every evaluation in objective space, the front highlighted. With one objective, the first
+    objective against the total constraint violation (0: feasible), the best marked."""
+    fig = new_figure(figsize=(7, 5), layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    v = result.objective_values
+    f = result.feasible
+    if v.shape[1] >= 2:
+        i, j = objectives
+        ax.scatter(v[~f, i], v[~f, j], s=8, facecolors="none", edgecolors="tab:gray", label="infeasible")
+        ax.scatter(v[f, i], v[f, j], s=8, color="tab:blue", label="feasible")
+        fr = result.front[np.argsort(v[result.front, i])]
+        ax.plot(v[fr, i], v[fr, j], marker="o", color="tab:red", label="Pareto front of the evaluations")
+        ax.set_xlabel(result.objectives[i])
+        ax.set_ylabel(result.objectives[j])
+    else:
+        viol = result.violation
+        ax.scatter(v[:, 0], viol, s=8, c=result.generation, cmap="viridis")
+        b = result.best
+        ax.scatter([v[b, 0]], [viol[b]], s=80, marker="*", color="tab:red", label="best")
+        ax.set_xlabel(result.objectives[0])
+        ax.set_ylabel("total constraint violation")
+        if np.any(viol > 0):
+            ax.set_yscale("symlog", linthresh=1e-3)
+    ax.set_title(f"Tuning {result.base.name}")
+    ax.legend()
+    return fig
