@@ -98,7 +98,7 @@ def main() -> None:
                                               for (k, c), t in times.items() if t and rnd))
     base = statistics.median(times[("in-process", None)])  # one batch
     print()
-    print(f"| run | cases per chunk | chunks | median (s) | cases/s | overhead vs in-process |")
+    print("| run | cases per chunk | chunks | median (s) | cases/s | overhead vs in-process |")
     print("|---|---:|---:|---:|---:|---:|")
     for (kind, chunk), t in times.items():
         med = statistics.median(t)
@@ -106,7 +106,7 @@ def main() -> None:
         print(f"| {kind} | {args.cases if chunk is None else chunk} | {n_chunks} | {med:.2f} | "
               f"{args.cases / med:,.0f} | {'' if chunk is None else f'{100 * (med / base - 1):+.1f} %'} |")
     print(f"\nsteps per case: {int(round(T_FINAL / DT))}; the overhead is against the in-process run in one batch")
-    print(f"\nall times (s): " + "; ".join(f"{k}{'' if c is None else f' {c}'}: "
+    print("\nall times (s): " + "; ".join(f"{k}{'' if c is None else f' {c}'}: "
                                           + ", ".join(f"{x:.2f}" for x in t) for (k, c), t in times.items()))
 
 

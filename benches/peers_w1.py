@@ -426,7 +426,7 @@ def main() -> None:
             finals[key] = fn(x0)  # compiles this variant on its first call
             notes.append(f"{key}: first call (compilation and one run) {time.perf_counter() - t0:.2f} s")
 
-            def numba_row(fn=fn, n=1):
+            def numba_row(fn=fn, n=1, numba=numba):
                 numba.set_num_threads(n)
                 return measure(lambda: fn(x0))
 
@@ -502,7 +502,7 @@ def main() -> None:
 
     base_best, base_med = None, None
     same = {}
-    for i, (label, key, n, _) in enumerate(rows):
+    for i, (_label, key, n, _) in enumerate(rows):
         if key == "landing":
             same[n] = stats(i)
             if n == 1:
@@ -515,7 +515,7 @@ def main() -> None:
             f"{'CPU/wall':>8} |")
     print(head)
     print("|" + "|".join("-" * (len(c)) for c in head.split("|")[1:-1]) + "|")
-    for i, (label, key, n, _) in sorted(enumerate(rows), key=lambda r: (r[1][2], IMPLEMENTATIONS.index(r[1][1]))):
+    for i, (label, _key, n, _) in sorted(enumerate(rows), key=lambda r: (r[1][2], IMPLEMENTATIONS.index(r[1][1]))):
         best, med = stats(i)
         same_med = same.get(n, (None, None))[1]
         cpu = statistics.median(m["cpu"] / m["wall"] for m in results[i])
@@ -524,7 +524,7 @@ def main() -> None:
               f"{ratio(med, same_med):>22} | {cpu:8.2f} |")
     print("\nEvery timed run, in the order of the rounds (wall s, CPU/wall; a multi-threaded row far below its")
     print("thread count in CPU/wall had cores taken by other load on the machine):")
-    for i, (label, key, n, _) in enumerate(rows):
+    for i, (_label, key, n, _) in enumerate(rows):
         runs = "  ".join(f"{m['wall']:.3f} {m['cpu'] / m['wall']:.2f}" for m in results[i])
         print(f"  {key + ', ' + threads_label(n):<26} {runs}")
     print("\nNotes:")

@@ -11,8 +11,6 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 import landing
 from landing.scenarios import SEED000_LAWS, seed000_landing, seed000_reference, seed000_tracking
 

@@ -91,7 +91,8 @@ def test_per_axis_gains_per_case():
     beta1 = np.array([[0.8, 0.8, 0.8], [0.7, 0.8, 0.9]])
     law = landing.controllers.FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, beta1=beta1))
     batch = landing.simulate_batch(limited(), law, x0, **MC)
-    alone = landing.simulate(limited(), landing.controllers.FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, beta1=(0.7, 0.8, 0.9))),
+    alone = landing.simulate(limited(),
+                             landing.controllers.FixedTimeMSS(**dict(RECONSTRUCTED_GAINS, beta1=(0.7, 0.8, 0.9))),
                              x0[1], first_case=1, **MC)
     assert alone.final_state.tobytes() == batch.final_state[1].tobytes()
 

@@ -15,7 +15,7 @@ import pytest
 import landing
 from landing import cli
 from landing.scenarios import PRESETS, FileError, Scenario, load_scenario, preset, preset_path
-from landing.scenarios.files import scenario_from_dict, tomllib
+from landing.scenarios.files import tomllib
 
 
 def _short(s: Scenario, steps: int = 40) -> dict:
@@ -161,7 +161,7 @@ def test_progress_reaches_logs_as_lines(capsys):
     s = preset("mars_monte_carlo").replace(t_final=0.5)
     landing.monte_carlo(s, 40, seed=1, progress=True, chunk_size=10)
     err = capsys.readouterr().err
-    lines = [l for l in err.splitlines() if "mars_monte_carlo" in l]
+    lines = [line for line in err.splitlines() if "mars_monte_carlo" in line]
     assert lines and "40/40" in lines[-1] and "\r" not in err
 
 

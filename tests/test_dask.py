@@ -13,14 +13,12 @@ import sys
 import textwrap
 import threading
 import time
-from pathlib import Path
-from typing import Any, Optional
+from typing import Any
 
-import numpy as np
 import pytest
 
 import landing
-from conftest import assert_same_bits, assert_same_campaign
+from conftest import assert_same_campaign
 from landing import scenarios
 from landing.errors import ParameterTypeError
 
@@ -210,7 +208,8 @@ LOCAL_PATH = textwrap.dedent(
     import landing
 
     def loaded():
-        return sorted(m for m in sys.modules if m.split(".")[0] in ("dask", "distributed") or m == "landing.campaign.dask")
+        return sorted(m for m in sys.modules
+                      if m.split(".")[0] in ("dask", "distributed") or m == "landing.campaign.dask")
 
     s = landing.scenarios.mars_monte_carlo(t_final=1.0, dt=2e-3)
     landing.monte_carlo(s, 4, seed=1, chunk_size=2)

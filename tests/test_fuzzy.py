@@ -7,7 +7,6 @@ keeps the fixed grid, so the two agree to O(h^2) in the grid step h, which the t
 import numpy as np
 import pytest
 
-import landing
 from landing.fuzzy import SET_NAMES_5, SET_NAMES_7, Mamdani, Variable, variable_rate_system
 
 skfuzzy = pytest.importorskip("skfuzzy")
@@ -70,7 +69,8 @@ def test_a_general_system_with_trapezoids_matches_scikit_fuzzy():
     temp = Variable((0, 40), {"cold": ("trapezoid", 0, 0, 10, 20), "warm": ("triangle", 10, 20, 30),
                               "hot": ("trapezoid", 20, 30, 40, 40)})
     hum = Variable((0, 100), {"dry": ("triangle", 0, 0, 60), "wet": ("triangle", 40, 100, 100)})
-    fan = Variable((0, 10), {"low": ("triangle", 0, 0, 5), "mid": ("triangle", 2, 5, 8), "high": ("triangle", 5, 10, 10)})
+    fan = Variable((0, 10), {"low": ("triangle", 0, 0, 5), "mid": ("triangle", 2, 5, 8),
+                             "high": ("triangle", 5, 10, 10)})
     rules = [(("cold", "dry"), "low"), (("cold", "wet"), "low"), (("warm", "dry"), "mid"),
              (("warm", "wet"), "high"), (("hot", "dry"), "high"), (("hot", "wet"), "high")]
     system = Mamdani([temp, hum], fan, rules, resolution=1001)

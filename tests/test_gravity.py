@@ -77,7 +77,8 @@ def test_inertially_fixed_point_seen_from_the_rotating_frame():
 
 def test_the_seed_000_reference_coefficients():
     """Seed 000 eq. 9-10 print c2, c3 per axis for the Table 1 boundary states (T = 8000 s)."""
-    ref = landing.reference.Cubic.from_boundary([3200, 1300, 9000], [-1.2, 0.2, -1], [2837, 928.1, 5708], [0, 0, 0], 8000)
+    ref = landing.reference.Cubic.from_boundary([3200, 1300, 9000], [-1.2, 0.2, -1], [2837, 928.1, 5708], [0, 0, 0],
+                                                8000)
     c = ref.coefficients
     printed = {0: (2.83e-4, -1.73e-8), 1: (-6.74e-5, 4.58e-9), 2: (9.57e-5, -2.76e-9)}
     # three printed digits, some rounded and some truncated: within one unit of the last digit

@@ -59,7 +59,7 @@ def test_every_constraint_holds_on_the_returned_trajectory(nominal: optimal.Fuel
     # the dynamics: each node interval re-integrated by an independent adaptive method from
     # the equations written above, with the interval's force held
     for j in range(r.nodes):
-        sol = solve_ivp(lambda t, x: rhs(x, r.thrust[j], True), (r.t[j], r.t[j + 1]), r.states[j],
+        sol = solve_ivp(lambda t, x, j=j: rhs(x, r.thrust[j], True), (r.t[j], r.t[j + 1]), r.states[j],
                         method="DOP853", rtol=1e-12, atol=1e-10)
         err = np.abs(sol.y[:, -1] - r.states[j + 1])
         # RK4 at 0.25 s against the adaptive solution: mm and mm/s over an interval
@@ -141,7 +141,8 @@ def test_fuel_is_above_the_impulsive_bound(nominal: optimal.FuelOptimalResult) -
     bound_free = rocket_bound(X0[6], dv_free)
     assert bound_free < free.fuel < 1.1 * bound_free
     a = np.array([drag(x) for x in nominal.states_fine])
-    impulse = np.trapezoid(a, nominal.t_fine, axis=0) if hasattr(np, "trapezoid") else np.trapz(a, nominal.t_fine, axis=0)
+    trapezoid = np.trapezoid if hasattr(np, "trapezoid") else np.trapz
+    impulse = trapezoid(a, nominal.t_fine, axis=0)
     bound = rocket_bound(X0[6], dv_free - impulse)
     assert bound - 0.01 < nominal.fuel, (bound, nominal.fuel)
     assert abs(impulse).max() > 0.5  # drag is not negligible here (m/s), so this is a second check

@@ -28,6 +28,7 @@ from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
 import landing
+from conftest import RECONSTRUCTED_GAINS
 from landing import (
     controllers,
     dispersions,
@@ -41,7 +42,6 @@ from landing import (
 )
 from landing._internal.limits import LIMITS, available_memory, require_memory
 from landing.errors import LandingError, ParameterError, ParameterTypeError, SimulationError
-from conftest import NOMINAL, RECONSTRUCTED_GAINS
 
 #: Examples per property (LANDING_PROPERTY_EXAMPLES=2000 for a long search).
 EXAMPLES = int(os.environ.get("LANDING_PROPERTY_EXAMPLES", "100"))
@@ -377,7 +377,7 @@ def test_theory_formulas(data: Any, fn: Callable[..., Any]) -> None:
        tol=st.one_of(arrays(max_dims=1), SCALARS))
 def test_theory_time_helpers(t: Any, signal: Any, tol: Any) -> None:
     for fn in (theory.entry_time, theory.settle_time):
-        valid_or_refused(lambda: fn(t, signal, tol), "t", "signal", "tol")
+        valid_or_refused(lambda fn=fn: fn(t, signal, tol), "t", "signal", "tol")
 
 
 @FAST

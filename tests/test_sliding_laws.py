@@ -119,7 +119,8 @@ def test_command_noise_is_a_fraction_of_the_command():
     """OpenLoop a on a double integrator: dv / dt = a (1 + n_k), n_k from stream 2 of the case."""
     a = np.array([0.5, -2.0, 1.0])
     res = landing.simulate(DoubleIntegrator(), controllers.OpenLoop(acceleration=a), np.zeros(6), t_final=1.0, dt=0.1,
-                           integrator="euler", disturbance=landing.disturbances.CommandNoise(0.01), seed=21, first_case=3)
+                           integrator="euler", disturbance=landing.disturbances.CommandNoise(0.01), seed=21,
+                           first_case=3)
     n = np.diff(res.states[:, 3:], axis=0) / (0.1 * a) - 1.0
     for k in range(n.shape[0]):
         raw = numpy_block([k, 3, 0, 0], [21, 2])[:3]

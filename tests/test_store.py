@@ -157,7 +157,8 @@ def test_a_store_of_another_campaign_is_refused(tmp_path):
         landing.monte_carlo(s, 10, seed=3, chunk_size=2, store=path)
     with pytest.raises(ParameterError, match="record_every: 25 in the store, 50 here"):
         landing.monte_carlo(s, 10, seed=3, chunk_size=5, record_every=50, store=path)
-    with pytest.raises(ParameterError, match=r"keep: \('states', 'controls', 'diagnostics'\) in the store, \('states',\) here"):
+    with pytest.raises(ParameterError,
+                       match=r"keep: \('states', 'controls', 'diagnostics'\) in the store, \('states',\) here"):
         landing.monte_carlo(s, 10, seed=3, chunk_size=5, keep=("states",), store=path)
     with pytest.raises(ParameterError, match="not the scenario of the store"):
         landing.load(path, scenario=small().replace(dt=4e-3))

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 import landing
+from conftest import RECONSTRUCTED_GAINS
 from landing import theory
 from landing.controllers import FixedTimeMSS, OpenLoop
 from landing.plants import DoubleIntegrator
-from conftest import RECONSTRUCTED_GAINS
 
 
 def test_the_reconstructed_gains_give_the_seed_bounds():
@@ -23,7 +23,8 @@ def test_practical_formulas_against_their_definitions():
     # eq. 6 / 40: the fixed-time bound divided by theta; eq. 38: the radius where
     # (1 - theta) times the weaker of the two reaching terms meets the disturbance bound
     c1, e1, c2, e2, d, th = 0.9, 0.9, 0.5, 1.1, 20.0, 0.2
-    assert theory.practical_time_bound(c1, e1, c2, e2, th) == pytest.approx(theory.fixed_time_bound(c1, e1, c2, e2) / th)
+    fixed = theory.fixed_time_bound(c1, e1, c2, e2)
+    assert theory.practical_time_bound(c1, e1, c2, e2, th) == pytest.approx(fixed / th)
     r = theory.practical_radius(c1, e1, c2, e2, d, th)
     assert r == pytest.approx(min((d / ((1 - th) * c1)) ** (1 / e1), (d / ((1 - th) * c2)) ** (1 / e2)))
     b = theory.mss_bounds(FixedTimeMSS(**RECONSTRUCTED_GAINS), ap_max=d, theta1=th, theta2=0.1)

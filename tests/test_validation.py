@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import landing
-from landing import controllers, disturbances, plants, reference
 from conftest import NOMINAL, RECONSTRUCTED_GAINS
+from landing import controllers, disturbances, plants, reference
 
 
 def gains(**kw):
@@ -28,7 +28,8 @@ CONSTRUCTION = [
     (lambda: controllers.FixedTimeMSS(**gains(q1=1.2)), "q1 = 1.2 violates 0 < q1 < 1"),
     (lambda: controllers.FixedTimeMSS(**gains(q1=0.0)), "0 < q1 < 1"),
     (lambda: controllers.FixedTimeMSS(**gains(q2=0.9)), "q2 = 0.9 violates q2 > 1"),
-    (lambda: controllers.FixedTimeMSS(**gains(gamma1=(0.9, 1.0, 0.9))), r"gamma1 = 1 violates 0 < gamma1 < 1 \(axis 1\)"),
+    (lambda: controllers.FixedTimeMSS(**gains(gamma1=(0.9, 1.0, 0.9))),
+     r"gamma1 = 1 violates 0 < gamma1 < 1 \(axis 1\)"),
     (lambda: controllers.FixedTimeMSS(**gains(gamma2=1.0)), "gamma2 > 1"),
     (lambda: controllers.FixedTimeMSS(**gains(beta1=-0.8)), "beta1 > 0"),
     (lambda: controllers.FixedTimeMSS(**gains(beta2=0.0)), "beta2 > 0"),
@@ -96,7 +97,8 @@ SIMULATION = [
     (dict(x0=NOMINAL), ValueError, r"x0 has shape \(7,\)"),
     (dict(x0=NOMINAL[None, :6]), ValueError, r"x0 has shape \(1, 6\); this plant takes \(N, 7\)"),
     (dict(x0=np.zeros((0, 7))), ValueError, "N >= 1"),
-    (dict(x0=np.array([NOMINAL, NOMINAL * np.r_[1, 1, 1, 1, 1, 1, -1]])), ValueError, r"x0\[1, 6\] = -1905 violates mass x0\[6\] > 0"),
+    (dict(x0=np.array([NOMINAL, NOMINAL * np.r_[1, 1, 1, 1, 1, 1, -1]])), ValueError,
+     r"x0\[1, 6\] = -1905 violates mass x0\[6\] > 0"),
     (dict(x0=np.array([np.r_[NOMINAL[:6], np.nan]])), ValueError, r"x0\[0, 6\] = NaN violates finite values"),
     (dict(x0=[["a"] * 7]), TypeError, "x0 must be an array of real numbers"),
     (dict(plant="mars"), TypeError, "plant must be a landing.plants plant"),

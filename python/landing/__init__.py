@@ -14,7 +14,6 @@ import importlib
 from types import ModuleType
 
 from landing import (
-    _core,
     campaign,
     controllers,
     dispersions,

@@ -1,7 +1,8 @@
 # Hand-written stubs of the Rust extension module (crates/landing_py). The public API is the
 # Python package; its configuration classes compile their parameter tables into these handles
 # once, and batches take the handles.
-from typing import Any, Optional, Sequence
+from collections.abc import Sequence
+from typing import Any, Optional
 
 import numpy as np
 import numpy.typing as npt
@@ -69,7 +70,7 @@ class Disturbance:
     def __init__(self, owner: str, table: Table) -> None:
         """From a table {"components": [component tables...]}."""
     @staticmethod
-    def combine(parts: Sequence["Disturbance"]) -> "Disturbance":
+    def combine(parts: Sequence[Disturbance]) -> Disturbance:
         """The parts acting together (their components add up)."""
     def bound(self, axes: int) -> list[float]:
         """Per-axis bound on |d_i(t)|."""

@@ -19,25 +19,32 @@ import os
 import sys
 import time
 import traceback
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Optional, Sequence
+from typing import Any, Optional, Union
+
+from landing import controllers, plots, theory
+from landing.campaign import MonteCarloResult, load, monte_carlo
+from landing.campaign.dask import connect
+from landing.errors import LandingError, SimulationError
+from landing.results import SimulationResult
+from landing.scenarios import PRESETS, FileError, Scenario, preset
+from landing.scenarios.files import scenario_from_dict, tomllib
+from landing.tune import tune
 
 EXIT_OK = 0
 EXIT_FAILURE = 1
 EXIT_BAD_INPUT = 2
 
 
-def _scenario(spec: str) -> Any:
-    from landing.scenarios import Scenario
-
+def _scenario(spec: str) -> Scenario:
     return Scenario.load(spec)
 
 
-def _figures(result: Any, scenario: Any, out: Optional[str], default: str) -> None:
+def _figures(result: Union[SimulationResult, MonteCarloResult], scenario: Scenario, out: Optional[str],
+             default: str) -> None:
     if out == "":
         return
-    from landing import plots
-
     folder = Path(out or default)
     figs = plots.standard_figures(result, scenario.plant, scenario.reference)
     if not figs:
@@ -48,8 +55,6 @@ def _figures(result: Any, scenario: Any, out: Optional[str], default: str) -> No
 
 
 def cmd_list(args: argparse.Namespace) -> int:
-    from landing.scenarios import PRESETS, preset
-
     width = max(len(n) for n in PRESETS)
     for name in PRESETS:
         print(f"{name:<{width}}  {preset(name).description}")
@@ -73,8 +78,6 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_mc(args: argparse.Namespace) -> int:
-    import landing
-
     scenario = _scenario(args.scenario)
     kwargs: dict[str, Any] = dict(seed=args.seed, threads=args.threads, chunk_size=args.chunk_size)
     if args.store is not None:
@@ -83,12 +86,10 @@ def cmd_mc(args: argparse.Namespace) -> int:
         kwargs["progress"] = False
     client = None
     if args.scheduler is not None:
-        from landing.campaign.dask import connect
-
         client = kwargs["client"] = connect(args.scheduler)
     start = time.perf_counter()
     try:
-        mc = landing.monte_carlo(scenario, args.cases, **kwargs)
+        mc = monte_carlo(scenario, args.cases, **kwargs)
     finally:
         if client is not None:
             client.close()
@@ -99,17 +100,13 @@ def cmd_mc(args: argparse.Namespace) -> int:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
-    import landing
-
-    mc = landing.load(args.store)
+    mc = load(args.store)
     print(mc.report())
     _figures(mc, mc.scenario, args.out, str(Path(args.store) / "figures"))
     return EXIT_OK
 
 
 def cmd_bounds(args: argparse.Namespace) -> int:
-    from landing import controllers, theory
-
     scenario = _scenario(args.scenario)
     law = scenario.controller
     if isinstance(law, controllers.FixedTimeMSS):
@@ -128,13 +125,10 @@ def cmd_bounds(args: argparse.Namespace) -> int:
     return EXIT_BAD_INPUT
 
 
-def _tune_config(path: str) -> tuple[Any, dict[str, Any]]:
+def _tune_config(path: str) -> tuple[Scenario, dict[str, Any]]:
     """A tuning file: a scenario TOML file with a ``[tune]`` table (gains, objective,
     constraints, cases, budget, seed, popsize, sigma0), or a ``[tune]`` table alone whose
     ``scenario`` key names a preset or another scenario file."""
-    from landing.scenarios.files import FileError, scenario_from_dict, tomllib
-    from landing.scenarios import Scenario
-
     file = Path(path)
     if not file.exists():
         raise FileError(f"{path}: no such file")
@@ -176,21 +170,17 @@ def _tune_config(path: str) -> tuple[Any, dict[str, Any]]:
 
 
 def cmd_tune(args: argparse.Namespace) -> int:
-    import landing
-
     scenario, kwargs = _tune_config(args.config)
     if args.budget is not None:
         kwargs["budget"] = args.budget
     if args.seed is not None:
         kwargs["seed"] = args.seed
     print(f"tuning {scenario.name}: {', '.join(kwargs['gains'])} for {kwargs['objective']}")
-    result = landing.tune(scenario, **kwargs, threads=args.threads, progress=not args.no_progress)
+    result = tune(scenario, **kwargs, threads=args.threads, progress=not args.no_progress)
     print(result)
     folder = Path(args.out or f"tuning/{scenario.name}")
     written = result.write(folder)
     if args.figures:
-        from landing import plots
-
         written += plots.save_figures(
             {"convergence": plots.tuning_convergence(result), "front": plots.tuning_front(result)}, folder)
     print(f"written to {folder}/: " + ", ".join(p.name for p in written))
@@ -260,8 +250,6 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Runs the command line; returns the exit code (the console script exits with it)."""
-    from landing.errors import LandingError, SimulationError
-
     args = parser().parse_args(argv)  # exits with 2 on a bad command line
     try:
         return args.run(args)

@@ -15,7 +15,9 @@ from typing import Any, Literal
 import numpy as np
 
 from landing import _core
-from landing._internal.table import ArrayLike, Table
+from landing._internal.table import ArrayLike, Table, as_float_array
+from landing.errors import ParameterError, ParameterTypeError
+from landing.fuzzy import variable_rate_system
 
 __all__ = [
     "Controller",
@@ -130,7 +132,7 @@ class PDSlidingMode(Controller):
 
     kind = "pd_sliding_mode"
 
-    def _table(self):
+    def _table(self) -> dict[str, Any]:
         table = super()._table()
         table["lambda"] = table.pop("lambda_")
         return table
@@ -188,7 +190,8 @@ class FuzzyFastTerminalSMC(Controller):
 
 @dataclass(frozen=True, eq=False)
 class IntegralExponentialReaching(Controller):
-    """Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12) in the stable form ``s = -sigma' - int(c1 sigma + c2 sigma')``:
+    """Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12) in the
+    stable form ``s = -sigma' - int(c1 sigma + c2 sigma')``:
     ``u = q_ref'' - drift - c1 sigma - c2 sigma' + k s + epsilon switch(s)``, so that
     ``s' = -k s - epsilon sgn(s)`` and, on s = 0, ``sigma'' + c2 sigma' + c1 sigma = 0``.
     (The seed's printed surface gives unstable sliding dynamics.)
@@ -232,8 +235,6 @@ class FuzzyVariableRate(Controller):
 
     def __post_init__(self) -> None:
         if self.system is None:
-            from landing.fuzzy import variable_rate_system
-
             object.__setattr__(self, "system", variable_rate_system())
         super().__post_init__()
 
@@ -335,9 +336,6 @@ class Tabulated(Controller):
     kind = "tabulated"
 
     def _table(self) -> dict[str, Any]:
-        from landing.errors import ParameterError, ParameterTypeError
-        from landing._internal.table import as_float_array
-
         force = as_float_array("Tabulated", "force", self.force)
         if force.ndim not in (2, 3) or force.shape[-2] == 0:
             raise ParameterError(

@@ -24,13 +24,13 @@ class Dispersion(Table):
     """Independent distributions of the state components."""
 
     @staticmethod
-    def _compiler(owner: str, table: dict) -> "_core.DispersionHandle":
+    def _compiler(owner: str, table: dict) -> _core.DispersionHandle:
         return _core.DispersionHandle(table)
 
     @property
     def dim(self) -> int:
         """Number of state components."""
-        return int(self._core.dim)  # type: ignore[attr-defined]
+        return int(self._core.dim)
 
     def sample(self, n: int, seed: int = 0, first_case: int = 0) -> np.ndarray:
         """Cases ``first_case .. first_case + n``, shape ``(n, dim)``. The memory the draws
@@ -40,7 +40,7 @@ class Dispersion(Table):
         seed = integer("seed", seed, minimum=0, maximum=2**64 - 1, owner=owner)
         first_case = integer("first_case", first_case, minimum=0, maximum=2**64 - 1 - n, owner=owner)
         require_memory(f"{owner}.sample(n={n}): {n} x {self.dim} draws", 8 * n * self.dim)
-        return self._core.sample(seed, first_case, n)  # type: ignore[attr-defined]
+        return self._core.sample(seed, first_case, n)
 
 
 @dataclass(frozen=True, eq=False)

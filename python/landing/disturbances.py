@@ -8,11 +8,13 @@ case's noise does not depend on the thread count or the batch it runs in.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any, ClassVar, Iterable, Sequence, Union
+from typing import ClassVar, Union
 
 from landing import _core
 from landing._internal.table import ArrayLike, Table
+from landing.errors import ParameterTypeError
 
 __all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "CommandNoise", "Sum", "compiled"]
 
@@ -21,13 +23,13 @@ class Disturbance(Table):
     """Base class of the disturbance components."""
 
     @staticmethod
-    def _compiler(owner: str, table: dict) -> "_core.Disturbance":
+    def _compiler(owner: str, table: dict) -> _core.Disturbance:
         return _core.Disturbance(owner, {"components": [table]})
 
-    def __add__(self, other: "Disturbance") -> "Sum":
+    def __add__(self, other: Disturbance) -> Sum:
         return Sum([self]) + other
 
-    def components(self) -> list["Disturbance"]:
+    def components(self) -> list[Disturbance]:
         return [self]
 
 
@@ -79,8 +81,6 @@ class Sum(Disturbance):
         self.parts: list[Disturbance] = []
         for p in parts:
             if not isinstance(p, Disturbance):
-                from landing.errors import ParameterTypeError
-
                 raise ParameterTypeError(
                     f"disturbance must be a landing.disturbances component or a list of them, got {p!r}"
                 )
@@ -90,10 +90,8 @@ class Sum(Disturbance):
     def components(self) -> list[Disturbance]:
         return list(self.parts)
 
-    def __add__(self, other: Disturbance) -> "Sum":
+    def __add__(self, other: Disturbance) -> Sum:
         if not isinstance(other, Disturbance):
-            from landing.errors import ParameterTypeError
-
             raise ParameterTypeError(
                 f"disturbance must be a landing.disturbances component or a list of them, got {other!r}"
             )
@@ -106,14 +104,12 @@ class Sum(Disturbance):
 DisturbanceLike = Union[Disturbance, Sequence[Disturbance], None]
 
 
-def compiled(disturbance: DisturbanceLike) -> Union["_core.Disturbance", None]:
+def compiled(disturbance: DisturbanceLike) -> Union[_core.Disturbance, None]:
     """The core's compiled disturbance for a component, a sum, a list of them, or None."""
-    from landing.errors import ParameterTypeError
-
     if disturbance is None:
         return None
     if isinstance(disturbance, Disturbance):
-        return disturbance._core  # type: ignore[attr-defined]
+        return disturbance._core
     refused = ParameterTypeError(
         f"disturbance must be a landing.disturbances component or a list of them, got {disturbance!r}"
     )

@@ -14,8 +14,9 @@ clipped to it.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -53,7 +54,8 @@ class Variable:
                 raise ParameterTypeError(f"Variable: set names must be strings, got {short(name)}")
             if isinstance(spec, (str, bytes)) or not isinstance(spec, (tuple, list)) or not spec:
                 raise ParameterTypeError(
-                    f"Variable: sets[{name!r}] must be ('triangle', a, b, c) or ('trapezoid', a, b, c, d), got {short(spec)}"
+                    f"Variable: sets[{name!r}] must be ('triangle', a, b, c) or ('trapezoid', a, b, c, d), "
+                    f"got {short(spec)}"
                 )
             shape = choice(f"sets[{name!r}][0]", spec[0], ("triangle", "trapezoid"), owner="Variable")
             count = 3 if shape == "triangle" else 4
@@ -97,7 +99,8 @@ class Mamdani(Table):
             raise ParameterTypeError(f"Mamdani: output must be a Variable, got {short(output)}")
         self.output = output
         if isinstance(rules, (str, bytes)) or not hasattr(rules, "__iter__"):
-            raise ParameterTypeError(f"Mamdani: rules must be a list of ((input sets...), output set), got {short(rules)}")
+            raise ParameterTypeError(
+                f"Mamdani: rules must be a list of ((input sets...), output set), got {short(rules)}")
         self.rules = []
         for k, rule in enumerate(rules):
             if isinstance(rule, (str, bytes)) or not isinstance(rule, (tuple, list)) or len(rule) != 2:
@@ -106,7 +109,8 @@ class Mamdani(Table):
                 )
             antecedent, consequent = rule
             if isinstance(antecedent, str) or not isinstance(antecedent, (tuple, list)):
-                raise ParameterTypeError(f"Mamdani: rules[{k}][0] must be a tuple of set names, got {short(antecedent)}")
+                raise ParameterTypeError(
+                    f"Mamdani: rules[{k}][0] must be a tuple of set names, got {short(antecedent)}")
             for name in (*antecedent, consequent):
                 if not isinstance(name, str):
                     raise ParameterTypeError(f"Mamdani: rules[{k}] names sets by strings, got {short(name)}")
@@ -119,7 +123,7 @@ class Mamdani(Table):
                 )
         self._core = _core.FuzzySystem(self._table())
 
-    def _nested(self) -> "_core.FuzzySystem":
+    def _nested(self) -> _core.FuzzySystem:
         """Inside a law's table the system is its compiled handle."""
         return self._core
 
@@ -148,7 +152,7 @@ class Mamdani(Table):
 
     @classmethod
     def _from_table(cls, table: dict[str, Any], input_names: Sequence[Sequence[str]],
-                    output_names: Sequence[str]) -> "Mamdani":
+                    output_names: Sequence[str]) -> Mamdani:
         def variable(t: dict[str, Any], names: Sequence[str]) -> Variable:
             return Variable((t["lo"], t["hi"]), {n: (k, *p) for n, (k, p) in zip(names, t["sets"])})
 

@@ -35,7 +35,7 @@ class Gravity(Table):
         x = real_array("r", r, finite=True, owner=type(self).__name__)
         if x.shape[-1:] != (3,) or x.ndim > 2:
             raise ParameterError(f"{type(self).__name__}: r has shape {x.shape}; it takes (3,) or (N, 3)")
-        out = self._core.evaluate(np.ascontiguousarray(x.reshape(-1, 3)), potential)  # type: ignore[attr-defined]
+        out = self._core.evaluate(np.ascontiguousarray(x.reshape(-1, 3)), potential)
         return out[0] if x.ndim == 1 else out
 
     def acceleration(self, r: ArrayLike) -> np.ndarray:

@@ -33,11 +33,15 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import Any, Literal, Optional
 
 import numpy as np
 
+from landing.controllers import Tabulated
 from landing.errors import ParameterError, ParameterTypeError
+from landing.plants import MarsLander
+from landing.results import SimulationResult
+from landing.simulation import simulate
 
 __all__ = ["FuelOptimalResult", "fuel_optimal", "impulsive_fuel_bound"]
 
@@ -96,8 +100,6 @@ def _triple(name: str, value: Any) -> tuple[float, float, float]:
 
 
 def _model(plant: Any) -> MarsModel:
-    from landing.plants import MarsLander
-
     if not isinstance(plant, MarsLander):
         raise ParameterTypeError(f"fuel_optimal: plant must be a landing.plants.MarsLander, got {type(plant).__name__}")
     if plant.thrust_limit is None:
@@ -182,20 +184,16 @@ class FuelOptimalResult:
     def nodes(self) -> int:
         return int(self.thrust.shape[0])
 
-    def controller(self, after: str = "zero") -> Any:
+    def controller(self, after: Literal["hold", "zero"] = "zero") -> Tabulated:
         """The thrust profile as a :class:`landing.controllers.Tabulated` law (each row held for
         ``steps_per_node`` control periods of ``dt``)."""
-        from landing.controllers import Tabulated
-
         return Tabulated(force=self.thrust, hold=self.steps_per_node, after=after)
 
     def replay(self, disturbance: Any = None, *, t_final: Optional[float] = None, x0: Any = None,
-               **options: Any) -> Any:
+               **options: Any) -> SimulationResult:
         """The thrust profile flown open loop by :func:`landing.simulate` at the control period
         ``dt`` (one RK4 step each), from the optimum's initial state unless ``x0`` is given,
         with an optional disturbance; ``options`` go to :func:`landing.simulate`."""
-        from landing.simulation import simulate
-
         start = self.states[0] if x0 is None else np.asarray(x0, dtype=float)
         return simulate(
             self.plant, self.controller(), start, t_final=self.t_final if t_final is None else t_final,
@@ -280,7 +278,8 @@ def fuel_optimal(
         lo, hi = t_final_bounds if t_final_bounds is not None else (0.2 * t_final, 3.0 * t_final)
         lo, hi = _positive("t_final_bounds[0]", lo), _positive("t_final_bounds[1]", hi)
         if not lo <= t_final <= hi:
-            raise ParameterError(f"fuel_optimal: t_final = {t_final} violates t_final_bounds[0] <= t_final <= t_final_bounds[1] ({lo}, {hi})")
+            raise ParameterError(f"fuel_optimal: t_final = {t_final} violates t_final_bounds[0] <= t_final <= "
+                                 f"t_final_bounds[1] ({lo}, {hi})")
     elif t_final_bounds is not None:
         raise ParameterError("fuel_optimal: t_final_bounds applies only with free_final_time=True")
     tan_glide = None
@@ -296,7 +295,8 @@ def fuel_optimal(
         try:
             low, high = (float(b) for b in thrust_magnitude)
         except (TypeError, ValueError) as exc:
-            raise ParameterTypeError(f"fuel_optimal: thrust_magnitude must be (low, high) in N, got {thrust_magnitude!r}") from exc
+            raise ParameterTypeError(
+                f"fuel_optimal: thrust_magnitude must be (low, high) in N, got {thrust_magnitude!r}") from exc
         if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high):
             raise ParameterError(f"fuel_optimal: thrust_magnitude = {thrust_magnitude!r} violates 0 <= low < high")
     fmax = np.array(model.thrust_limit)

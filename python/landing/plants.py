@@ -28,7 +28,7 @@ class Plant(Table):
     _compiler = _core.Plant
 
     def _info(self) -> dict[str, Any]:
-        return self._core.info()  # type: ignore[attr-defined]
+        return self._core.info()
 
     @property
     def state_names(self) -> tuple[str, ...]:
@@ -53,7 +53,7 @@ class Plant(Table):
         x = real_array("states", states, owner=type(self).__name__)
         if x.ndim == 0 or x.shape[-1] != self.state_dim:
             raise ParameterError(f"states have shape {x.shape}; this plant's have {self.state_dim} components")
-        q, qd = self._core.coordinates(x.reshape(-1, x.shape[-1]))  # type: ignore[attr-defined]
+        q, qd = self._core.coordinates(x.reshape(-1, x.shape[-1]))
         lead = x.shape[:-1]
         return q.reshape(lead + (q.shape[-1],)), qd.reshape(lead + (qd.shape[-1],))
 
@@ -261,7 +261,7 @@ class TetheredSatellite(Plant):
         if a[0].size == 0:
             return np.empty(shape + (self.state_dim,))
         rows = np.ascontiguousarray(np.stack([v.reshape(-1) for v in a], axis=1))
-        x = self._core.state_at(rows)  # type: ignore[attr-defined]
+        x = self._core.state_at(rows)
         return x.reshape(shape + (x.shape[-1],))
 
     def states_from_draws(self, draws: np.ndarray) -> np.ndarray:

@@ -28,11 +28,11 @@ class Reference(Table):
         axes = integer("axes", axes, owner=owner)
         if axes not in (2, 3):
             raise ParameterError(f"{owner}: axes = {axes} violates axes in (2, 3)")
-        out = self._core.evaluate(axes, tt.ravel().tolist())  # type: ignore[attr-defined]
-        res = tuple(out[k] for k in ("position", "velocity", "acceleration"))
+        out = self._core.evaluate(axes, tt.ravel().tolist())
+        p, v, a = (out[k] for k in ("position", "velocity", "acceleration"))
         if tt.ndim == 0:
-            return tuple(a[0] for a in res)  # type: ignore[return-value]
-        return res  # type: ignore[return-value]
+            return p[0], v[0], a[0]
+        return p, v, a
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,12 +60,12 @@ class Cubic(Reference):
     @classmethod
     def from_boundary(
         cls, p0: ArrayLike, v0: ArrayLike, pT: ArrayLike, vT: ArrayLike, T: float
-    ) -> "Cubic":
+    ) -> Cubic:
         """The cubic through position and velocity ``p0, v0`` at 0 and ``pT, vT`` at ``T``."""
-        args = [real_array(n, v, finite=True, owner=cls.__name__).ravel().tolist() for n, v in
-                (("p0", p0), ("v0", v0), ("pT", pT), ("vT", vT))]
+        p0l, v0l, pTl, vTl = [real_array(n, v, finite=True, owner=cls.__name__).ravel().tolist() for n, v in
+                              (("p0", p0), ("v0", v0), ("pT", pT), ("vT", vT))]
         t_end = real("T", T, owner=cls.__name__)
-        c = _core.cubic_from_boundary(*args, t_end)
+        c = _core.cubic_from_boundary(p0l, v0l, pTl, vTl, t_end)
         return cls(coefficients=np.array(c).T, t_end=t_end)
 
     def _table(self) -> dict[str, Any]:

@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Iterator, Mapping, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
 
@@ -171,12 +172,12 @@ def dataset_coords(t: np.ndarray, state_names: Sequence[str], control_names: Seq
 
 
 def result_dataset(
-    result: "SimulationResult",
+    result: SimulationResult,
     *,
     x0: Optional[np.ndarray] = None,
     seed: Optional[int] = None,
     attrs: Optional[dict[str, Any]] = None,
-) -> "xarray.Dataset":
+) -> xarray.Dataset:
     """The xarray Dataset of a result (see :meth:`SimulationResult.to_xarray`)."""
     xr = require_io("xarray", what="to_xarray")
     single = result.final_state.ndim == 1
@@ -206,7 +207,7 @@ def result_dataset(
         if name in METRIC_UNITS:
             meta["units"] = METRIC_UNITS[name]
         data[name if name not in data else f"metric_{name}"] = (dims, v, meta)
-    ds_attrs = {"kernel": result.kernel}
+    ds_attrs: dict[str, Any] = {"kernel": result.kernel}
     if seed is not None:
         ds_attrs["seed"] = int(seed)
     ds_attrs.update(attrs or {})
@@ -282,13 +283,13 @@ class Metrics(Mapping[str, np.ndarray]):
         """The metrics of one case."""
         return {k: v[case] for k, v in self._columns.items()}
 
-    def cases(self, start: Any, stop: Optional[int] = None) -> "Metrics":
+    def cases(self, start: Any, stop: Optional[int] = None) -> Metrics:
         """Some of the cases: ``m.cases(a, b)`` is cases a .. b - 1 (views of these columns),
         ``m.cases(index)`` those of an integer index array or a boolean mask (copies)."""
         key = _case_key(start, stop)
         return self._map(lambda a: a[key])
 
-    def _map(self, fn: Callable[[np.ndarray], np.ndarray]) -> "Metrics":
+    def _map(self, fn: Callable[[np.ndarray], np.ndarray]) -> Metrics:
         """The columns with ``fn`` applied to each (without the context of :meth:`to_pandas`)."""
         return Metrics({k: fn(np.asarray(v)) for k, v in self._columns.items()})
 
@@ -300,7 +301,7 @@ class Metrics(Mapping[str, np.ndarray]):
         state_names: Optional[Sequence[str]] = None,
         seed: Optional[int] = None,
         first_case: int = 0,
-    ) -> "pandas.DataFrame":
+    ) -> pandas.DataFrame:
         """A pandas DataFrame, one row per case (index ``case``; a single case gives one row).
 
         Per-axis columns are split with the axis names, ``final_error_x`` ... (``_0``, ``_1``
@@ -329,7 +330,7 @@ class Metrics(Mapping[str, np.ndarray]):
         index = pd.RangeIndex(first_case, first_case + n, name="case")
         return pd.DataFrame({**front, **flat}, index=index)
 
-    def _with_context(self, **context: Any) -> "Metrics":
+    def _with_context(self, **context: Any) -> Metrics:
         """The same columns, knowing what :meth:`to_pandas` adds (axis names, seed, x0)."""
         out = Metrics(self._columns)
         out.__dict__["_context"] = {**self.__dict__.get("_context", {}), **context}
@@ -399,7 +400,7 @@ class SimulationResult:
         three-axis plants, the generalized coordinates' names otherwise)."""
         return axis_names(self.metrics, self.state_names)
 
-    def to_xarray(self) -> "xarray.Dataset":
+    def to_xarray(self) -> xarray.Dataset:
         """An xarray Dataset: ``states`` (case, time, state), ``controls`` (case, time,
         control), each diagnostic (case, time[, axis]), ``final_state`` (case, state) and every
         metric (case[, axis]), with the time (s), component and axis names as coordinates and
@@ -414,11 +415,11 @@ class SimulationResult:
     def __len__(self) -> int:
         return self.n_cases
 
-    def __getitem__(self, case: int) -> "SimulationResult":
+    def __getitem__(self, case: int) -> SimulationResult:
         self._require_batch()
         return self._map(lambda a: a[case])
 
-    def cases(self, start: Any, stop: Optional[int] = None) -> "SimulationResult":
+    def cases(self, start: Any, stop: Optional[int] = None) -> SimulationResult:
         """Some of the cases, the case axis kept: ``res.cases(a, b)`` is cases a .. b - 1 (views
         of this result's arrays, as a slice is), ``res.cases(index)`` those of an integer index
         array or a boolean mask (copies)."""
@@ -426,7 +427,7 @@ class SimulationResult:
         key = _case_key(start, stop)
         return self._map(lambda a: a[key])
 
-    def keeping(self, signals: Sequence[str]) -> "SimulationResult":
+    def keeping(self, signals: Sequence[str]) -> SimulationResult:
         """This result with only the recorded signals named in ``signals`` (of :data:`SIGNALS`);
         the final states and the metrics are always kept."""
         return dataclasses.replace(
@@ -437,7 +438,7 @@ class SimulationResult:
         )
 
     @classmethod
-    def empty(cls, n: int, like: "SimulationResult") -> "SimulationResult":
+    def empty(cls, n: int, like: SimulationResult) -> SimulationResult:
         """``n`` cases of uninitialised arrays shaped and typed like those of the batch ``like``,
         with its times, names, kernel and signals (what ``like`` lacks is absent here too):
         an output allocated once, which :meth:`put` fills."""
@@ -445,7 +446,7 @@ class SimulationResult:
         n = integer("n", n, minimum=0)
         return like._map(lambda a: np.empty((n,) + a.shape[1:], dtype=a.dtype))
 
-    def put(self, start: int, part: "SimulationResult") -> None:
+    def put(self, start: int, part: SimulationResult) -> None:
         """Copies the cases of the batch ``part`` into cases ``start .. start + len(part)`` of
         this one, every signal this result holds (``part`` may hold more)."""
         part._require_batch()
@@ -466,7 +467,7 @@ class SimulationResult:
             v[...] = part.metrics[k]
 
     @classmethod
-    def concat(cls, parts: Sequence["SimulationResult"]) -> "SimulationResult":
+    def concat(cls, parts: Sequence[SimulationResult]) -> SimulationResult:
         """The cases of the batches ``parts`` one after the other (say, the chunks of one
         campaign). They must share their recorded times, component names and signals; the
         kernel named is the first part's (every level gives the same bits)."""
@@ -494,7 +495,7 @@ class SimulationResult:
         if self.final_state.ndim != 2:
             raise TypeError("this result holds a single case")
 
-    def _map(self, fn: Callable[[np.ndarray], np.ndarray]) -> "SimulationResult":
+    def _map(self, fn: Callable[[np.ndarray], np.ndarray]) -> SimulationResult:
         """This result with ``fn`` applied to each per-case array (states, controls, final
         state, diagnostics, metrics); the times, names and kernel are kept. Every slice,
         allocation and selection of cases goes through here."""

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Any, ClassVar, Mapping, Optional
+from typing import Any, ClassVar, Optional
 
 import numpy as np
 
@@ -89,7 +90,7 @@ class RunOptions:
         default (``settle_tolerance`` None)."""
         return self.settle_tolerance is None
 
-    def replace(self, **changes: Any) -> "RunOptions":
+    def replace(self, **changes: Any) -> RunOptions:
         """A copy with some options changed, checked like a new one."""
         return dataclasses.replace(self, **changes)
 
@@ -186,10 +187,10 @@ def simulate_batch(
     first = integer("first_case", first_case, minimum=0, maximum=2**63 - 1)
     integer("x0 cases N", x.shape[0], cap="max_cases")
     out = _core.simulate_batch(
-        plant._core,  # type: ignore[attr-defined]
-        controller._core,  # type: ignore[attr-defined]
+        plant._core,
+        controller._core,
         x,
-        reference=None if reference is None else reference._core,  # type: ignore[attr-defined]
+        reference=None if reference is None else reference._core,
         disturbance=compiled(disturbance),
         seed=seed_i,
         first_case=first,

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import numbers
 import operator
-from typing import Any, Optional, Sequence
+from collections.abc import Sequence
+from typing import Any, Optional
 
 import numpy as np
 

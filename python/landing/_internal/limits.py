@@ -10,8 +10,9 @@ through: it computes the bytes first and refuses with a :class:`MemoryError` sta
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Mapping, Optional
+from typing import Optional
 
 from landing import _core
 

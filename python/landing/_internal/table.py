@@ -11,7 +11,8 @@ which is validated in turn.
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, Callable, ClassVar, Sequence, Union
+from collections.abc import Sequence
+from typing import Any, Callable, ClassVar, Union
 
 import numpy as np
 
@@ -32,11 +33,15 @@ class Table:
 
     kind: ClassVar[str]
     _compiler: ClassVar[Callable[..., Any]]
+    #: The compiled handle (a ``landing._core`` type), made once by :meth:`_compile`.
+    _core: Any
+    #: What ``@dataclass`` gives every configuration class (declared for the type checker).
+    __dataclass_fields__: ClassVar[dict[str, dataclasses.Field[Any]]]
 
     def _table(self) -> dict[str, Any]:
         owner = type(self).__name__
         out: dict[str, Any] = {"kind": self.kind}
-        for field in dataclasses.fields(self):  # type: ignore[arg-type]
+        for field in dataclasses.fields(self):
             if not field.init:
                 continue
             value = getattr(self, field.name)
@@ -55,7 +60,7 @@ class Table:
     def _freeze_arrays(self) -> None:
         """Keeps read-only copies of array and list parameters, so that changing the caller's
         array afterwards cannot make the object disagree with what the core compiled."""
-        for field in dataclasses.fields(self):  # type: ignore[arg-type]
+        for field in dataclasses.fields(self):
             value = getattr(self, field.name)
             if isinstance(value, (list, np.ndarray)):
                 arr = as_float_array(type(self).__name__, field.name, value).copy()
@@ -73,4 +78,4 @@ class Table:
     def replace(self, **changes: Any) -> Any:
         """A copy with some parameters changed, validated like a new object:
         ``law.replace(alpha1=6.0)``."""
-        return dataclasses.replace(self, **changes)  # type: ignore[type-var]
+        return dataclasses.replace(self, **changes)

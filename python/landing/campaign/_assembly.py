@@ -5,7 +5,8 @@ or run and written to it, then the theory's bounds and their checks."""
 from __future__ import annotations
 
 import dataclasses
-from typing import Callable, Iterable, Optional
+from collections.abc import Iterable
+from typing import Callable, Optional
 
 import numpy as np
 

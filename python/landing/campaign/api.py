@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import os
 import warnings
-from typing import Any, Optional, Sequence, Union
+from collections.abc import Sequence
+from typing import Any, Optional, Union
 
 from landing._internal.args import boolean, integer
 from landing._internal.limits import require_memory
@@ -39,7 +40,7 @@ def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int)
     else:
         instants = steps // record_every + 1 + (steps % record_every != 0)
     axes = scenario.plant.axes
-    widths = sum(w for _, w in scenario.controller._core.diagnostic_layout(axes))  # type: ignore[attr-defined]
+    widths = sum(w for _, w in scenario.controller._core.diagnostic_layout(axes))
     per_instant = scenario.plant.state_dim + axes + widths
     # final state plus about 40 metric columns, some per axis
     per_case = instants * per_instant + scenario.plant.state_dim + 40 * (axes + 1)
@@ -57,7 +58,7 @@ def monte_carlo(
     progress: Optional[bool] = None,
     check_bounds: bool = True,
     keep: Union[str, Sequence[str]] = SIGNALS,
-    store: Union[str, "os.PathLike[str]", None] = None,
+    store: Union[str, os.PathLike[str], None] = None,
     client: Any = None,
 ) -> MonteCarloResult:
     """Run ``n`` dispersed cases of ``scenario``.

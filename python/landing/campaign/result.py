@@ -4,8 +4,9 @@ bands of their signals and the theory's bounds with their checks."""
 from __future__ import annotations
 
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional, Sequence
+from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
@@ -182,7 +183,7 @@ class MonteCarloResult:
         n = finite.reshape(finite.shape[0], finite.shape[1], -1).all(axis=2).sum(axis=0)
         return Bands(signal=signal, t=res.t, percentiles=pct, values=values, n=n)
 
-    def to_xarray(self) -> "xarray.Dataset":
+    def to_xarray(self) -> xarray.Dataset:
         """An xarray Dataset of the campaign: the kept signals (case, time, component), the
         final and initial states, every metric, with names, time (s) and units (see
         :meth:`SimulationResult.to_xarray`). Needs ``pip install "landing[io]"``."""
@@ -227,6 +228,7 @@ class MonteCarloResult:
             lines.append("  theory (seed 001 Theorem 4), per axis:")
             lines.extend("    " + row for row in str(b).splitlines()[1:])
             end = self.within_radius_at_end()
+            assert end is not None  # the bounds are known
             lines.append(f"  final position error within the s1 radius: {int(end.sum())} of {n}")
             if self.checks:
                 for name, c in self.checks.items():

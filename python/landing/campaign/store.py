@@ -34,9 +34,10 @@ import hashlib
 import json
 import os
 import platform
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import Any, Optional, Union
 
 import numpy as np
 
@@ -133,7 +134,7 @@ class CampaignKey:
 
     @staticmethod
     def of(scenario: Scenario, *, seed: int, n: int, chunk_size: int, record_every: int,
-           keep: Sequence[str], x0: np.ndarray) -> "CampaignKey":
+           keep: Sequence[str], x0: np.ndarray) -> CampaignKey:
         return CampaignKey(
             version=__version__, scenario=_scenario_text(scenario), seed=int(seed), n=int(n),
             chunk_size=int(chunk_size), record_every=int(record_every), keep=tuple(keep),
@@ -146,10 +147,10 @@ class CampaignKey:
         return d
 
     @staticmethod
-    def from_json(d: Mapping[str, Any]) -> "CampaignKey":
+    def from_json(d: Mapping[str, Any]) -> CampaignKey:
         return CampaignKey(**{**d, "keep": tuple(d["keep"])})
 
-    def differences(self, stored: "CampaignKey") -> list[str]:
+    def differences(self, stored: CampaignKey) -> list[str]:
         """What differs, as "field: stored value there, this value here"."""
         out = []
         for f in dataclasses.fields(self):
@@ -232,7 +233,7 @@ class CampaignStore:
 
     @staticmethod
     def open(path: Union[str, os.PathLike], key: CampaignKey, *, threads: Optional[int], check_bounds: bool,
-             record_every: int) -> "CampaignStore":
+             record_every: int) -> CampaignStore:
         """Open (resume) the campaign at ``path`` or create it; a store written by another
         campaign is refused with what differs."""
         require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")

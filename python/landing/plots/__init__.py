@@ -9,7 +9,13 @@ matplotlib is imported when the first figure is drawn.
 """
 
 from landing.plots._common import save_figures
-from landing.plots.comparison import blend_coefficients, commands, diagnostic, tracking_errors, trajectory_with_reference
+from landing.plots.comparison import (
+    blend_coefficients,
+    commands,
+    diagnostic,
+    tracking_errors,
+    trajectory_with_reference,
+)
 from landing.plots.mars import (
     final_velocities,
     landing_sites,

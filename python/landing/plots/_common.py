@@ -3,8 +3,9 @@ reads, the case axis, and writing figures to files."""
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Mapping, Optional, Union
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
@@ -42,6 +43,14 @@ def result_and_bounds(result: Result) -> tuple[SimulationResult, Optional[MSSBou
     if isinstance(result, MonteCarloResult):
         return result.result, result.bounds
     return result, None
+
+
+def recorded(res: SimulationResult, name: str) -> np.ndarray:
+    """``res.states`` or ``res.controls``; a campaign that did not keep them is refused."""
+    value: Optional[np.ndarray] = getattr(res, name)
+    if value is None:
+        raise ParameterError(f"this figure needs the {name}, which the campaign did not keep (keep=...)")
+    return value
 
 
 def batched(a: np.ndarray, ndim: int) -> np.ndarray:

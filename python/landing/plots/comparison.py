@@ -7,7 +7,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Optional
 
 from landing.errors import ParameterError
-from landing.plots._common import AXES, Labelled, axis_grid, labelled, need_records, new_figure
+from landing.plots._common import AXES, Labelled, axis_grid, labelled, need_records, new_figure, recorded
 from landing.reference import Reference
 from landing.results import SimulationResult
 
@@ -24,10 +24,10 @@ def tracking_errors(results: Labelled, reference: Optional[Reference] = None, ve
     runs = labelled(results)
     fig = new_figure(figsize=(12, 3.8), layout="constrained")
     first = next(iter(runs.values()))
-    n = first.controls.shape[-1]
+    n = recorded(first, "controls").shape[-1]
     axes = axis_grid(fig, n)
     for label, res in runs.items():
-        q = res.states[:, n:2 * n] if velocity else res.states[:, :n]
+        q = recorded(res, "states")[:, n:2 * n] if velocity else recorded(res, "states")[:, :n]
         if reference is not None:
             p, v, _ = reference.evaluate(res.t, axes=n)
             q = q - (v if velocity else p)
@@ -46,12 +46,12 @@ def commands(results: Labelled, ylabel: str = "command") -> Figure:
     """Applied command per axis against time, one line per labelled run (seed 000 Fig. 5, 10;
     seed 002 Fig. 9, 10)."""
     runs = labelled(results)
-    n = next(iter(runs.values())).controls.shape[-1]
+    n = recorded(next(iter(runs.values())), "controls").shape[-1]
     fig = new_figure(figsize=(12, 3.8), layout="constrained")
     axes = axis_grid(fig, n)
     for label, res in runs.items():
         for j, ax in enumerate(axes):
-            ax.plot(res.t, res.controls[:, j], lw=0.7, label=label or None)
+            ax.plot(res.t, recorded(res, "controls")[:, j], lw=0.7, label=label or None)
     for j, ax in enumerate(axes):
         ax.set_title(f"{res.control_names[j]}")
         ax.set_xlabel("t (s)")
@@ -104,7 +104,8 @@ def trajectory_with_reference(results: Labelled, reference: Optional[Reference] 
     fig = new_figure(figsize=(7, 6))
     ax = fig.add_subplot(projection="3d")
     for label, res in runs.items():
-        ax.plot(res.states[:, 0], res.states[:, 1], res.states[:, 2], lw=1.0, label=label or "trajectory")
+        states = recorded(res, "states")
+        ax.plot(states[:, 0], states[:, 1], states[:, 2], lw=1.0, label=label or "trajectory")
     if reference is not None:
         t = next(iter(runs.values())).t
         p, _, _ = reference.evaluate(t)

@@ -4,7 +4,8 @@ comparison's position, thrust and mass."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Callable, Mapping, Optional
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Callable, Optional
 
 import numpy as np
 
@@ -16,6 +17,7 @@ from landing.plots._common import (
     labelled,
     need_records,
     new_figure,
+    recorded,
     result_and_bounds,
 )
 from landing.results import SimulationResult
@@ -42,7 +44,7 @@ def trajectories_3d(result: Result, max_cases: int = 300) -> Figure:
     """3D trajectories (seed 001 Fig. 7(a)), the target marked."""
     res, _ = result_and_bounds(result)
     need_records(res)
-    s = batched(res.states, 3)[:max_cases]
+    s = batched(recorded(res, "states"), 3)[:max_cases]
     fig = new_figure(figsize=(7, 6))
     ax = fig.add_subplot(projection="3d")
     for case in s:
@@ -141,11 +143,13 @@ def sliding_variables(result: Result, bounds: Optional[MSSBounds] = None, max_ca
                     for sgn in (-1, 1):
                         ax.axhline(sgn * radius, ls="--", color="tab:red", lw=1)
                 else:
-                    ax.text(0.02, 0.95, f"radius {radius:.4g} {unit} (off the plot)", transform=ax.transAxes, fontsize=8, va="top")
+                    ax.text(0.02, 0.95, f"radius {radius:.4g} {unit} (off the plot)", transform=ax.transAxes,
+                            fontsize=8, va="top")
                 if when <= res.t[-1]:
                     ax.axvline(when, ls=":", color="tab:red", lw=1)
                 else:
-                    ax.text(0.02, 0.85, f"bound time {when:.4g} s (beyond the run)", transform=ax.transAxes, fontsize=8, va="top")
+                    ax.text(0.02, 0.85, f"bound time {when:.4g} s (beyond the run)", transform=ax.transAxes,
+                            fontsize=8, va="top")
     return fig
 
 
@@ -166,19 +170,20 @@ def _per_axis(result: Result, index: Callable[[SimulationResult], np.ndarray], y
 
 def thrust(result: Result, max_cases: int = 300) -> Figure:
     """Applied thrust per axis against time (seed 001 Fig. 2(c), 12)."""
-    return _per_axis(result, lambda r: batched(r.controls, 3), "thrust (N)", "Thrust", max_cases)
+    return _per_axis(result, lambda r: batched(recorded(r, "controls"), 3), "thrust (N)", "Thrust", max_cases)
 
 
 def positions(result: Result, max_cases: int = 300) -> Figure:
     """Position per axis against time (seed 001 Fig. 2(a), 11)."""
-    return _per_axis(result, lambda r: batched(r.states, 3)[:, :, :3], "position (m)", "Position", max_cases)
+    return _per_axis(result, lambda r: batched(recorded(r, "states"), 3)[:, :, :3], "position (m)", "Position",
+                     max_cases)
 
 
 def mass(result: Result, max_cases: int = 300) -> Figure:
     """Lander mass against time (seed 001 Fig. 4)."""
     res, _ = result_and_bounds(result)
     need_records(res)
-    m = batched(res.states, 3)[:max_cases, :, res.state_names.index("m")]
+    m = batched(recorded(res, "states"), 3)[:max_cases, :, res.state_names.index("m")]
     fig = new_figure(figsize=(6, 4), layout="constrained")
     ax = fig.add_subplot()
     ax.plot(res.t, m.T, lw=0.6, alpha=0.7)
@@ -197,7 +202,7 @@ def position_and_thrust(results: Labelled, ground: bool = True) -> Figure:
     for row, (label, res) in enumerate(runs.items()):
         ax = fig.add_subplot(len(runs), 2, 2 * row + 1)
         for j in range(3):
-            ax.plot(res.t, res.states[:, j], label=f"r{AXES[j]}")
+            ax.plot(res.t, recorded(res, "states")[:, j], label=f"r{AXES[j]}")
         if ground:
             ax.axhline(0, color="0.5", lw=0.6)
         td = float(np.asarray(res.metrics["touchdown_time"]))
@@ -210,7 +215,7 @@ def position_and_thrust(results: Labelled, ground: bool = True) -> Figure:
         ax.legend(fontsize=8)
         ax = fig.add_subplot(len(runs), 2, 2 * row + 2)
         for j in range(3):
-            ax.step(res.t, res.controls[:, j] / 1e3, where="post", label=f"F{AXES[j]}")
+            ax.step(res.t, recorded(res, "controls")[:, j] / 1e3, where="post", label=f"F{AXES[j]}")
         ax.set_xlabel("t (s)")
         ax.set_ylabel("thrust (kN)")
         ax.set_title(f"Thrust{': ' + label if label else ''}")
@@ -226,7 +231,7 @@ def masses(results: Labelled, read_at: Optional[Mapping[str, float]] = None) -> 
     fig = new_figure(figsize=(7, 4.5), layout="constrained")
     ax = fig.add_subplot()
     for label, res in runs.items():
-        m = res.states[:, res.state_names.index("m")]
+        m = recorded(res, "states")[:, res.state_names.index("m")]
         t_read = res.t[-1] if read_at is None or label not in read_at else float(read_at[label])
         m_read = float(np.interp(t_read, res.t, m))
         (line,) = ax.plot(res.t, m, label=f"{label}: {m[0] - m_read:.2f} kg by {t_read:.2f} s")

@@ -9,7 +9,15 @@ from typing import TYPE_CHECKING, Callable, Optional, Union
 from landing.plants import MarsLander, Plant, TetheredSatellite
 from landing.plots._common import Result, result_and_bounds, save_figures
 from landing.plots.comparison import commands, tracking_errors, trajectory_with_reference
-from landing.plots.mars import final_velocities, landing_sites, mass, positions, sliding_variables, thrust, trajectories_3d
+from landing.plots.mars import (
+    final_velocities,
+    landing_sites,
+    mass,
+    positions,
+    sliding_variables,
+    thrust,
+    trajectories_3d,
+)
 from landing.plots.tether import tether_angles, tether_commands, tether_rates
 from landing.reference import Reference
 

@@ -3,13 +3,14 @@ against time, and the worst settle time against the initial spread with the fixe
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Callable, Mapping, Optional, Union
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Callable, Optional, Union
 
 import numpy as np
 
 from landing._internal.table import ArrayLike
 from landing.plants import TetheredSatellite
-from landing.plots._common import Runs, batched, named_runs, need_records, new_figure
+from landing.plots._common import Runs, batched, named_runs, need_records, new_figure, recorded
 from landing.results import SimulationResult
 from landing.theory import FNTSMCBounds
 
@@ -26,7 +27,7 @@ def _tether_coordinates(res: SimulationResult,
     """(q, q') of a tethered-satellite result, (N, T, 2) each. The flexible model's state holds
     positions; its angles come from the core (they do not depend on the physical parameters,
     so a default plant with the result's node count serves when none is given)."""
-    states = batched(res.states, 3)
+    states = batched(recorded(res, "states"), 3)
     if res.state_names[:2] == ("phi", "theta"):
         return states[..., :2], states[..., 2:4]
     if plant is None:
@@ -72,7 +73,7 @@ def tether_rates(results: Runs, plant: Optional[TetheredSatellite] = None, max_c
 
 def tether_commands(results: Runs, max_cases: int = 50) -> Figure:
     """Applied thrust (N) and torque (N m) against time (seed 003 Fig. 7 (a), (b))."""
-    return _tether_pair(results, lambda r, p: batched(r.controls, 3), ("thrust (N)", "torque (N m)"),
+    return _tether_pair(results, lambda r, p: batched(recorded(r, "controls"), 3), ("thrust (N)", "torque (N m)"),
                         ("(a) Thrust of the sub-satellite", "(b) Torque of the sub-satellite"), None, 1.0, max_cases)
 
 
@@ -82,7 +83,7 @@ def tether_fixed_time(worst: Mapping[str, Mapping[float, np.ndarray]],
     with the fixed-time bound (dashed): ``worst[law][spread_deg]`` is a (2,) array (phi, theta);
     ``bound`` the (2,) bound of :func:`landing.theory.fntsmc_bounds` (``.total``)."""
     fig = new_figure(figsize=(11, 4), layout="constrained")
-    total = np.ravel(getattr(bound, "total", bound))
+    total = np.ravel(bound.total if isinstance(bound, FNTSMCBounds) else bound)
     for j, (name, sym) in enumerate(_TETHER_AXES):
         ax = fig.add_subplot(1, 2, j + 1)
         for law, by_spread in worst.items():

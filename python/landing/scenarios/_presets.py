@@ -7,8 +7,9 @@ Gains the seeds do not print come from documented studies (docs/parameters.md).
 from __future__ import annotations
 
 import math
+from functools import partial
 from pathlib import Path
-from typing import Any, Callable, Union
+from typing import Any, Callable, Literal, Union
 
 import numpy as np
 
@@ -98,7 +99,7 @@ def mars_nominal(**overrides: Any) -> Scenario:
 MARS_SUPER_TWISTING_C = 0.1
 
 
-def mars_super_twisting(variant: str = "printed", **overrides: Any) -> Scenario:
+def mars_super_twisting(variant: Literal["printed", "standard"] = "printed", **overrides: Any) -> Scenario:
     """The seed's super-twisting baseline (eq. 46, B1, B2 as printed) on the nominal landing,
     over 200 s: with these gains neither variant lands within the fixed-time preset's 60 s."""
     law = controllers.SuperTwisting(variant=variant, c=MARS_SUPER_TWISTING_C)
@@ -354,18 +355,18 @@ def tether_monte_carlo(spread_deg: float = 10.0, law: str = "fntsmc", fidelity: 
 
 
 #: Every preset by name: ``landing list`` shows them, ``landing show NAME`` prints their TOML
-#: (shipped in ``landing/presets/``), and ``Scenario.load(NAME)`` reads it.
+#: (shipped in ``landing/scenarios/presets/``), and ``Scenario.load(NAME)`` reads it.
 PRESETS: dict[str, Callable[[], Scenario]] = {
     "mars_nominal": mars_nominal,
-    "mars_super_twisting_printed": lambda: mars_super_twisting("printed"),
-    "mars_super_twisting_standard": lambda: mars_super_twisting("standard"),
+    "mars_super_twisting_printed": partial(mars_super_twisting, "printed"),
+    "mars_super_twisting_standard": partial(mars_super_twisting, "standard"),
     "mars_monte_carlo": mars_monte_carlo,
     "mars_thrust_limited": mars_thrust_limited,
-    **{f"seed000_{law}_{switch}": (lambda law=law, switch=switch: seed000_tracking(law, switch))
+    **{f"seed000_{law}_{switch}": partial(seed000_tracking, law, switch)
        for law in SEED000_LAWS for switch in ("sign", "tanh")},
-    **{f"seed000_landing_{law}_tanh": (lambda law=law: seed000_landing(law, "tanh")) for law in SEED000_LAWS},
-    **{f"seed002_{law}": (lambda law=law: seed002_landing(law)) for law in SEED002_LAWS},
-    **{f"tether_{law}_{fidelity}": (lambda law=law, fidelity=fidelity: tether_comparison(law, fidelity))
+    **{f"seed000_landing_{law}_tanh": partial(seed000_landing, law, "tanh") for law in SEED000_LAWS},
+    **{f"seed002_{law}": partial(seed002_landing, law) for law in SEED002_LAWS},
+    **{f"tether_{law}_{fidelity}": partial(tether_comparison, law, fidelity)
        for law in ("fntsmc", "ntsmc") for fidelity in ("flexible", "simplified")},
     "tether_monte_carlo_fntsmc_10deg": tether_monte_carlo,
 }

@@ -97,7 +97,7 @@ class Scenario:
         if not isinstance(self.description, str):
             raise ParameterTypeError(f"{owner}: description must be a string, got {short(self.description)}")
 
-    def replace(self, **changes: Any) -> "Scenario":
+    def replace(self, **changes: Any) -> Scenario:
         """A copy with some fields changed: ``s.replace(dt=1e-2)``. A dict given for a part
         (plant, controller, reference, dispersion) changes some of its parameters and keeps the
         others: ``s.replace(controller={"alpha1": 6.0})`` is
@@ -122,7 +122,7 @@ class Scenario:
         return scenario_to_toml(self)
 
     @staticmethod
-    def load(spec: Any) -> "Scenario":
+    def load(spec: Any) -> Scenario:
         """A preset by name (:data:`landing.scenarios.PRESETS`) or a scenario TOML file by path."""
         from landing.scenarios._presets import load_scenario  # noqa: PLC0415 - one-line delegation up
 
@@ -162,7 +162,7 @@ class Scenario:
             )
         return x
 
-    def bounds(self) -> Optional["MSSBounds"]:
+    def bounds(self) -> Optional[MSSBounds]:
         """Seed 001's practical fixed-time bounds for this scenario's law and disturbance (None
         unless the law is FixedTimeMSS and ``theta`` is set)."""
         from landing.theory.bounds import scenario_bounds  # noqa: PLC0415 - one-line delegation up

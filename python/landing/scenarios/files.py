@@ -35,8 +35,9 @@ import json
 import math
 import re
 import sys
+from collections.abc import Mapping
 from types import ModuleType
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -115,7 +116,7 @@ def _encode_mamdani(m: fuzzy.Mamdani) -> dict[str, Any]:
 
 def _encode_table(obj: Table) -> dict[str, Any]:
     out: dict[str, Any] = {"kind": type(obj).__name__}
-    for f in dataclasses.fields(obj):  # type: ignore[arg-type]
+    for f in dataclasses.fields(obj):
         if not f.init:
             continue
         value = getattr(obj, f.name)
@@ -336,7 +337,7 @@ def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Scen
         if key not in d:
             continue
         if key == "disturbance" and isinstance(d[key], list):
-            comps = [_decode_table(t, module, source, f"disturbance[{i}]") for i, t in enumerate(d[key])]
+            comps: list[Any] = [_decode_table(t, module, source, f"disturbance[{i}]") for i, t in enumerate(d[key])]
             parts[key] = comps[0] if len(comps) == 1 else disturbances.Sum(comps)
         else:
             parts[key] = _decode_table(d[key], module, source, key)

@@ -72,14 +72,14 @@ class BoundCheck:
     name: str
     bound: np.ndarray
     measured: np.ndarray
-    extra: dict[str, np.ndarray] = field(default_factory=dict)
+    extra: dict[str, Any] = field(default_factory=dict)
 
     @property
     def violations(self) -> np.ndarray:
         """Indices of the cases (first axis) with a violation on any axis."""
-        bad = ~(self.measured <= self.bound)
+        bad = np.asarray(~(self.measured <= self.bound))
         if bad.ndim > 1:
-            bad = bad.reshape(bad.shape[0], -1).any(axis=1)
+            bad = np.asarray(bad.reshape(bad.shape[0], -1).any(axis=1))
         return np.flatnonzero(bad)
 
     @property
@@ -93,7 +93,8 @@ class BoundCheck:
 
     def __repr__(self) -> str:
         n = self.measured.shape[0] if self.measured.ndim else 1
-        status = "holds" if self.ok else f"VIOLATED in {self.violations.size} of {n} cases: {self.violations[:10].tolist()}"
+        status = ("holds" if self.ok
+                  else f"VIOLATED in {self.violations.size} of {n} cases: {self.violations[:10].tolist()}")
         return f"BoundCheck({self.name}: {status}; worst measured/bound = {self.worst_ratio:.3f})"
 
 
@@ -304,6 +305,7 @@ def check_fntsmc_bound(law: FixedTimeNTSMC, pairs: Any, *, axis: int = 0, tol: f
                          record_every=max(1, int(round(0.01 / dt))))
     s = res.diagnostics["s"]
     reach_s = entry_time(res.t, s, s_tol).reshape(-1)[:m]
+    assert res.states is not None  # recorded: record_every >= 1
     settle_e1 = settle_time(res.t, res.states[:, :, :3], tol).reshape(-1)[:m]
     return {
         "s": BoundCheck(name=f"|s| <= {s_tol:.3g} within T_s = {bound_s:.4g} s", bound=np.full(m, bound_s),

@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import ast
 import math
-from typing import Any, Callable, Mapping, Optional, Sequence, Union
+from collections.abc import Mapping, Sequence
+from typing import Any, Callable, Optional, Union
 
 import numpy as np
 
@@ -145,10 +146,12 @@ class Expression:
         raise self._refuse(node, f"{type(node).__name__} is outside the grammar")
 
     def _eval(self, node: ast.AST, env: Mapping[str, Any]) -> Any:
+        # the tree was checked when parsed (_check): only the grammar's nodes reach here
         if isinstance(node, ast.Constant):
+            assert isinstance(node.value, (int, float))  # a number (_check)
             return float(node.value)
         if isinstance(node, (ast.Name, ast.Attribute)):
-            return env[_qualified(node)]
+            return env[str(_qualified(node))]
         if isinstance(node, ast.BinOp):
             return _BINOPS[type(node.op)](self._eval(node.left, env), self._eval(node.right, env))
         if isinstance(node, ast.UnaryOp):
@@ -162,7 +165,9 @@ class Expression:
         if f in _ELEMENTWISE:
             return _ELEMENTWISE[f](x)
         if f == "percentile":
-            return float(np.percentile(x, float(node.args[1].value)))  # type: ignore[attr-defined]
+            q = node.args[1]
+            assert isinstance(q, ast.Constant) and isinstance(q.value, (int, float))  # in [0, 100] (_check)
+            return float(np.percentile(x, float(q.value)))
         return float(_AGGREGATES[f](x))
 
     def value(self, env: Mapping[str, Any]) -> float:

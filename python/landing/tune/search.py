@@ -7,8 +7,9 @@ import dataclasses
 import math
 import time
 import warnings
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import Any, Optional, Union
 
 import numpy as np
 
@@ -90,6 +91,15 @@ def _bounds_for(scenario: Scenario, law: controllers.Controller) -> Optional[dic
         "t1": worst(b.t1), "t2": worst(b.t2), "s1_radius": worst(b.s1_radius), "s1_time": worst(b.s1_time),
         "s2_radius": worst(b.s2_radius), "s2_time": worst(b.s2_time), "settle_bound": worst(b.settle_time),
     }
+
+
+def _term(spec: Any, kind: str, metric_names: Sequence[str],
+          bound_names: Sequence[str]) -> Union[Expression, UserFunction]:
+    """An objective or constraint given as a callable or as an expression's text (which
+    :class:`Expression` checks, refusing anything else)."""
+    if callable(spec):
+        return UserFunction(spec, kind)
+    return Expression(spec, metric_names, bound_names, kind)
 
 
 def _probe_metric_names(scenario: Scenario) -> list[str]:
@@ -197,13 +207,9 @@ def tune(
     objs_in = list(objective) if isinstance(objective, (list, tuple)) else [objective]
     if not objs_in:
         raise ParameterError("objective = [] must name at least one objective")
-    objs = [o if isinstance(o, Expression) else
-            (UserFunction(o, "objective") if callable(o) else Expression(o, metric_names, bound_names, "objective"))
-            for o in objs_in]
-    if isinstance(constraints, (str, bytes)) or callable(constraints):
-        constraints = [constraints]  # type: ignore[list-item]
-    cons = [(UserFunction(c, "constraint") if callable(c) else Expression(c, metric_names, bound_names, "constraint"))
-            for c in constraints]
+    objs = [o if isinstance(o, Expression) else _term(o, "objective", metric_names, bound_names) for o in objs_in]
+    one = isinstance(constraints, (str, bytes)) or callable(constraints)
+    cons = [_term(c, "constraint", metric_names, bound_names) for c in ([constraints] if one else constraints)]
     need_bounds = mss and any(isinstance(e, UserFunction) or any(n.rpartition(".")[2] in BOUND_NAMES for n in e.names)
                               for e in [*objs, *cons])
 
@@ -276,16 +282,16 @@ def tune(
             raise KeyboardInterrupt("tuning interrupted before its first generation completed")
         raise ParameterError(f"budget = {budget} gave no evaluation")  # pragma: no cover
     X = np.vstack([gen.gains for gen in generations])
-    O = np.vstack([gen.objectives for gen in generations])
+    obj = np.vstack([gen.objectives for gen in generations])
     C = np.vstack([gen.constraints for gen in generations]) if cons else np.zeros((X.shape[0], 0))
     V = np.concatenate([gen.violation for gen in generations])
     F = np.concatenate([gen.feasible for gen in generations])
-    best, front = best_and_front(O, V, F)
+    best, front = best_and_front(obj, V, F)
     return TuneResult(
         base=first, gains=specs, objectives=tuple(e.text for e in objs),
         constraints=tuple(e.text for e in cons), seed=int(seed), cases=K, budget=int(budget), popsize=lam,
         x=X, generation=np.concatenate([np.full(gen.size, gen.index) for gen in generations]),
-        objective_values=O, constraint_values=C, diverged=np.concatenate([gen.diverged for gen in generations]),
+        objective_values=obj, constraint_values=C, diverged=np.concatenate([gen.diverged for gen in generations]),
         violation=V, feasible=F, best=best, front=front,
         interrupted=interrupted, stop=stop, elapsed=time.perf_counter() - t0,
         setups={k: v for k, v in setups.items() if k},
