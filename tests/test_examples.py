@@ -2,11 +2,11 @@
 
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from _cases import ROOT
+
 SCRIPTS = ["mars_nominal.py", "mars_monte_carlo.py", "mars_reproduction.py", "asteroid_seed000.py",
            "asteroid_seed002.py", "tether_comparison.py", "tether_monte_carlo.py", "mars_optimal.py"]
 # scripts that write figures, and how many at least
@@ -16,7 +16,14 @@ FIGURES = {"mars_monte_carlo.py": 5, "asteroid_seed000.py": 5, "asteroid_seed002
 SHORT = {"tether_monte_carlo.py": ["--cases", "2"], "mars_optimal.py": ["--nodes", "40"]}
 
 
-@pytest.mark.parametrize("script", SCRIPTS)
+# more than about 5 s each on two cores; mars_optimal needs CasADi
+SLOW = {"mars_monte_carlo.py", "mars_reproduction.py", "asteroid_seed000.py", "asteroid_seed002.py",
+        "tether_comparison.py", "tether_monte_carlo.py", "mars_optimal.py"}
+MARKS = {"mars_optimal.py": [pytest.mark.optimal]}
+
+
+@pytest.mark.parametrize("script", [
+    pytest.param(s, marks=[*MARKS.get(s, []), *([pytest.mark.slow] if s in SLOW else [])]) for s in SCRIPTS])
 def test_example_runs(script, tmp_path):
     args = [sys.executable, str(ROOT / "examples" / script)]
     args += SHORT.get(script, [])

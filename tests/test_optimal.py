@@ -19,7 +19,10 @@ from scipy.optimize import brentq
 
 pytest.importorskip("casadi")
 
+pytestmark = pytest.mark.optimal
+
 import landing  # noqa: E402
+from _cases import LEVELS, assert_same_result_bits  # noqa: E402
 from landing import controllers, disturbances, optimal, plants, scenarios  # noqa: E402
 from landing.errors import ParameterError, ParameterTypeError  # noqa: E402
 
@@ -229,8 +232,6 @@ def test_tabulated_per_case_tables_match_single_runs() -> None:
 def test_tabulated_per_case_tables_give_the_same_bits_at_every_level() -> None:
     """37 cases with their own tables (several blocks at every level, the last one partly
     padding): a case's bits do not depend on the instruction-set level."""
-    from test_registry_and_kernels import LEVELS, assert_same_bits
-
     rng = np.random.default_rng(4)
     tables = rng.uniform(-3e4, 3e4, size=(37, 6, 3))
     x0 = np.tile(X0, (37, 1)) + rng.uniform(-10.0, 10.0, (37, 7)) * [1, 1, 1, 1, 1, 1, 0]
@@ -239,7 +240,7 @@ def test_tabulated_per_case_tables_give_the_same_bits_at_every_level() -> None:
                                           kernel=level, disturbance=disturbances.Sinusoid(amplitude=0.5, omega=1.0))
             for level in LEVELS}
     for level, res in runs.items():
-        assert_same_bits(runs["baseline"], res, f"tabulated at {level}")
+        assert_same_result_bits(runs["baseline"], res, f"tabulated at {level}")
 
 
 @pytest.mark.parametrize("kwargs, error, match", [

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import RECONSTRUCTED_GAINS
+from _cases import RECONSTRUCTED_GAINS
 from landing import theory
 from landing.controllers import FixedTimeMSS, OpenLoop
 from landing.plants import DoubleIntegrator

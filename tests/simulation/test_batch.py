@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import RECONSTRUCTED_GAINS, dispersed
+from _cases import RECONSTRUCTED_GAINS, dispersed
 
 MC = dict(t_final=3.0, dt=0.001, record_every=100)
 

@@ -67,6 +67,7 @@ def test_a_file_is_checked_by_the_same_rules(tmp_path):
         load_scenario(path)
 
 
+@pytest.mark.tune
 def test_the_tuner_checks_its_counts_and_the_threads_before_it_runs():
     pytest.importorskip("cma")
     s = preset("mars_nominal").replace(t_final=0.01)

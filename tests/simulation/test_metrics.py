@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import dispersed
+from _cases import dispersed
 
 
 @pytest.fixture(scope="module")

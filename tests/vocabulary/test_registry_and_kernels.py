@@ -16,13 +16,13 @@ import numpy as np
 import pytest
 
 import landing
+from _cases import LEVELS, assert_same_result_bits, laws, tether_laws
 from landing import _core
 from landing import controllers as C
 from landing import gravity as G
 from landing import plants as P
 from landing._internal.table import Table
 from landing.errors import LandingError
-from test_every_law_on_every_plant import laws, tether_laws
 
 
 def classes(module: ModuleType) -> dict[str, type]:
@@ -88,7 +88,6 @@ def test_an_unknown_kind_is_refused_with_the_known_ones() -> None:
 
 # --- every law on every plant, at every level --------------------------------------------------
 
-LEVELS = landing.kernel_levels()
 RNG = np.random.default_rng(5)
 
 
@@ -102,20 +101,6 @@ def three_axis_cases(plant_name: str, n: int) -> tuple[P.Plant, np.ndarray, land
 
 def run_levels(plant, law, x0, **kw) -> dict[str, landing.SimulationResult]:
     return {level: landing.simulate_batch(plant, law, x0, kernel=level, **kw) for level in LEVELS}
-
-
-def assert_same_bits(a: landing.SimulationResult, b: landing.SimulationResult, what: str) -> None:
-    np.testing.assert_array_equal(a.states.view(np.uint64), b.states.view(np.uint64), err_msg=what)
-    np.testing.assert_array_equal(a.controls.view(np.uint64), b.controls.view(np.uint64), err_msg=what)
-    np.testing.assert_array_equal(a.final_state.view(np.uint64), b.final_state.view(np.uint64),
-                                  err_msg=what)
-    for k in a.diagnostics:
-        np.testing.assert_array_equal(a.diagnostics[k].view(np.uint64), b.diagnostics[k].view(np.uint64),
-                                      err_msg=f"{what}: diagnostic {k}")
-    for k in a.metrics:
-        x, y = np.asarray(a.metrics[k]), np.asarray(b.metrics[k])
-        np.testing.assert_array_equal(x.astype(np.float64).view(np.uint64), y.astype(np.float64).view(np.uint64),
-                                      err_msg=f"{what}: metric {k}")
 
 
 def test_the_levels_are_the_cpus() -> None:
@@ -134,7 +119,7 @@ def test_every_law_gives_the_same_bits_at_every_level(plant_name: str) -> None:
                           disturbance=noise, seed=11, settle_tolerance=1.0)
         for level, res in runs.items():
             assert res.kernel == level
-            assert_same_bits(runs["baseline"], res, f"{plant_name} / {name} at {level}")
+            assert_same_result_bits(runs["baseline"], res, f"{plant_name} / {name} at {level}")
 
 
 @pytest.mark.parametrize("fidelity", ["simplified", "flexible"])
@@ -147,7 +132,7 @@ def test_every_law_gives_the_same_bits_at_every_level_on_the_tether(fidelity: st
                           record_every=10, disturbance=landing.disturbances.UniformNoise(bound=1e-6), seed=3)
         for level, res in runs.items():
             assert not res.metrics["diverged"].any(), f"tether ({fidelity}) / {name} diverged"
-            assert_same_bits(runs["baseline"], res, f"tether ({fidelity}) / {name} at {level}")
+            assert_same_result_bits(runs["baseline"], res, f"tether ({fidelity}) / {name} at {level}")
 
 
 def test_a_case_does_not_depend_on_its_lane_or_its_batch() -> None:
@@ -159,9 +144,9 @@ def test_a_case_does_not_depend_on_its_lane_or_its_batch() -> None:
         whole = landing.simulate_batch(plant, law, x0, kernel=level, **kw)
         for i in (0, 5, 17, 40):  # alone, as its own case index: the lane is 0, not i % lanes
             alone = landing.simulate_batch(plant, law, x0[i:i + 1], first_case=i, kernel=level, **kw)
-            assert_same_bits(whole[i:i + 1], alone, f"case {i} alone at {level}")
+            assert_same_result_bits(whole[i:i + 1], alone, f"case {i} alone at {level}")
         shifted = landing.simulate_batch(plant, law, x0[3:], first_case=3, kernel=level, threads=1, **kw)
-        assert_same_bits(whole[3:], shifted, f"cases 3.. shifted by three lanes at {level}")
+        assert_same_result_bits(whole[3:], shifted, f"cases 3.. shifted by three lanes at {level}")
 
 
 def test_an_unsupported_or_unknown_level_is_refused() -> None:

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import assert_same_bits, assert_same_campaign
+from _cases import ROOT, assert_same_bits, assert_same_campaign
 from landing import scenarios
 from landing.errors import ParameterError
 
@@ -22,6 +22,8 @@ pd = pytest.importorskip("pandas")
 xr = pytest.importorskip("xarray")
 pytest.importorskip("pyarrow")
 pytest.importorskip("zarr")
+
+pytestmark = pytest.mark.io
 
 from landing.campaign.store import CampaignStore  # noqa: E402
 
@@ -377,7 +379,7 @@ def test_bound_checks_in_slices_equal_the_whole_check():
 def test_the_readme_example_runs(tmp_path, monkeypatch):
     import re
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    readme = (ROOT / "README.md").read_text()
     section = readme[readme.index("## Campaigns as data"):]
     code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
     monkeypatch.chdir(tmp_path)

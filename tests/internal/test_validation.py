@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import NOMINAL, RECONSTRUCTED_GAINS
+from _cases import NOMINAL, RECONSTRUCTED_GAINS
 from landing import controllers, disturbances, plants, reference
 
 

@@ -1,14 +1,12 @@
 """Dispersions, Monte Carlo campaigns and scenarios."""
 
-import matplotlib
 import numpy as np
 import pytest
 
 import landing
+from _cases import numpy_block, small_campaign
 from landing import dispersions, scenarios
-from test_rng import numpy_block
-
-matplotlib.use("Agg")
+from landing.scenarios import preset
 
 
 def test_uniform_dispersion_is_the_philox_draw():
@@ -41,10 +39,6 @@ def test_dispersions_are_validated():
         dispersions.Normal(mean=[0, 0, 0], std=[1, 1, -1])
     with pytest.raises(ValueError, match="high"):
         dispersions.Uniform(low=[0, 1], high=[1, 0])
-
-
-def small_campaign(**kw):
-    return scenarios.mars_monte_carlo(t_final=5.0, dt=2e-3, record_every=25, **kw)
 
 
 def test_the_sampled_states_are_the_simulated_ones():
@@ -116,26 +110,26 @@ def test_monte_carlo_refuses_bad_input():
         landing.monte_carlo(small_campaign(), 10, chunk_size=0)
 
 
-def test_figures(tmp_path):
-    mc = landing.monte_carlo(small_campaign(), 8, seed=1)
-    # the touchdown positions (first rz = 0 crossing), not the state at t_final: a run long
-    # enough for the cases to reach the ground
-    landed = landing.monte_carlo(scenarios.mars_monte_carlo(t_final=40.0, dt=2e-3, record_every=0), 8, seed=1)
-    fig = landing.plots.landing_sites(landed)
-    assert len(fig.axes) == 2
-    td = np.asarray(landed.metrics["touchdown_position"])[:, :2]
-    touched = np.all(np.isfinite(td), axis=1)
-    assert touched.sum() >= 6
-    assert not np.allclose(td[touched], np.asarray(landed.result.final_state)[touched, :2])
-    np.testing.assert_array_equal(np.asarray(fig.axes[0].collections[0].get_offsets()), td[touched])
-    assert "touchdown" in fig.axes[0].get_title().lower()
-    fig = landing.plots.sliding_variables(mc)
-    assert len(fig.axes) == 6 and len(fig.axes[0].lines) >= 8
-    written = landing.plots.save_all(mc, tmp_path / "figs")
-    assert {p.name for p in written} >= {"trajectories_3d.png", "landing_sites.png", "thrust.png", "mass.png",
-                                         "sliding_variables.png", "final_velocities.png"}
-    assert all(p.stat().st_size > 1000 for p in written)
-    one = scenarios.mars_nominal(t_final=2.0).simulate()
-    assert len(landing.plots.thrust(one).axes) == 3
-    with pytest.raises(ValueError, match="record_every"):
-        landing.plots.thrust(scenarios.mars_nominal(t_final=2.0, record_every=0).simulate())
+@pytest.mark.parametrize("per_case", ["(N,)", "(N, 3)"])
+def test_per_case_gains_go_through_monte_carlo_and_its_bounds(per_case):
+    n = 8
+    alpha = np.linspace(1.0, 5.0, n)
+    gains = alpha if per_case == "(N,)" else np.repeat(alpha[:, None], 3, axis=1)
+    s = preset("mars_monte_carlo").replace(t_final=2.0, controller={"alpha1": gains})
+    mc = landing.monte_carlo(s, n, seed=4)
+    assert mc.bounds.t2.shape == (n, 3)
+    # case i's bounds are those of the law with its own gain (computed case by case)
+    for i in (0, n - 1):
+        single = landing.theory.mss_bounds(s.controller.replace(alpha1=float(alpha[i])),
+                                           landing.theory.disturbance_bound(s.disturbance), *s.theta)
+        assert np.array_equal(mc.bounds.t2[i], single.t2)
+    report = mc.report()
+    assert f"over {n} cases" in report and len(report.splitlines()) < 40
+
+
+def test_progress_reaches_logs_as_lines(capsys):
+    s = preset("mars_monte_carlo").replace(t_final=0.5)
+    landing.monte_carlo(s, 40, seed=1, progress=True, chunk_size=10)
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if "mars_monte_carlo" in line]
+    assert lines and "40/40" in lines[-1] and "\r" not in err

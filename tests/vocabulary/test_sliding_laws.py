@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import landing
+from _cases import numpy_block
 from landing import controllers
 from landing.plants import DoubleIntegrator
-from test_rng import numpy_block
 
 DT = 0.01
 X0 = np.array([4.0, -2.0, 0.5, 0.3, 1.0, -0.8])

@@ -10,6 +10,8 @@ import pytest
 from landing.fuzzy import SET_NAMES_5, SET_NAMES_7, Mamdani, Variable, variable_rate_system
 
 skfuzzy = pytest.importorskip("skfuzzy")
+
+pytestmark = pytest.mark.fuzzy_reference
 from skfuzzy import control as ctrl  # noqa: E402
 
 
@@ -50,6 +52,7 @@ def compare(system: Mamdani, points: np.ndarray) -> float:
 
 
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
+@pytest.mark.slow
 def test_the_seed_system_matches_scikit_fuzzy_on_a_grid():
     grid = np.array([(s, ds) for s in np.linspace(-5, 5, 21) for ds in np.linspace(-5, 5, 21)])
     assert compare(variable_rate_system(resolution=801), grid) < 2e-5

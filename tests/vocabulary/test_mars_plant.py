@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import G_MARS
+from _cases import G_MARS
 
 ISP, G0 = 225.0, 9.807
 

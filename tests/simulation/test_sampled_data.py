@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import landing
-from conftest import G_MARS, RECONSTRUCTED_GAINS
+from _cases import G_MARS, RECONSTRUCTED_GAINS
 
 AREA = np.array([6.0, 7.5, 8.7])
 

@@ -28,7 +28,7 @@ from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
 import landing
-from conftest import RECONSTRUCTED_GAINS
+from _cases import RECONSTRUCTED_GAINS, ROOT
 from landing import (
     controllers,
     dispersions,
@@ -647,10 +647,9 @@ def test_every_binding_entry_point_runs_under_the_panic_guard() -> None:
     """Each #[pyfunction] and #[pymethods] item of the binding starts its body with
     ``guard(...)`` (directly, or through analysis.rs's ``check``, which calls it), so that the
     test above holds for all of them, including ones added later."""
-    import pathlib
     import re
 
-    src = pathlib.Path(__file__).resolve().parents[1] / "crates" / "landing_py" / "src"
+    src = ROOT / "crates" / "landing_py" / "src"
     if not src.is_dir():
         pytest.skip("the binding's sources are not here")
     unguarded, seen = [], 0

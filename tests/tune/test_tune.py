@@ -12,6 +12,8 @@ from landing.errors import ParameterError
 
 pytest.importorskip("cma")
 
+pytestmark = pytest.mark.tune
+
 # The test problem: a double integrator q'' = u under PD sliding mode with a wide boundary
 # layer (sat switch, phi = 1), started at rest at e0 on the x axis only. In the layer the law is
 # linear: s = e' + lam e, u = -lam e' - k s (u_eq = -lam e' from s' = 0), so s' = -k s and

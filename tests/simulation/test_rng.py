@@ -3,19 +3,8 @@
 import numpy as np
 
 import landing
+from _cases import numpy_block
 from landing import _core
-
-
-def numpy_block(counter, key):
-    """numpy's Philox increments its counter before generating: start one below."""
-    c = list(counter)
-    for i in range(4):
-        if c[i] > 0:
-            c[i] -= 1
-            break
-        c[i] = 2**64 - 1
-    bg = np.random.Philox(counter=np.array(c, dtype=np.uint64), key=np.array(key, dtype=np.uint64))
-    return [int(x) for x in bg.random_raw(4)]
 
 
 def test_philox_blocks_match_numpy():

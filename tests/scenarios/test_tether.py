@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import landing
-from landing import plots, scenarios, theory
+from _cases import tether_comparison_runs
+from landing import scenarios, theory
 from landing.controllers import NTSMC, FixedTimeNTSMC, OpenLoop
 from landing.plants import TetheredSatellite
 
@@ -139,7 +140,7 @@ def test_thread_count_does_not_change_a_bit():
 
 @pytest.fixture(scope="module")
 def comparison():
-    return {law: scenarios.tether_comparison(law).simulate() for law in ("fntsmc", "ntsmc")}
+    return tether_comparison_runs()
 
 
 def test_fntsmc_settles_faster_on_both_angles(comparison):
@@ -169,20 +170,9 @@ def test_the_network_adapts_and_its_weights_are_the_laws_state(comparison):
     assert np.all(np.abs(rbf[-1]) < 0.1 * np.array([0.1, 0.05]))
 
 
-def test_figures(comparison):
-    plant = scenarios.tether_plant()
-    runs = {"FNTSMC": comparison["fntsmc"], "NTSMC": comparison["ntsmc"]}
-    for fig in (plots.tether_angles(runs, plant), plots.tether_rates(runs), plots.tether_commands(runs)):
-        assert len(fig.axes) == 2
-        assert len(fig.axes[0].lines) >= 2
-    fig = plots.tether_fixed_time({"FNTSMC": {1.0: np.array([30.0, 2.0]), 5.0: np.array([80.0, 5.0])}},
-                                  np.array([1600.0, 28.0]))
-    assert len(fig.axes) == 2
-
-
 # -- theory (item 4) and the Monte Carlo (item 6) -------------------------------------------------
 
-@pytest.mark.parametrize("axis", [0, 1])
+@pytest.mark.parametrize("axis", [pytest.param(0, marks=pytest.mark.slow), 1])
 def test_bounds_hold_on_the_double_integrator(axis):
     pairs = np.array([[1e-3, 0.0], [DEG, 0.0], [-0.3, 0.1], [1.0, -0.5], [3.0, 1.0], [-5.0, 0.0]])
     checks = theory.check_fntsmc_bound(FixedTimeNTSMC(), pairs, axis=axis)

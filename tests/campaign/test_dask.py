@@ -18,11 +18,13 @@ from typing import Any
 import pytest
 
 import landing
-from conftest import assert_same_campaign
+from _cases import assert_same_campaign
 from landing import scenarios
 from landing.errors import ParameterTypeError
 
 distributed = pytest.importorskip("distributed")
+
+pytestmark = pytest.mark.dask
 
 
 def small(**kw: Any) -> landing.scenarios.Scenario:
@@ -86,6 +88,7 @@ def test_signals_not_kept_are_dropped_on_the_workers(client, local):
     assert_same_campaign(mc, local["light"])
 
 
+@pytest.mark.io
 def test_a_store_written_by_the_cluster_loads_as_the_local_run(client, local, tmp_path):
     need_io()
     path = tmp_path / "campaign"
@@ -97,6 +100,7 @@ def test_a_store_written_by_the_cluster_loads_as_the_local_run(client, local, tm
     assert_same_campaign(landing.load(path), local["small"])
 
 
+@pytest.mark.io
 def test_ctrl_c_cancels_the_outstanding_chunks_and_a_rerun_resumes(client, local, tmp_path, monkeypatch):
     need_io()
     from landing.campaign.store import CampaignStore
@@ -128,6 +132,8 @@ def test_ctrl_c_cancels_the_outstanding_chunks_and_a_rerun_resumes(client, local
     assert_same_campaign(landing.load(path), local["long"])
 
 
+@pytest.mark.io
+@pytest.mark.slow
 def test_a_real_sigint_mid_campaign_then_a_rerun_gives_the_same_bits(client, tmp_path):
     need_io()
     # 12 chunks of 8 cases x 6e4 steps: a tenth of a second or more each on one thread
@@ -160,6 +166,7 @@ def test_a_real_sigint_mid_campaign_then_a_rerun_gives_the_same_bits(client, tmp
     assert_same_campaign(landing.load(path), reference)
 
 
+@pytest.mark.io
 def test_the_command_line_runs_on_a_scheduler(cluster, local, tmp_path, capsys):
     need_io()
     from landing.cli import main
@@ -251,6 +258,8 @@ def lost_chunks(client) -> list[str]:
 
 
 # last: it kills one of the module's workers (its nanny starts another)
+@pytest.mark.io
+@pytest.mark.slow
 def test_a_worker_killed_mid_run_costs_only_its_chunks(client, tmp_path):
     need_io()
     # 24 chunks of 16 cases x 6e4 steps: a few tenths of a second each on one thread
