@@ -33,8 +33,10 @@ LAYERS: list[tuple[str, ...]] = [
     ("landing",),  # the package's __init__, which imports the public names of every layer
 ]
 
-#: The optional extras a function may import (ruff's TID253 keeps them off module level).
-EXTRAS = {"cma", "casadi", "distributed", "dask", "pyarrow", "zarr", "xarray", "pandas", "matplotlib", "SALib"}
+#: What a function may import: the optional extras, and tqdm (heavy to import, a dependency
+#: only a progress bar needs); ruff's TID253 keeps them off module level.
+EXTRAS = {"cma", "casadi", "distributed", "dask", "pyarrow", "zarr", "xarray", "pandas", "matplotlib", "SALib",
+          "tqdm"}
 
 #: The one-line delegations up (xarray's Dataset.to_zarr way): (module, function, target).
 DELEGATIONS = {

@@ -7,9 +7,6 @@ from __future__ import annotations
 import sys
 from typing import Any, Optional, TextIO
 
-from tqdm import tqdm as plain
-from tqdm.auto import tqdm
-
 #: Seconds between two lines of progress in a log.
 LOG_INTERVAL = 30.0
 
@@ -42,6 +39,11 @@ class ProgressBar:
     chunk, ``close()`` at the end (also on error)."""
 
     def __init__(self, total: int, label: str = "", stream: Optional[TextIO] = None, unit: str = "case"):
+        # tqdm is imported when a bar is drawn: importing it loads some 120 modules (asyncio with
+        # tqdm.auto), which import landing need not pay for
+        from tqdm import tqdm as plain
+        from tqdm.auto import tqdm
+
         stream = stream if stream is not None else sys.stderr
         options: dict[str, Any] = dict(total=total, desc=label or None, unit=unit, smoothing=0.1)
         if _interactive(stream):
