@@ -259,9 +259,9 @@ mod tests {
                 *x = IntegratorKind::Rk4.step(&f1, x, 0.01);
             }
         }
-        for i in 0..4 {
-            assert_eq!(xl[0].0[i].to_bits(), xs[i][0].to_bits());
-            assert_eq!(xl[1].0[i].to_bits(), xs[i][1].to_bits());
+        for (i, x) in xs.iter().enumerate() {
+            assert_eq!(xl[0].0[i].to_bits(), x[0].to_bits());
+            assert_eq!(xl[1].0[i].to_bits(), x[1].to_bits());
         }
     }
 }

@@ -117,6 +117,12 @@ pub struct CaseMetrics<const D: usize> {
     pub diverged: Option<Diverged>,
 }
 
+impl<const D: usize> Default for CaseMetrics<D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<const D: usize> CaseMetrics<D> {
     pub fn new() -> Self {
         Self {

@@ -50,11 +50,12 @@ fn interruptible<T: Send>(cancel: &AtomicBool, job: impl FnOnce() -> T + Send) -
         let mut raised = None;
         while !worker.is_finished() {
             std::thread::park_timeout(SIGNAL_POLL);
-            if raised.is_none() && !worker.is_finished() {
-                if let Err(e) = Python::attach(|py| py.check_signals()) {
-                    cancel.store(true, Ordering::Relaxed);
-                    raised = Some(e);
-                }
+            if raised.is_none()
+                && !worker.is_finished()
+                && let Err(e) = Python::attach(|py| py.check_signals())
+            {
+                cancel.store(true, Ordering::Relaxed);
+                raised = Some(e);
             }
         }
         // the job catches its own panics, so the thread cannot have panicked

@@ -81,10 +81,10 @@ impl Table {
         if v.is_none() {
             return Ok(Value::Absent);
         }
-        if let Ok(b) = v.extract::<bool>() {
-            if v.is_instance_of::<pyo3::types::PyBool>() {
-                return Ok(Value::Flag(b));
-            }
+        if let Ok(b) = v.extract::<bool>()
+            && v.is_instance_of::<pyo3::types::PyBool>()
+        {
+            return Ok(Value::Flag(b));
         }
         if let Ok(s) = v.cast::<PyString>() {
             return Ok(Value::Text(s.to_string()));
