@@ -11,8 +11,18 @@ use crate::lanes::{Gather, Real, add, mul, scale_by, zeros};
 use crate::params::{FromParams, ParamSource};
 use crate::rng::{CaseStream, streams};
 
-/// The disturbance components' kinds at the Python boundary.
-pub const COMPONENT_KINDS: [&str; 4] = ["constant", "sinusoid", "uniform_noise", "command_noise"];
+crate::named! {
+    /// The disturbance components' kinds at the Python boundary.
+    pub enum ComponentKind {
+        Constant => "constant",
+        Sinusoid => "sinusoid",
+        UniformNoise => "uniform_noise",
+        CommandNoise => "command_noise",
+    }
+}
+
+/// The disturbance components' kinds' names.
+pub const COMPONENT_KINDS: &[&str] = ComponentKind::NAMES;
 
 /// Most sinusoidal components one disturbance carries (kept fixed so the type stays `Copy`).
 pub const MAX_SINUSOIDS: usize = 4;
@@ -289,15 +299,15 @@ impl<const D: usize> FromParams for Disturbance<D> {
         let mut d = Disturbance::none();
         for j in 0..p.list_len("components")? {
             d = p.list_item("components", j, |c| {
-                Ok(match c.kind(&COMPONENT_KINDS)? {
-                    0 => d.with_constant(c.axes("value")?),
-                    1 => d.with_sinusoid(Sinusoid {
+                Ok(match c.kind::<ComponentKind>()? {
+                    ComponentKind::Constant => d.with_constant(c.axes("value")?),
+                    ComponentKind::Sinusoid => d.with_sinusoid(Sinusoid {
                         amplitude: c.axes("amplitude")?,
                         omega: c.axes("omega")?,
                         phase: c.axes("phase")?,
                     })?,
-                    2 => d.with_noise(c.axes("bound")?),
-                    _ => d.with_command_noise(c.axes("fraction")?),
+                    ComponentKind::UniformNoise => d.with_noise(c.axes("bound")?),
+                    ComponentKind::CommandNoise => d.with_command_noise(c.axes("fraction")?),
                 })
             })?;
         }

@@ -18,16 +18,19 @@ use nalgebra::SVector;
 use crate::control::{AnyLaw, AnyMemory, LawInput};
 use crate::lanes::Real;
 use crate::metrics::CommandStats;
+use crate::params::Named;
 
-/// An instruction-set level the block rollout is compiled for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Level {
-    /// The architecture's baseline (SSE2 on x86-64; the portable build elsewhere).
-    Baseline,
-    /// x86-64-v3: AVX2, FMA (unused), BMI1/2.
-    Avx2,
-    /// x86-64-v4: AVX-512 F, CD, BW, DQ, VL.
-    Avx512,
+crate::named! {
+    /// An instruction-set level the block rollout is compiled for.
+    #[derive(PartialOrd, Ord)]
+    pub enum Level {
+        /// The architecture's baseline (SSE2 on x86-64; the portable build elsewhere).
+        Baseline => "baseline",
+        /// x86-64-v3: AVX2, FMA (unused), BMI1/2.
+        Avx2 => "avx2",
+        /// x86-64-v4: AVX-512 F, CD, BW, DQ, VL.
+        Avx512 => "avx512",
+    }
 }
 
 /// The environment variable that forces a level.
@@ -62,18 +65,9 @@ impl fmt::Display for LevelError {
 impl std::error::Error for LevelError {}
 
 impl Level {
-    pub const ALL: [Level; 3] = [Level::Baseline, Level::Avx2, Level::Avx512];
-    pub const NAMES: [&'static str; 3] = ["baseline", "avx2", "avx512"];
-
-    pub fn name(self) -> &'static str {
-        Self::NAMES[self as usize]
-    }
-
+    /// The level named `name` (an error naming the levels if none is).
     pub fn from_name(name: &str) -> Result<Self, LevelError> {
-        Self::ALL
-            .into_iter()
-            .find(|l| l.name() == name)
-            .ok_or_else(|| LevelError::Unknown(name.to_string()))
+        <Self as Named>::from_name(name).ok_or_else(|| LevelError::Unknown(name.to_string()))
     }
 
     /// Whether this CPU can run the level.
@@ -103,7 +97,11 @@ impl Level {
 
     /// The levels this CPU supports, lowest first.
     pub fn supported() -> Vec<Level> {
-        Self::ALL.into_iter().filter(|l| l.is_supported()).collect()
+        Self::ALL
+            .iter()
+            .copied()
+            .filter(|l| l.is_supported())
+            .collect()
     }
 
     /// The best level this CPU supports.

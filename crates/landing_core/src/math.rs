@@ -29,9 +29,16 @@ pub enum Switch<R = f64> {
     Tanh(R),
 }
 
-impl Switch {
-    pub const NAMES: [&'static str; 3] = ["sign", "sat", "tanh"];
+crate::named! {
+    /// The switching functions' names at the boundary.
+    pub enum SwitchKind {
+        Sign => "sign",
+        Sat => "sat",
+        Tanh => "tanh",
+    }
+}
 
+impl Switch {
     /// Boundary-layer width, if the switch has one.
     pub fn width(&self) -> Option<f64> {
         match *self {
@@ -75,9 +82,13 @@ impl<R: Real> Gather<R> for Switch<R> {
 impl FromParams for Switch {
     /// `switch` ("sign", "sat" or "tanh") and its `boundary_layer` width.
     fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        let kind = p.choice("switch", &Switch::NAMES)?;
+        let kind = p.choice::<SwitchKind>("switch")?;
         let phi = p.scalar("boundary_layer")?;
-        Ok([Switch::Sign, Switch::Sat(phi), Switch::Tanh(phi)][kind])
+        Ok(match kind {
+            SwitchKind::Sign => Switch::Sign,
+            SwitchKind::Sat => Switch::Sat(phi),
+            SwitchKind::Tanh => Switch::Tanh(phi),
+        })
     }
 }
 

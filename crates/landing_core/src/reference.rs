@@ -6,8 +6,16 @@ use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Gather, Real, add, scale, scale_by, select_vector, zeros};
 use crate::params::{FromParams, ParamSource};
 
-/// The reference kinds at the Python boundary.
-pub const REFERENCE_KINDS: [&str; 2] = ["constant", "cubic"];
+crate::named! {
+    /// The reference kinds at the Python boundary.
+    pub enum ReferenceKind {
+        Constant => "constant",
+        Cubic => "cubic",
+    }
+}
+
+/// The reference kinds' names.
+pub const REFERENCE_KINDS: &[&str] = ReferenceKind::NAMES;
 
 /// Reference position, velocity and acceleration at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -168,12 +176,12 @@ impl<const D: usize> Validate for Reference<D> {
 impl<const D: usize> FromParams for Reference<D> {
     /// `constant` (position, optional velocity) or `cubic` (coefficients c0..c3, t_end).
     fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        match p.kind(&REFERENCE_KINDS)? {
-            0 => Ok(Self::Constant {
+        match p.kind::<ReferenceKind>()? {
+            ReferenceKind::Constant => Ok(Self::Constant {
                 position: p.axes("position")?,
                 velocity: p.opt_axes("velocity")?.unwrap_or_else(SVector::zeros),
             }),
-            _ => Ok(Self::Cubic {
+            ReferenceKind::Cubic => Ok(Self::Cubic {
                 coefficients: [p.axes("c0")?, p.axes("c1")?, p.axes("c2")?, p.axes("c3")?],
                 t_end: p.scalar("t_end")?,
             }),

@@ -35,7 +35,7 @@ impl Gravity {
     /// The field's kind (one of GRAVITY_KINDS).
     #[getter]
     fn kind(&self) -> PyResult<&'static str> {
-        guard(|| Ok(self.fields[0].kind()))
+        guard(|| Ok(self.fields[0].kind().name()))
     }
 
     /// Acceleration (N, 3) or potential (N,) at positions (N, 3).

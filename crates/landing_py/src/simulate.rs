@@ -14,6 +14,7 @@ use landing_core::control::AnyLaw;
 use landing_core::disturbance::Disturbance as CoreDisturbance;
 use landing_core::integrator::IntegratorKind;
 use landing_core::limits::{MAX_CASES, MAX_SUBSTEPS, MAX_THREADS};
+use landing_core::params::Named;
 use landing_core::plant::PlantModel;
 use landing_core::reference::Reference as CoreReference;
 use landing_core::registry::PlantVisitor;

@@ -19,7 +19,7 @@ use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 use landing_core::PerCase;
 use landing_core::fuzzy::Mamdani;
-use landing_core::params::ParamSource;
+use landing_core::params::{Named, ParamSource};
 
 use crate::errors::InputError;
 
@@ -370,16 +370,11 @@ impl ParamSource for Reader<'_> {
         }
     }
 
-    fn choice(
-        &mut self,
-        key: &'static str,
-        names: &'static [&'static str],
-    ) -> Result<usize, InputError> {
+    fn choice<T: Named>(&mut self, key: &'static str) -> Result<T, InputError> {
+        let names = T::NAMES;
         match self.raw(key) {
             Value::Absent => Err(Self::required(key)),
-            Value::Text(s) => names
-                .iter()
-                .position(|n| n == s)
+            Value::Text(s) => T::from_name(s)
                 .ok_or_else(|| InputError::value(format!("{key} = {s:?} is not one of {names:?}"))),
             _ => Err(InputError::type_(format!(
                 "{key} must be a string, one of {names:?}"
@@ -417,12 +412,11 @@ impl ParamSource for Reader<'_> {
         Ok(n)
     }
 
-    fn kind(&mut self, known: &'static [&'static str]) -> Result<usize, InputError> {
+    fn kind<T: Named>(&mut self) -> Result<T, InputError> {
         self.mark("kind");
+        let known = T::NAMES;
         match self.table.get("kind") {
-            Value::Text(s) => known
-                .iter()
-                .position(|k| k == s)
+            Value::Text(s) => T::from_name(s)
                 .ok_or_else(|| InputError::value(format!("unknown kind {s:?}; known: {known:?}"))),
             _ => Err(InputError::type_("the table has no 'kind'")),
         }

@@ -25,21 +25,11 @@ use crate::lanes::math::PowLog;
 use crate::lanes::{Mask, Real, filled, sub};
 use crate::params::{FromParams, ParamSource};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MssVariant {
-    Printed,
-    Exact,
-}
-
-impl MssVariant {
-    pub const NAMES: [&'static str; 2] = ["printed", "exact"];
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "printed" => Some(Self::Printed),
-            "exact" => Some(Self::Exact),
-            _ => None,
-        }
+crate::named! {
+    /// Eq. 25 as printed, or with the exact derivative of s2.
+    pub enum MssVariant {
+        Printed => "printed",
+        Exact => "exact",
     }
 }
 
@@ -249,8 +239,7 @@ impl<const D: usize> FromParams for FixedTimeMss<D> {
             alpha2: p.axes("alpha2")?,
             gamma1: p.axes("gamma1")?,
             gamma2: p.axes("gamma2")?,
-            variant: [MssVariant::Printed, MssVariant::Exact]
-                [p.choice("variant", &MssVariant::NAMES)?],
+            variant: p.choice("variant")?,
             s1_floor: p.scalar("s1_floor")?,
         })
     }

@@ -117,9 +117,17 @@ pub(crate) fn validate_switch(switch: &Switch) -> Result<(), ParamError> {
 }
 
 /// The law registry: each law once, with its name at the Python boundary. Generates
-/// [`AnyLaw`] (one variant per law), [`AnyMemory`] and [`LAW_KINDS`].
+/// [`LawKind`] (the names), [`AnyLaw`] (one variant per law), [`AnyMemory`], their dispatch and
+/// the parsing of a law's table.
 macro_rules! laws {
     ($($variant:ident => $kind:literal,)*) => {
+        crate::named! {
+            /// The laws' names at the Python boundary, in registry order.
+            pub enum LawKind {
+                $($variant => $kind,)*
+            }
+        }
+
         /// A law chosen at run time (one case's, `AnyLaw<D>`, or a block's,
         /// `AnyLaw<D, Lanes<W>>`).
         #[derive(Clone, Debug, PartialEq)]
@@ -134,7 +142,7 @@ macro_rules! laws {
         }
 
         /// The laws' names at the Python boundary, in registry order.
-        pub const LAW_KINDS: &[&str] = &[$($kind),*];
+        pub const LAW_KINDS: &[&str] = LawKind::NAMES;
 
         $(
             impl<const D: usize, R: Real> From<$variant<D, R>> for AnyLaw<D, R> {
@@ -145,10 +153,10 @@ macro_rules! laws {
         )*
 
         impl<const D: usize, R: Real> AnyLaw<D, R> {
-            /// The law's name at the Python boundary.
-            pub fn kind(&self) -> &'static str {
+            /// The law's kind (its name at the Python boundary).
+            pub fn kind(&self) -> LawKind {
                 match self {
-                    $(Self::$variant(_) => $kind,)*
+                    $(Self::$variant(_) => LawKind::$variant,)*
                 }
             }
 
@@ -231,9 +239,8 @@ macro_rules! laws {
         impl<const D: usize> AnyLaw<D> {
             /// The law a table describes (its `kind` names it), validated.
             pub fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-                let law = match LAW_KINDS[p.kind(LAW_KINDS)?] {
-                    $($kind => Self::$variant(<$variant<D>>::from_params(p)?),)*
-                    _ => unreachable!("kind() returns a registered kind"),
+                let law = match p.kind::<LawKind>()? {
+                    $(LawKind::$variant => Self::$variant(<$variant<D>>::from_params(p)?),)*
                 };
                 law.validate()?;
                 Ok(law)

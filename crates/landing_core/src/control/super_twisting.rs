@@ -25,21 +25,11 @@ use crate::lanes::{Real, add, mul, sub, zeros};
 use crate::math::sgn;
 use crate::params::{FromParams, ParamSource};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SuperTwistingVariant {
-    Printed,
-    Standard,
-}
-
-impl SuperTwistingVariant {
-    pub const NAMES: [&'static str; 2] = ["printed", "standard"];
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "printed" => Some(Self::Printed),
-            "standard" => Some(Self::Standard),
-            _ => None,
-        }
+crate::named! {
+    /// Eq. 46 as printed, or the textbook algorithm.
+    pub enum SuperTwistingVariant {
+        Printed => "printed",
+        Standard => "standard",
     }
 }
 
@@ -134,10 +124,7 @@ impl<const D: usize> FromParams for SuperTwisting<D> {
             b1: p.axes("b1")?,
             b2: p.axes("b2")?,
             c: p.axes("c")?,
-            variant: [
-                SuperTwistingVariant::Printed,
-                SuperTwistingVariant::Standard,
-            ][p.choice("variant", &SuperTwistingVariant::NAMES)?],
+            variant: p.choice("variant")?,
             s_floor: p.scalar("s_floor")?,
         })
     }

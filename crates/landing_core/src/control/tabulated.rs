@@ -30,16 +30,15 @@ use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Gather, Real};
 use crate::params::{FromParams, ParamSource};
 
-/// What the law commands after its table.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum AfterTable {
-    /// The last row, held.
-    Hold,
-    /// Zero force.
-    Zero,
+crate::named! {
+    /// What the law commands after its table.
+    pub enum AfterTable {
+        /// The last row, held.
+        Hold => "hold",
+        /// Zero force.
+        Zero => "zero",
+    }
 }
-
-const AFTER: &[&str] = &["hold", "zero"];
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tabulated<const D: usize, R = f64> {
@@ -128,10 +127,7 @@ impl<const D: usize> FromParams for Tabulated<D> {
         if !(hold >= 1.0 && hold.fract() == 0.0 && hold <= u32::MAX as f64) {
             return Err(ParamError::new("hold", hold, "hold a whole number >= 1").into());
         }
-        let after = match p.choice("after", AFTER)? {
-            0 => AfterTable::Hold,
-            _ => AfterTable::Zero,
-        };
+        let after = p.choice::<AfterTable>("after")?;
         let n = p.list_len("rows")?;
         let mut rows = Vec::with_capacity(n);
         for j in 0..n {

@@ -50,9 +50,19 @@ pub struct TetheredFlexible<const N: usize, const S: usize, R = f64> {
     pub axial_damping: R,
 }
 
-/// The node counts the bindings offer (each is its own fixed-size state type): enough for the
-/// refinement study to show convergence, few enough to keep the compiled rollouts few.
-pub const NODE_COUNTS: [usize; 4] = [2, 4, 8, 16];
+crate::named! {
+    /// The node counts the bindings offer (each is its own fixed-size state type): enough for
+    /// the refinement study to show convergence, few enough to keep the compiled rollouts few.
+    pub enum NodeCount {
+        N2 = 2,
+        N4 = 4,
+        N8 = 8,
+        N16 = 16,
+    }
+}
+
+/// The node counts' values.
+pub const NODE_COUNTS: &[usize] = NodeCount::VALUES;
 
 pub type TetheredFlexible2<R = f64> = TetheredFlexible<2, 14, R>;
 pub type TetheredFlexible4<R = f64> = TetheredFlexible<4, 22, R>;

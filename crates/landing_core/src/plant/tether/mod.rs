@@ -27,8 +27,8 @@ mod names;
 mod simplified;
 
 pub use flexible::{
-    NODE_COUNTS, TetheredFlexible, TetheredFlexible2, TetheredFlexible4, TetheredFlexible8,
-    TetheredFlexible16,
+    NODE_COUNTS, NodeCount, TetheredFlexible, TetheredFlexible2, TetheredFlexible4,
+    TetheredFlexible8, TetheredFlexible16,
 };
 pub use names::MAX_NODES;
 pub use simplified::TetheredSimplified;
@@ -38,6 +38,16 @@ use nalgebra::Vector2;
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::Real;
 use crate::params::{FromParams, ParamSource};
+
+crate::named! {
+    /// The two models of the tethered satellite.
+    pub enum Fidelity {
+        /// The rigid dumbbell of seed eq. 17 ([`TetheredSimplified`]).
+        Simplified => "simplified",
+        /// The lumped-mass tether ([`TetheredFlexible`]).
+        Flexible => "flexible",
+    }
+}
 
 /// Earth's gravitational parameter, m^3/s^2 (WGS 84).
 pub const MU_EARTH: f64 = 3.986_004_418e14;

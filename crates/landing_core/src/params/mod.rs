@@ -13,6 +13,10 @@ use nalgebra::SVector;
 use crate::error::ParamError;
 use crate::fuzzy::Mamdani;
 
+mod names;
+
+pub use names::{Counted, Named};
+
 /// A table of named parameters, read at one case.
 pub trait ParamSource {
     type Error: From<ParamError>;
@@ -32,12 +36,8 @@ pub trait ParamSource {
         key: &'static str,
     ) -> Result<Option<SVector<f64, D>>, Self::Error>;
 
-    /// One of `names`, shared by every case: its index.
-    fn choice(
-        &mut self,
-        key: &'static str,
-        names: &'static [&'static str],
-    ) -> Result<usize, Self::Error>;
+    /// One of `T`'s names, shared by every case.
+    fn choice<T: Named>(&mut self, key: &'static str) -> Result<T, Self::Error>;
 
     /// A flag, shared by every case.
     fn flag(&mut self, key: &'static str) -> Result<bool, Self::Error>;
@@ -50,9 +50,19 @@ pub trait ParamSource {
         rule: &'static str,
     ) -> Result<usize, Self::Error>;
 
-    /// The position in `known` of the `kind` of the table being read (an error naming the
-    /// known kinds if it is none of them).
-    fn kind(&mut self, known: &'static [&'static str]) -> Result<usize, Self::Error>;
+    /// The `kind` of the table being read, one of `T`'s names (an error naming them if it is
+    /// none of them).
+    fn kind<T: Named>(&mut self) -> Result<T, Self::Error>;
+
+    /// A whole number among `T`'s values, shared by every case (it picks a compiled type).
+    fn count_of<T: Counted>(
+        &mut self,
+        key: &'static str,
+        rule: &'static str,
+    ) -> Result<T, Self::Error> {
+        let n = self.count(key, T::VALUES, rule)?;
+        T::from_value(n).ok_or_else(|| ParamError::new(key, n as f64, rule).into())
+    }
 
     /// Reads the nested table `key` with `read`.
     fn nested<T>(
