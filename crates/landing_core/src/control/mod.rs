@@ -39,10 +39,10 @@ pub use tabulated::{AfterTable, Tabulated};
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check};
 use crate::lanes::{Gather, Real};
-use crate::math::Switch;
-use crate::params::{FromParams, ParamSource};
+use crate::math::{BOUNDARY_LAYER, Switch};
+use crate::params::{Declared, FromParams, ParamSource};
 use crate::reference::RefPoint;
 
 /// What a law sees at a control instant.
@@ -111,7 +111,7 @@ fn layout<const D: usize, L: ControlLaw<f64, D>>() -> Vec<(&'static str, usize)>
 /// A switching function's boundary layer must be positive.
 pub(crate) fn validate_switch(switch: &Switch) -> Result<(), ParamError> {
     match switch.width() {
-        Some(phi) => require(phi > 0.0, "boundary_layer", phi, "boundary_layer > 0"),
+        Some(phi) => check(&BOUNDARY_LAYER, phi, |v| v > 0.0),
         None => Ok(()),
     }
 }
@@ -122,9 +122,9 @@ pub(crate) fn validate_switch(switch: &Switch) -> Result<(), ParamError> {
 macro_rules! laws {
     ($($variant:ident => $kind:literal,)*) => {
         crate::named! {
-            /// The laws' names at the Python boundary, in registry order.
-            pub enum LawKind {
-                $($variant => $kind,)*
+            /// The laws' names at the Python boundary, in registry order, and their schemas.
+            pub enum LawKind in "law" {
+                $($variant => $kind: <$variant<3> as Declared>::SCHEMA,)*
             }
         }
 
@@ -238,7 +238,7 @@ macro_rules! laws {
 
         impl<const D: usize> AnyLaw<D> {
             /// The law a table describes (its `kind` names it), validated.
-            pub fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+            pub fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
                 let law = match p.kind::<LawKind>()? {
                     $(LawKind::$variant => Self::$variant(<$variant<D>>::from_params(p)?),)*
                 };

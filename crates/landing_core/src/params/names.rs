@@ -21,6 +21,15 @@ pub trait Named: Copy + PartialEq + std::fmt::Debug + 'static {
     }
 }
 
+/// The kinds of one family of models (the laws, the plants, the gravity fields...): their
+/// names, and what each kind declares.
+pub trait Kinds: Named {
+    /// The family's name in the schema (`"law"`, `"plant"`, ...).
+    const FAMILY: &'static str;
+
+    fn schema(self) -> crate::params::Schema;
+}
+
 /// A closed set of values given by a whole number (a size that picks a compiled type).
 pub trait Counted: Copy + PartialEq + std::fmt::Debug + 'static {
     /// The numbers, in declaration order.
@@ -39,8 +48,9 @@ pub trait Counted: Copy + PartialEq + std::fmt::Debug + 'static {
     }
 }
 
-/// Declares an enum of named values (`Variant => "name"`) implementing [`Named`], or of
-/// counted values (`Variant = 8`) implementing [`Counted`]:
+/// Declares an enum of named values (`Variant => "name"`) implementing [`Named`], of counted
+/// values (`Variant = 8`) implementing [`Counted`], or the kinds of a family of models
+/// (`enum K in "family" { Variant => "name": schema }`) implementing [`Named`] and [`Kinds`]:
 ///
 /// ```
 /// landing_core::named! {
@@ -83,6 +93,26 @@ macro_rules! named {
 
             fn name(self) -> &'static str {
                 $name::name(self)
+            }
+        }
+    };
+    ($(#[$meta:meta])* $vis:vis enum $name:ident in $family:literal {
+        $($(#[$vmeta:meta])* $variant:ident => $text:literal: $schema:expr),* $(,)?
+    }) => {
+        $crate::named! {
+            $(#[$meta])*
+            $vis enum $name {
+                $($(#[$vmeta])* $variant => $text,)*
+            }
+        }
+
+        impl $crate::params::Kinds for $name {
+            const FAMILY: &'static str = $family;
+
+            fn schema(self) -> $crate::params::Schema {
+                match self {
+                    $(Self::$variant => $schema,)*
+                }
             }
         }
     };
