@@ -2,10 +2,21 @@
 # Python package; its configuration classes compile their parameter tables into these handles
 # once, and batches take the handles.
 from collections.abc import Sequence
-from typing import Any, Optional
+from typing import Any, Optional, final
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import TypeAlias
+
+__all__ = [
+    "__version__", "Plant", "Law", "Reference", "Disturbance", "Gravity", "FuzzySystem", "simulate_batch",
+    "cubic_from_boundary", "variable_rate_system_table", "kernel_levels", "default_kernel", "available_memory",
+    "_panic_for_test", "fixed_time_bound", "practical_time_bound", "practical_radius", "mss_bounds",
+    "min_final_time", "min_time_to_rest", "fntsmc_ts_printed", "fntsmc_td_printed", "fntsmc_bounds",
+    "philox4x64", "Dispersion", "DispersionHandle", "INTEGRATORS", "PLANT_KINDS", "CONTROLLER_KINDS",
+    "GRAVITY_KINDS", "KERNEL_LEVELS", "GRAVITATIONAL_CONSTANT", "DIVERGENCE_REASONS", "MAX_COMMAND", "LIMITS",
+    "SCHEMAS", "METRICS",
+]
 
 __version__: str
 INTEGRATORS: list[str]
@@ -18,14 +29,32 @@ GRAVITATIONAL_CONSTANT: float
 LIMITS: dict[str, int]
 DIVERGENCE_REASONS: list[str]
 MAX_COMMAND: float
+#: What every kind of model declares, ``SCHEMAS[family][kind]["parameters"]``: for the
+#: families "plant", "law", "gravity", "disturbance" (its component kinds, each with
+#: ``"random"``: whether it draws random numbers), "reference", "dispersion" and "fuzzy" (the
+#: Mamdani system's table, "mamdani", and its membership shapes). Each parameter is a dict
+#: ``{"name", "shape", "unit", "rule", "required", "doc"}``: shape one of "scalar",
+#: "per_axis", "per_component", "choice", "flag", "count", "nested", "list", "fuzzy_system";
+#: unit in SI ("1" dimensionless, "" not a number; "q" the plant's generalized coordinate, m or
+#: rad); rule the inequality the core enforces ("" if only finiteness). A choice or a count
+#: adds ``"choices"``; a nested table or a list adds ``"family"`` (the family of its kind), or
+#: ``"family": None`` and ``"layout"`` (its parameters) for a fixed layout. The parameters are
+#: exactly the keys of the Python class's table, in the order of its fields. In a list, an item
+#: that is not a table is shorthand: a ``(kind, values)`` pair (a fuzzy set) for ``{"kind":
+#: kind, "values": values}``, anything else (a fuzzy rule) for ``{"values": item}``.
+SCHEMAS: dict[str, dict[str, dict[str, Any]]]
+#: The per-case metric columns of a batch's output, in order: ``{"name", "unit", "per_axis",
+#: "doc"}`` each (a per-axis column is (N, axes), the others (N,)).
+METRICS: list[dict[str, Any]]
 
-Table = dict[str, Any]
-Array = npt.NDArray[np.float64]
+_Table: TypeAlias = dict[str, Any]
+_Array: TypeAlias = npt.NDArray[np.float64]
 
+@final
 class Plant:
     """A compiled plant table (one case, or one per case)."""
 
-    def __init__(self, owner: str, table: Table) -> None: ...
+    def __new__(cls, owner: str, table: _Table) -> "Plant": ...
     @property
     def kind(self) -> str: ...
     @property
@@ -37,12 +66,16 @@ class Plant:
         cases, s) and the model's derived figures: for the tethered satellite inertia,
         orbital_rate, thrust_limit, torque_limit, and for the flexible model nodes and
         segment_length (of the first case)."""
-    def coordinates(self, states: Array) -> tuple[Array, Array]:
+    def coordinates(self, states: _Array) -> tuple[_Array, _Array]:
         """Generalized coordinates q and rates q' (each (M, axes)) of states (M, state dim)."""
-    def state_at(self, rows: Array) -> Array:
+    def state_at(self, rows: _Array) -> _Array:
         """States (M, state dim) from rows (q, q') of 2 axes values, for plants whose state
         they determine (the tethered satellite)."""
+    def parameter(self, name: str, axes: int) -> _Array:
+        """The numeric parameter ``name`` as the core reads it: (cases, axes) per axis, (cases,)
+        for a scalar (cases = 1 when shared); ParameterError for another name."""
 
+@final
 class Law:
     """A compiled controller table, read for 3 and for 2 axes.
 
@@ -52,7 +85,7 @@ class Law:
     "after": "hold" | "zero"}``: one table per row, every case the same number of rows.
     """
 
-    def __init__(self, owner: str, table: Table) -> None: ...
+    def __new__(cls, owner: str, table: _Table) -> "Law": ...
     @property
     def kind(self) -> str: ...
     @property
@@ -60,44 +93,63 @@ class Law:
         """The axis counts the law's parameters fit."""
     def diagnostic_layout(self, axes: int) -> list[tuple[str, int]]:
         """Names and widths of the law's recorded diagnostics for that many axes."""
+    def parameter(self, name: str, axes: int) -> _Array:
+        """The numeric parameter ``name`` as the law reads it for ``axes`` axes: (cases, axes)
+        per axis, (cases,) for a scalar (cases = 1 when shared); ParameterError for another
+        name."""
 
+@final
 class Reference:
-    def __init__(self, owner: str, table: Table) -> None: ...
-    def evaluate(self, axes: int, t: list[float]) -> dict[str, Array]:
+    def __new__(cls, owner: str, table: _Table) -> "Reference": ...
+    def evaluate(self, axes: int, t: list[float]) -> dict[str, _Array]:
         """position, velocity and acceleration at times t, each (len(t), axes)."""
+    def parameter(self, name: str, axes: int) -> _Array:
+        """The numeric parameter ``name`` as the reference reads it (see Law.parameter)."""
 
+@final
 class Disturbance:
-    def __init__(self, owner: str, table: Table) -> None:
+    def __new__(cls, owner: str, table: _Table) -> "Disturbance":
         """From a table {"components": [component tables...]}."""
     @staticmethod
     def combine(parts: Sequence[Disturbance]) -> Disturbance:
         """The parts acting together (their components add up)."""
     def bound(self, axes: int) -> list[float]:
         """Per-axis bound on |d_i(t)|."""
+    def parameter(self, name: str, axes: int) -> _Array:
+        """The numeric parameter ``name`` of the one component that has it (see
+        Law.parameter)."""
 
+@final
 class Gravity:
-    def __init__(self, owner: str, table: Table) -> None: ...
+    def __new__(cls, owner: str, table: _Table) -> "Gravity": ...
     @property
     def kind(self) -> str: ...
-    def evaluate(self, positions: Array, potential: bool) -> Array:
+    def evaluate(self, positions: _Array, potential: bool) -> _Array:
         """Acceleration (N, 3) or potential (N,) at positions (N, 3)."""
+    def parameter(self, name: str, axes: int) -> _Array:
+        """The numeric parameter ``name`` as the field reads it (see Law.parameter)."""
 
+@final
 class FuzzySystem:
-    def __init__(self, table: Table) -> None: ...
-    def evaluate(self, inputs: Array) -> Array:
+    def __new__(cls, table: _Table) -> "FuzzySystem": ...
+    def evaluate(self, inputs: _Array) -> _Array:
         """Crisp outputs (N,) for inputs (N, number of inputs)."""
 
-class DispersionHandle:
-    def __init__(self, table: Table) -> None: ...
+@final
+class Dispersion:
+    def __new__(cls, table: _Table) -> "Dispersion": ...
     @property
     def dim(self) -> int: ...
-    def sample(self, seed: int, first_case: int, n: int) -> Array:
+    def sample(self, seed: int, first_case: int, n: int) -> _Array:
         """Cases first_case .. first_case + n, shape (n, components)."""
+
+#: The former name of :class:`Dispersion`.
+DispersionHandle = Dispersion
 
 def simulate_batch(
     plant: Plant,
     controller: Law,
-    x0: Array,
+    x0: _Array,
     *,
     t_final: float,
     dt: float,
@@ -131,7 +183,7 @@ def cubic_from_boundary(
 ) -> list[list[float]]:
     """Coefficients c0..c3 (each a list over axes) of the cubic through the boundary states."""
 
-def variable_rate_system_table(resolution: int) -> Table:
+def variable_rate_system_table(resolution: int) -> _Table:
     """The seed-002 variable-rate system as a Mamdani table."""
 
 def philox4x64(counter: tuple[int, int, int, int], key: tuple[int, int]) -> list[int]:

@@ -17,16 +17,14 @@ use rayon::prelude::*;
 
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
-#[cfg(target_arch = "x86_64")]
-use crate::kernel::{Avx2Laws, Avx512Laws};
-use crate::kernel::{BaselineLaws, Blocks, Level, LevelError};
+use crate::kernel::{self, LawCalls, Level, LevelError, LevelJob};
 use crate::lanes::{Gather, Real};
 use crate::memory::{available_bytes, gib};
 use crate::metrics::CaseMetrics;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
 use crate::rollout::{
-    BlockBuffers, Cancelled, LawCalls, MAX_DIAGNOSTIC_WIDTH, SimConfig, StageTable, rollout_block,
+    BlockBuffers, Cancelled, MAX_DIAGNOSTIC_WIDTH, SimConfig, StageTable, rollout_block,
 };
 use crate::state::State;
 
@@ -241,80 +239,42 @@ struct BlockJob<'a, 'b, const D: usize, P: PlantModel<D>> {
     out: BlockBuffers<'b, D>,
 }
 
-/// Gathers the block's cases into the lanes of `R` and runs them. `#[inline(always)]`: it is
-/// compiled inside each level's trampoline, with that level's target features.
-#[inline(always)]
-fn run_block<const D: usize, P: PlantModel<D>, R: Real, K: LawCalls<D, R>>(
-    mut job: BlockJob<'_, '_, D, P>,
-) -> Result<(), Cancelled> {
-    let sh = job.shared;
-    let b = sh.batch;
-    // lane i is case first + i; the padding lanes repeat the last case
-    let case = |i: usize| job.first + i.min(job.used - 1);
-    let plant = <P::At<R> as Gather<R>>::gather(&|i| b.plants.get(case(i)));
-    let law = AnyLaw::<D, R>::gather(&|i| b.laws.get(case(i)));
-    let reference = Reference::<D, R>::gather(&|i| b.references.get(case(i)));
-    let disturbance = Disturbance::<D, R>::gather(&|i| b.disturbances.get(case(i)));
-    let x0 = <<P::At<R> as Plant<R, D>>::State as State<R>>::from_components(|c| {
-        R::from_fn(|i| b.x0[case(i)].component(c))
-    });
-    let cases: Vec<u64> = (0..R::LANES)
-        .map(|i| sh.cfg.first_case + case(i) as u64)
-        .collect();
-    rollout_block::<D, R, _, K>(
-        &plant,
-        &law,
-        &reference,
-        &disturbance,
-        sh.table,
-        &x0,
-        sh.cfg,
-        &cases,
-        job.used,
-        sh.cancel,
-        &mut job.out,
-    )
-}
+impl<const D: usize, P: PlantModel<D>> LevelJob<D> for BlockJob<'_, '_, D, P> {
+    type Blocks = P::Blocks;
+    type Output = Result<(), Cancelled>;
 
-#[inline(never)]
-fn run_block_baseline<const D: usize, P: PlantModel<D>>(
-    job: BlockJob<'_, '_, D, P>,
-) -> Result<(), Cancelled> {
-    run_block::<D, P, <P::Blocks as Blocks>::Baseline, BaselineLaws>(job)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
-fn run_block_avx2<const D: usize, P: PlantModel<D>>(
-    job: BlockJob<'_, '_, D, P>,
-) -> Result<(), Cancelled> {
-    run_block::<D, P, <P::Blocks as Blocks>::Avx2, Avx2Laws>(job)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(
-    enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
-)]
-fn run_block_avx512<const D: usize, P: PlantModel<D>>(
-    job: BlockJob<'_, '_, D, P>,
-) -> Result<(), Cancelled> {
-    run_block::<D, P, <P::Blocks as Blocks>::Avx512, Avx512Laws>(job)
-}
-
-/// Runs a block at `level` (which [`Level::resolve`] has checked this CPU supports).
-fn dispatch<const D: usize, P: PlantModel<D>>(
-    level: Level,
-    job: BlockJob<'_, '_, D, P>,
-) -> Result<(), Cancelled> {
-    match level {
-        Level::Baseline => run_block_baseline(job),
-        // SAFETY: `Level::resolve` checked the CPU has the level's features.
-        #[cfg(target_arch = "x86_64")]
-        Level::Avx2 => unsafe { run_block_avx2(job) },
-        #[cfg(target_arch = "x86_64")]
-        Level::Avx512 => unsafe { run_block_avx512(job) },
-        #[cfg(not(target_arch = "x86_64"))]
-        _ => unreachable!("only the baseline is supported off x86-64"),
+    /// Gathers the block's cases into the lanes of `R` and runs them. `#[inline(always)]`: it
+    /// is compiled inside each level's function ([`crate::kernel`]), with that level's target
+    /// features.
+    #[inline(always)]
+    fn run<R: Real, K: LawCalls<D, R>>(mut self) -> Result<(), Cancelled> {
+        let sh = self.shared;
+        let b = sh.batch;
+        // lane i is case first + i; the padding lanes repeat the last case
+        let case = |i: usize| self.first + i.min(self.used - 1);
+        let plant = <P::At<R> as Gather<R>>::gather(&|i| b.plants.get(case(i)));
+        let law = AnyLaw::<D, R>::gather(&|i| b.laws.get(case(i)));
+        let reference = Reference::<D, R>::gather(&|i| b.references.get(case(i)));
+        let disturbance = Disturbance::<D, R>::gather(&|i| b.disturbances.get(case(i)));
+        let x0 = <<P::At<R> as Plant<R, D>>::State as State<R>>::from_components(|c| {
+            R::from_fn(|i| b.x0[case(i)].component(c))
+        });
+        let cases: Vec<u64> = (0..R::LANES)
+            .map(|i| sh.cfg.first_case + case(i) as u64)
+            .collect();
+        rollout_block::<D, R, _, K>(
+            &plant,
+            &law,
+            &reference,
+            &disturbance,
+            sh.table,
+            &x0,
+            sh.cfg,
+            &cases,
+            self.used,
+            sh.cancel,
+            &mut self.out,
+        )
     }
 }
 
@@ -379,14 +339,6 @@ fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result
 enum Kernel {
     Lanes(Level),
     Scalar,
-}
-
-/// Runs a block of one case with `f64` numbers: the width-1 instance of the generic rollout.
-#[inline(never)]
-fn run_block_scalar<const D: usize, P: PlantModel<D>>(
-    job: BlockJob<'_, '_, D, P>,
-) -> Result<(), Cancelled> {
-    run_block::<D, P, f64, BaselineLaws>(job)
 }
 
 /// Runs every case of the batch on the current rayon pool.
@@ -466,8 +418,8 @@ fn run_here<const D: usize, P: PlantModel<D>>(
     jobs.into_par_iter()
         .with_max_len(1)
         .try_for_each(|job| match kernel {
-            Kernel::Lanes(level) => dispatch(level, job),
-            Kernel::Scalar => run_block_scalar(job),
+            Kernel::Lanes(level) => kernel::dispatch(level, job),
+            Kernel::Scalar => kernel::run_scalar(job),
         })
         .map_err(|Cancelled| BatchError::Cancelled)?;
 

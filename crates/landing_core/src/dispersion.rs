@@ -4,8 +4,32 @@
 //! dispersion stream, so a campaign gives the same cases whatever the batch
 //! size, chunking or thread count.
 
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, ReadError, check};
+use crate::params::{FromParams, Param, ParamSource, Schema};
 use crate::rng::{CaseStream, streams};
+
+const MEAN: Param = Param::components("mean")
+    .unit("units of the component")
+    .doc("mean of each component (one for all)");
+const STD: Param = Param::components("std")
+    .unit("units of the component")
+    .rule("std >= 0")
+    .doc("standard deviation of each component (0 fixes the value)");
+const LOW: Param = Param::components("low")
+    .unit("units of the component")
+    .doc("lower end of each component's range");
+const HIGH: Param = Param::components("high")
+    .unit("units of the component")
+    .rule("high >= low")
+    .doc("upper end of each component's range (high = low fixes the value)");
+
+crate::named! {
+    /// The distributions' kinds at the Python boundary.
+    pub enum DispersionKind in "dispersion" {
+        Normal => "normal": Schema::new(&[MEAN, STD]),
+        Uniform => "uniform": Schema::new(&[LOW, HIGH]),
+    }
+}
 
 /// The distribution of one state component.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -20,12 +44,12 @@ impl Component {
     pub fn validate(&self) -> Result<(), ParamError> {
         match *self {
             Component::Normal { mean, std } => {
-                require(true, "mean", mean, "finite values")?;
-                require(std >= 0.0, "std", std, "std >= 0")
+                check(&MEAN, mean, |_| true)?;
+                check(&STD, std, |s| s >= 0.0)
             }
             Component::Uniform { low, high } => {
-                require(true, "low", low, "finite values")?;
-                require(high >= low, "high", high, "high >= low")
+                check(&LOW, low, |_| true)?;
+                check(&HIGH, high, |h| h >= low)
             }
         }
     }
@@ -82,6 +106,51 @@ impl Dispersion {
             self.sample_into(seed, first_case + i as u64, row);
         }
         out
+    }
+}
+
+impl FromParams for Dispersion {
+    /// `normal` (mean, std) or `uniform` (low, high), each a scalar or one value per
+    /// component (a scalar serves every component), validated.
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        let kind = p.kind::<DispersionKind>()?;
+        let (a, b) = match kind {
+            DispersionKind::Normal => (&MEAN, &STD),
+            DispersionKind::Uniform => (&LOW, &HIGH),
+        };
+        let first = p.components(a)?;
+        let second = p.components(b)?;
+        if first.len() != second.len() && first.len() != 1 && second.len() != 1 {
+            return Err(ReadError::value(format!(
+                "{} has {} components and {} has {}",
+                a.name,
+                first.len(),
+                b.name,
+                second.len()
+            )));
+        }
+        let pick = |v: &[f64], j: usize| v[if v.len() == 1 { 0 } else { j }];
+        let components = (0..first.len().max(second.len()))
+            .map(|j| match kind {
+                DispersionKind::Normal => Component::Normal {
+                    mean: pick(&first, j),
+                    std: pick(&second, j),
+                },
+                DispersionKind::Uniform => Component::Uniform {
+                    low: pick(&first, j),
+                    high: pick(&second, j),
+                },
+            })
+            .collect();
+        let d = Dispersion { components };
+        d.validate().map_err(|e| {
+            let j = e.axis.unwrap_or(0);
+            ReadError::value(format!(
+                "{}[{j}] = {} violates {}",
+                e.param, e.value, e.rule
+            ))
+        })?;
+        Ok(d)
     }
 }
 

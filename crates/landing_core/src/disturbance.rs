@@ -6,13 +6,45 @@
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check};
 use crate::lanes::{Gather, Real, add, mul, scale_by, zeros};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{FromParams, Kinds, Layout, Named, Param, ParamSource, Schema, Table, Values};
 use crate::rng::{CaseStream, streams};
 
-/// The disturbance components' kinds at the Python boundary.
-pub const COMPONENT_KINDS: [&str; 4] = ["constant", "sinusoid", "uniform_noise", "command_noise"];
+const VALUE: Param = Param::axes("value")
+    .unit("q/s^2")
+    .doc("the constant acceleration");
+const AMPLITUDE: Param = Param::axes("amplitude")
+    .unit("q/s^2")
+    .doc("amplitude A of A sin(omega t + phase)");
+const OMEGA: Param = Param::axes("omega").unit("rad/s").doc("angular frequency");
+const PHASE: Param = Param::axes("phase").unit("rad").doc("phase at t = 0");
+const BOUND: Param = Param::axes("bound")
+    .unit("q/s^2")
+    .rule("bound >= 0")
+    .doc("uniform on [-bound, bound], drawn once per control period and held");
+const FRACTION: Param = Param::axes("fraction")
+    .unit("1")
+    .rule("fraction >= 0")
+    .doc("uniform on [-fraction, fraction] times the commanded acceleration, drawn per period");
+
+/// A disturbance's table: its components, which add up.
+pub const COMPONENTS: Param = Param::list("components", Layout::Family("disturbance"))
+    .doc("the components, each a table of one of the component kinds");
+
+crate::named! {
+    /// The disturbance components' kinds at the Python boundary, and whether each draws
+    /// random numbers.
+    pub enum ComponentKind in "disturbance" {
+        Constant => "constant": Schema::component(&[VALUE], false),
+        Sinusoid => "sinusoid": Schema::component(&[AMPLITUDE, OMEGA, PHASE], false),
+        UniformNoise => "uniform_noise": Schema::component(&[BOUND], true),
+        CommandNoise => "command_noise": Schema::component(&[FRACTION], true),
+    }
+}
+
+/// The disturbance components' kinds' names.
+pub const COMPONENT_KINDS: &[&str] = ComponentKind::NAMES;
 
 /// Most sinusoidal components one disturbance carries (kept fixed so the type stays `Copy`).
 pub const MAX_SINUSOIDS: usize = 4;
@@ -229,17 +261,15 @@ impl<const D: usize, R: Real> Disturbance<D, R> {
 impl<const D: usize> Validate for Disturbance<D> {
     fn validate(&self) -> Result<(), ParamError> {
         for i in 0..D {
-            require(true, "constant", self.constant[i], "finite values")
-                .map_err(|e| e.on_axis(i))?;
-            let b = self.noise_bound[i];
-            require(b >= 0.0, "bound", b, "bound >= 0").map_err(|e| e.on_axis(i))?;
-            let f = self.relative_bound[i];
-            require(f >= 0.0, "fraction", f, "fraction >= 0").map_err(|e| e.on_axis(i))?;
+            let on_axis = |e: ParamError| e.on_axis(i);
+            // a sum of constants is named for the component, as the user gave it
+            crate::error::require(true, "constant", self.constant[i], "").map_err(on_axis)?;
+            check(&BOUND, self.noise_bound[i], |b| b >= 0.0).map_err(on_axis)?;
+            check(&FRACTION, self.relative_bound[i], |f| f >= 0.0).map_err(on_axis)?;
             for s in self.sinusoids() {
-                require(true, "amplitude", s.amplitude[i], "finite values")
-                    .map_err(|e| e.on_axis(i))?;
-                require(true, "omega", s.omega[i], "finite values").map_err(|e| e.on_axis(i))?;
-                require(true, "phase", s.phase[i], "finite values").map_err(|e| e.on_axis(i))?;
+                check(&AMPLITUDE, s.amplitude[i], |_| true).map_err(on_axis)?;
+                check(&OMEGA, s.omega[i], |_| true).map_err(on_axis)?;
+                check(&PHASE, s.phase[i], |_| true).map_err(on_axis)?;
             }
         }
         Ok(())
@@ -285,23 +315,51 @@ impl<const D: usize> FromParams for Disturbance<D> {
     /// A list `components` of tables, each with a `kind`: `constant` (value), `sinusoid`
     /// (amplitude, omega, phase), `uniform_noise` (bound) or `command_noise` (fraction); they
     /// add up.
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         let mut d = Disturbance::none();
-        for j in 0..p.list_len("components")? {
-            d = p.list_item("components", j, |c| {
-                Ok(match c.kind(&COMPONENT_KINDS)? {
-                    0 => d.with_constant(c.axes("value")?),
-                    1 => d.with_sinusoid(Sinusoid {
-                        amplitude: c.axes("amplitude")?,
-                        omega: c.axes("omega")?,
-                        phase: c.axes("phase")?,
+        for j in 0..p.list_len(&COMPONENTS)? {
+            d = p.list_item(&COMPONENTS, j, |c| {
+                Ok(match c.kind::<ComponentKind>()? {
+                    ComponentKind::Constant => d.with_constant(c.axes(&VALUE)?),
+                    ComponentKind::Sinusoid => d.with_sinusoid(Sinusoid {
+                        amplitude: c.axes(&AMPLITUDE)?,
+                        omega: c.axes(&OMEGA)?,
+                        phase: c.axes(&PHASE)?,
                     })?,
-                    2 => d.with_noise(c.axes("bound")?),
-                    _ => d.with_command_noise(c.axes("fraction")?),
+                    ComponentKind::UniformNoise => d.with_noise(c.axes(&BOUND)?),
+                    ComponentKind::CommandNoise => d.with_command_noise(c.axes(&FRACTION)?),
                 })
             })?;
         }
         Ok(d)
+    }
+}
+
+/// The numeric parameter `name` of the one component of `components` that declares it, as
+/// read for `axes` axes.
+pub fn component_values(
+    components: &[Table],
+    name: &str,
+    axes: usize,
+) -> Result<Values, ReadError> {
+    let declares = |c: &&Table| {
+        c.kind()
+            .and_then(ComponentKind::from_name)
+            .is_some_and(|k| k.schema().param(name).is_some())
+    };
+    let mut found = components.iter().filter(declares);
+    match (found.next(), found.next()) {
+        (Some(c), None) => c.values::<ComponentKind>(name, axes),
+        (None, _) => Err(ReadError::value(format!(
+            "unknown parameter {name:?}; the components are {:?}",
+            components
+                .iter()
+                .filter_map(Table::kind)
+                .collect::<Vec<_>>()
+        ))),
+        (Some(_), Some(_)) => Err(ReadError::value(format!(
+            "{name} is a parameter of several components; ask one component"
+        ))),
     }
 }
 

@@ -3,6 +3,8 @@
 
 use std::fmt;
 
+use crate::params::schema::Param;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParamError {
     /// Parameter name as the user spells it (the Python keyword).
@@ -59,6 +61,23 @@ pub fn require(
     }
 }
 
+/// `require` for the parameter `p`, under its declared name and rule.
+#[inline]
+pub fn check(p: &Param, value: f64, ok: impl Fn(f64) -> bool) -> Result<(), ParamError> {
+    require(ok(value), p.name, value, p.rule)
+}
+
+/// `require` for the parameter `p`, under its declared name and second rule ([`Param::also`]).
+#[inline]
+pub fn check_also(p: &Param, value: f64, ok: bool) -> Result<(), ParamError> {
+    require(ok, p.name, value, p.also)
+}
+
+/// [`check`] for each axis of a per-axis parameter.
+pub fn check_axes(p: &Param, values: &[f64], ok: impl Fn(f64) -> bool) -> Result<(), ParamError> {
+    require_axes(values, p.name, p.rule, ok)
+}
+
 /// `require` for each axis of a per-axis parameter.
 pub fn require_axes(
     values: &[f64],
@@ -77,4 +96,62 @@ pub fn require_axes(
 /// validates every case before it runs.
 pub trait Validate {
     fn validate(&self) -> Result<(), ParamError>;
+}
+
+/// A table that cannot be read: a missing, misspelt or misshapen parameter (`Type`: a wrong
+/// type, as Python's TypeError; `Value`: a wrong value or shape, as ValueError). A
+/// [`ParamError`] from a validator arrives as a `Value`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ReadError {
+    Value(String),
+    Type(String),
+}
+
+impl ReadError {
+    pub fn value(msg: impl Into<String>) -> Self {
+        Self::Value(msg.into())
+    }
+
+    pub fn type_(msg: impl Into<String>) -> Self {
+        Self::Type(msg.into())
+    }
+
+    /// The message prefixed with where the table came from.
+    pub fn context(self, owner: &str) -> Self {
+        match self {
+            Self::Value(m) => Self::Value(format!("{owner}: {m}")),
+            Self::Type(m) => Self::Type(format!("{owner}: {m}")),
+        }
+    }
+
+    pub fn message(&self) -> &str {
+        match self {
+            Self::Value(m) | Self::Type(m) => m,
+        }
+    }
+}
+
+impl fmt::Display for ReadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.message())
+    }
+}
+
+impl std::error::Error for ReadError {}
+
+impl From<ParamError> for ReadError {
+    fn from(e: ParamError) -> Self {
+        Self::Value(e.to_string())
+    }
+}
+
+/// Refuses the first non-finite value of `values` by its position: `name[i] = v violates
+/// finite values`.
+pub fn finite(name: &str, values: &[f64]) -> Result<(), ReadError> {
+    match values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        Some((i, v)) => Err(ReadError::value(format!(
+            "{name}[{i}] = {v} violates finite values"
+        ))),
+        None => Ok(()),
+    }
 }

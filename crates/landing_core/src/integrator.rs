@@ -59,33 +59,17 @@ impl<R: Real, S: State<R>, F: Fn(Stage, &S) -> S> StageDerivative<R, S> for F {
     }
 }
 
-/// The integrators, by name at the Python boundary.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IntegratorKind {
-    /// Classic four-stage Runge-Kutta.
-    Rk4,
-    /// Forward Euler.
-    Euler,
+crate::named! {
+    /// The integrators, by name at the Python boundary.
+    pub enum IntegratorKind {
+        /// Classic four-stage Runge-Kutta.
+        Rk4 => "rk4",
+        /// Forward Euler.
+        Euler => "euler",
+    }
 }
 
 impl IntegratorKind {
-    pub const NAMES: [&'static str; 2] = ["rk4", "euler"];
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "rk4" => Some(Self::Rk4),
-            "euler" => Some(Self::Euler),
-            _ => None,
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Rk4 => "rk4",
-            Self::Euler => "euler",
-        }
-    }
-
     /// Convergence order (global error ~ h^ORDER), for documentation and tests.
     pub fn order(self) -> u32 {
         match self {
@@ -259,9 +243,9 @@ mod tests {
                 *x = IntegratorKind::Rk4.step(&f1, x, 0.01);
             }
         }
-        for i in 0..4 {
-            assert_eq!(xl[0].0[i].to_bits(), xs[i][0].to_bits());
-            assert_eq!(xl[1].0[i].to_bits(), xs[i][1].to_bits());
+        for (i, x) in xs.iter().enumerate() {
+            assert_eq!(xl[0].0[i].to_bits(), x[0].to_bits());
+            assert_eq!(xl[1].0[i].to_bits(), x[1].to_bits());
         }
     }
 }

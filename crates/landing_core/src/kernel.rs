@@ -13,17 +13,24 @@
 
 use std::fmt;
 
-use crate::lanes::Real;
+use nalgebra::SVector;
 
-/// An instruction-set level the block rollout is compiled for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Level {
-    /// The architecture's baseline (SSE2 on x86-64; the portable build elsewhere).
-    Baseline,
-    /// x86-64-v3: AVX2, FMA (unused), BMI1/2.
-    Avx2,
-    /// x86-64-v4: AVX-512 F, CD, BW, DQ, VL.
-    Avx512,
+use crate::control::{AnyLaw, AnyMemory, LawInput};
+use crate::lanes::Real;
+use crate::metrics::CommandStats;
+use crate::params::Named;
+
+crate::named! {
+    /// An instruction-set level the block rollout is compiled for.
+    #[derive(PartialOrd, Ord)]
+    pub enum Level {
+        /// The architecture's baseline (SSE2 on x86-64; the portable build elsewhere).
+        Baseline => "baseline",
+        /// x86-64-v3: AVX2, FMA (unused), BMI1/2.
+        Avx2 => "avx2",
+        /// x86-64-v4: AVX-512 F, CD, BW, DQ, VL.
+        Avx512 => "avx512",
+    }
 }
 
 /// The environment variable that forces a level.
@@ -58,18 +65,9 @@ impl fmt::Display for LevelError {
 impl std::error::Error for LevelError {}
 
 impl Level {
-    pub const ALL: [Level; 3] = [Level::Baseline, Level::Avx2, Level::Avx512];
-    pub const NAMES: [&'static str; 3] = ["baseline", "avx2", "avx512"];
-
-    pub fn name(self) -> &'static str {
-        Self::NAMES[self as usize]
-    }
-
+    /// The level named `name` (an error naming the levels if none is).
     pub fn from_name(name: &str) -> Result<Self, LevelError> {
-        Self::ALL
-            .into_iter()
-            .find(|l| l.name() == name)
-            .ok_or_else(|| LevelError::Unknown(name.to_string()))
+        <Self as Named>::from_name(name).ok_or_else(|| LevelError::Unknown(name.to_string()))
     }
 
     /// Whether this CPU can run the level.
@@ -99,7 +97,11 @@ impl Level {
 
     /// The levels this CPU supports, lowest first.
     pub fn supported() -> Vec<Level> {
-        Self::ALL.into_iter().filter(|l| l.is_supported()).collect()
+        Self::ALL
+            .iter()
+            .copied()
+            .filter(|l| l.is_supported())
+            .collect()
     }
 
     /// The best level this CPU supports.
@@ -190,20 +192,36 @@ impl Blocks for Narrow {
     type Baseline = crate::lanes::Lanes<8>;
 }
 
+/// How a block calls its law. The laws are the bulk of the code: inlined into every plant's
+/// rollout at every instruction-set level they would be compiled thirty times over; called
+/// out of line (once per control period) they are compiled once per level and axis count
+/// (`level_laws!` below), at the price of one call per period.
+pub(crate) trait LawCalls<const D: usize, R: Real> {
+    fn start(law: &AnyLaw<D, R>, input: &LawInput<D, R>) -> AnyMemory<D, R>;
+    fn command(
+        law: &AnyLaw<D, R>,
+        memory: &AnyMemory<D, R>,
+        input: &LawInput<D, R>,
+    ) -> SVector<R, D>;
+    fn advance(law: &AnyLaw<D, R>, memory: &mut AnyMemory<D, R>, input: &LawInput<D, R>);
+    fn diagnostics(
+        law: &AnyLaw<D, R>,
+        memory: &AnyMemory<D, R>,
+        input: &LawInput<D, R>,
+        out: &mut [R],
+    );
+    /// [`CommandStats::add`], out of line like the law.
+    fn add_stats(stats: &mut CommandStats<D, R>, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64);
+}
+
 /// The laws compiled for one level: out-of-line trampolines, generic over the axis count and
 /// the lane type, that the level's block rollouts call once per control period (see
-/// [`LawCalls`](crate::rollout::LawCalls)). Only the level's own lane types are given them.
+/// [`LawCalls`]). Only the level's own lane types are given them.
 macro_rules! level_laws {
     ($name:ident $(, $features:literal)?) => {
         pub(crate) struct $name;
 
         const _: () = {
-            use nalgebra::SVector;
-
-            use crate::control::{AnyLaw, AnyMemory, LawInput};
-            use crate::lanes::Real;
-            use crate::rollout::LawCalls;
-
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
             unsafe fn start<const D: usize, L: Real>(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
@@ -244,7 +262,7 @@ macro_rules! level_laws {
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
             unsafe fn add_stats<const D: usize, L: Real>(
-                stats: &mut crate::metrics::CommandStats<D, L>,
+                stats: &mut CommandStats<D, L>,
                 u: &SVector<L, D>,
                 e: &SVector<L, D>,
                 dt: f64,
@@ -282,7 +300,7 @@ macro_rules! level_laws {
                 }
                 #[inline(always)]
                 fn add_stats(
-                    stats: &mut crate::metrics::CommandStats<D, L>,
+                    stats: &mut CommandStats<D, L>,
                     u: &SVector<L, D>,
                     e: &SVector<L, D>,
                     dt: f64,
@@ -302,3 +320,54 @@ level_laws!(
     Avx512Laws,
     "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
 );
+
+/// A block of cases to run at some level: [`dispatch`] (or [`run_scalar`]) picks the level's
+/// lane type and law calls and hands them to [`LevelJob::run`], which is `#[inline(always)]`
+/// so that the whole rollout is compiled inside the level's function, with its target
+/// features.
+pub(crate) trait LevelJob<const D: usize> {
+    /// The plant's block widths ([`Wide`] or [`Narrow`]).
+    type Blocks: Blocks;
+    type Output;
+    fn run<R: Real, K: LawCalls<D, R>>(self) -> Self::Output;
+}
+
+#[inline(never)]
+fn run_baseline<const D: usize, J: LevelJob<D>>(job: J) -> J::Output {
+    job.run::<<J::Blocks as Blocks>::Baseline, BaselineLaws>()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+fn run_avx2<const D: usize, J: LevelJob<D>>(job: J) -> J::Output {
+    job.run::<<J::Blocks as Blocks>::Avx2, Avx2Laws>()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(
+    enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
+)]
+fn run_avx512<const D: usize, J: LevelJob<D>>(job: J) -> J::Output {
+    job.run::<<J::Blocks as Blocks>::Avx512, Avx512Laws>()
+}
+
+/// Runs a block at `level` (which [`Level::resolve`] has checked this CPU supports).
+pub(crate) fn dispatch<const D: usize, J: LevelJob<D>>(level: Level, job: J) -> J::Output {
+    match level {
+        Level::Baseline => run_baseline(job),
+        // SAFETY: `Level::resolve` checked the CPU has the level's features.
+        #[cfg(target_arch = "x86_64")]
+        Level::Avx2 => unsafe { run_avx2(job) },
+        #[cfg(target_arch = "x86_64")]
+        Level::Avx512 => unsafe { run_avx512(job) },
+        #[cfg(not(target_arch = "x86_64"))]
+        _ => unreachable!("only the baseline is supported off x86-64"),
+    }
+}
+
+/// Runs a block of one case with `f64` numbers: the width-1 instance of the same generic
+/// rollout, which tests compare the lane kernels with bit for bit.
+#[inline(never)]
+pub(crate) fn run_scalar<const D: usize, J: LevelJob<D>>(job: J) -> J::Output {
+    job.run::<f64, BaselineLaws>()
+}

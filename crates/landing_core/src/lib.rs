@@ -1,10 +1,12 @@
 //! `landing_core`: spacecraft landing and attitude control under sliding-mode and fuzzy laws.
 //!
 //! Pure Rust, no Python. One trait per concept: [`gravity::GravityField`], [`plant::Plant`],
-//! [`control::ControlLaw`], [`integrator::Integrator`]. A batch is dispatched once on its plant,
-//! law and integrator to a monomorphised rollout ([`rollout::rollout`]) that runs on fixed-size
-//! nalgebra types without heap allocation per step; [`batch::run`] runs the cases on rayon.
-//! The sampled-data semantics are those README.md states ("Semantics").
+//! [`control::ControlLaw`], and the fixed-step integrators ([`integrator::IntegratorKind`]). A
+//! batch is dispatched once on its plant's type ([`registry::AnyPlant::visit`]) to the block
+//! rollout ([`rollout`]), compiled for that plant at each instruction-set level ([`kernel`]);
+//! the law ([`control::AnyLaw`]) and the integrator are chosen at run time. The rollout runs on
+//! fixed-size nalgebra types without heap allocation per step; [`batch::run`] runs the blocks on
+//! rayon. The sampled-data semantics are those README.md states ("Semantics").
 
 pub mod batch;
 pub mod control;
@@ -28,6 +30,7 @@ pub mod rng;
 pub mod rollout;
 pub mod state;
 pub mod theory;
+#[cfg(feature = "workloads")]
 pub mod workloads;
 
 pub use batch::{Batch, BatchError, BatchOutput, PerCase, RunOptions};

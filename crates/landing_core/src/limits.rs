@@ -12,7 +12,7 @@ pub const MAX_CASES: u64 = 1 << 32;
 
 /// Largest number of control periods a batch may ask for (keeps k dt exact in f64 terms of
 /// the integer counter and guards against an accidental t_final / dt of 1e15).
-pub use crate::rollout::MAX_STEPS;
+pub const MAX_STEPS: u64 = 1 << 40;
 
 /// Largest number of integrator substeps per control period. The stiffest preset (the
 /// flexible tether with 16 nodes at dt = 0.01 s) needs 10; 10 000 leaves three

@@ -1,7 +1,8 @@
 //! Scalar conventions shared by every law, over [`Real`] lanes.
 
+use crate::error::ReadError;
 use crate::lanes::{Gather, Real};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{FromParams, Param, ParamSource};
 
 /// Sign with `sgn(0) = 0`.
 ///
@@ -29,9 +30,25 @@ pub enum Switch<R = f64> {
     Tanh(R),
 }
 
-impl Switch {
-    pub const NAMES: [&'static str; 3] = ["sign", "sat", "tanh"];
+crate::named! {
+    /// The switching functions' names at the boundary.
+    pub enum SwitchKind {
+        Sign => "sign",
+        Sat => "sat",
+        Tanh => "tanh",
+    }
+}
 
+/// The switching function's name.
+pub const SWITCH: Param = Param::choice("switch", SwitchKind::NAMES)
+    .doc("switching function: sign(s), sat(s / phi) = clamp(s / phi, -1, 1) or tanh(s / phi)");
+/// Its boundary layer.
+pub const BOUNDARY_LAYER: Param = Param::scalar("boundary_layer")
+    .unit("units of s")
+    .rule("boundary_layer > 0")
+    .doc("boundary-layer width phi of sat and tanh (unused by sign)");
+
+impl Switch {
     /// Boundary-layer width, if the switch has one.
     pub fn width(&self) -> Option<f64> {
         match *self {
@@ -74,10 +91,14 @@ impl<R: Real> Gather<R> for Switch<R> {
 
 impl FromParams for Switch {
     /// `switch` ("sign", "sat" or "tanh") and its `boundary_layer` width.
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        let kind = p.choice("switch", &Switch::NAMES)?;
-        let phi = p.scalar("boundary_layer")?;
-        Ok([Switch::Sign, Switch::Sat(phi), Switch::Tanh(phi)][kind])
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        let kind = p.choice::<SwitchKind>(&SWITCH)?;
+        let phi = p.scalar(&BOUNDARY_LAYER)?;
+        Ok(match kind {
+            SwitchKind::Sign => Switch::Sign,
+            SwitchKind::Sat => Switch::Sat(phi),
+            SwitchKind::Tanh => Switch::Tanh(phi),
+        })
     }
 }
 

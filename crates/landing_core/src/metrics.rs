@@ -117,6 +117,12 @@ pub struct CaseMetrics<const D: usize> {
     pub diverged: Option<Diverged>,
 }
 
+impl<const D: usize> Default for CaseMetrics<D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl<const D: usize> CaseMetrics<D> {
     pub fn new() -> Self {
         Self {
@@ -138,7 +144,218 @@ impl<const D: usize> CaseMetrics<D> {
     }
 }
 
+/// How a metric column reads one case's metrics.
+#[derive(Clone, Copy)]
+pub enum Read<const D: usize> {
+    /// A number per case (float64).
+    Scalar(fn(&CaseMetrics<D>) -> f64),
+    /// A number per case and axis (float64).
+    Axes(fn(&CaseMetrics<D>) -> SVector<f64, D>),
+    /// A flag per case (bool).
+    Flag(fn(&CaseMetrics<D>) -> bool),
+    /// A code per case (uint8).
+    Code(fn(&CaseMetrics<D>) -> u8),
+}
+
+/// One metric column of a batch's output: declared once here, with its unit, and computed
+/// from the cases' [`CaseMetrics`].
+#[derive(Clone, Copy)]
+pub struct Column<const D: usize> {
+    pub name: &'static str,
+    /// SI unit; "units of q" where it is the plant's generalized coordinate's (m for the
+    /// landers, rad for the tethered satellite), "command units" the applied command's (N on
+    /// the Mars lander, m/s^2 on the small body), "" for a flag or a code.
+    pub unit: &'static str,
+    pub doc: &'static str,
+    pub read: Read<D>,
+}
+
+/// A column's values for every case: cases (x axes, row-major) values.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ColumnValues {
+    Scalar(Vec<f64>),
+    Axes(Vec<f64>),
+    Flag(Vec<bool>),
+    Code(Vec<u8>),
+}
+
+impl<const D: usize> Column<D> {
+    const fn new(name: &'static str, unit: &'static str, doc: &'static str, read: Read<D>) -> Self {
+        Self {
+            name,
+            unit,
+            doc,
+            read,
+        }
+    }
+
+    pub fn per_axis(&self) -> bool {
+        matches!(self.read, Read::Axes(_))
+    }
+
+    /// The column over `cases`.
+    pub fn values(&self, cases: &[CaseMetrics<D>]) -> ColumnValues {
+        match self.read {
+            Read::Scalar(f) => ColumnValues::Scalar(cases.iter().map(f).collect()),
+            Read::Axes(f) => {
+                let mut v = Vec::with_capacity(cases.len() * D);
+                for m in cases {
+                    v.extend_from_slice(f(m).as_slice());
+                }
+                ColumnValues::Axes(v)
+            }
+            Read::Flag(f) => ColumnValues::Flag(cases.iter().map(f).collect()),
+            Read::Code(f) => ColumnValues::Code(cases.iter().map(f).collect()),
+        }
+    }
+}
+
+const NAN: f64 = f64::NAN;
+
 impl<const D: usize> CaseMetrics<D> {
+    /// The per-case metric columns, in output order. A new metric is its field above, its
+    /// accumulation (in [`CommandStats`] or the rollout) and its line here.
+    pub const COLUMNS: &'static [Column<D>] = &[
+        Column::new(
+            "final_position_error",
+            "units of q",
+            "|e(t_final)|, the norm of the tracking error",
+            Read::Scalar(|m| m.final_error.norm()),
+        ),
+        Column::new(
+            "final_velocity_error",
+            "units of q/s",
+            "|e'(t_final)|, the norm of the rate error",
+            Read::Scalar(|m| m.final_rate_error.norm()),
+        ),
+        Column::new(
+            "final_error",
+            "units of q",
+            "e(t_final) per axis",
+            Read::Axes(|m| m.final_error),
+        ),
+        Column::new(
+            "final_rate_error",
+            "units of q/s",
+            "e'(t_final) per axis",
+            Read::Axes(|m| m.final_rate_error),
+        ),
+        Column::new(
+            "fuel_used",
+            "kg",
+            "m(0) - m(t_final), for plants with mass",
+            Read::Scalar(|m| m.fuel_used),
+        ),
+        Column::new(
+            "fuel_to_settle",
+            "kg",
+            "m(0) - m(settle_time): the propellant spent until the error settles",
+            Read::Scalar(|m| m.fuel_to_settle),
+        ),
+        Column::new(
+            "peak_command",
+            "command units",
+            "largest |u| applied (Euclidean)",
+            Read::Scalar(|m| m.peak_command),
+        ),
+        Column::new(
+            "peak_command_axis",
+            "command units",
+            "largest |u_i| applied, per axis",
+            Read::Axes(|m| m.peak_command_axis),
+        ),
+        Column::new(
+            "control_effort",
+            "command units s",
+            "integral of |u| dt",
+            Read::Scalar(|m| m.control_effort),
+        ),
+        Column::new(
+            "settle_time",
+            "s",
+            "first control instant from which |e| stays within the settle tolerance",
+            Read::Scalar(|m| m.settle_time),
+        ),
+        Column::new(
+            "iae",
+            "units of q s",
+            "integral of |e_i| dt, summed over the axes",
+            Read::Scalar(|m| m.iae.sum()),
+        ),
+        Column::new(
+            "iae_axis",
+            "units of q s",
+            "integral of |e_i| dt, per axis",
+            Read::Axes(|m| m.iae),
+        ),
+        Column::new(
+            "chattering_variation",
+            "command units/s",
+            "total variation of the applied command per unit time, summed over the axes",
+            Read::Scalar(|m| m.command_variation.sum()),
+        ),
+        Column::new(
+            "chattering_variation_axis",
+            "command units/s",
+            "total variation of the applied command per unit time, per axis",
+            Read::Axes(|m| m.command_variation),
+        ),
+        Column::new(
+            "chattering_hf_share",
+            "1",
+            "share of the applied command's energy above the chattering cut-off, all axes",
+            Read::Scalar(|m| m.high_frequency_share_total),
+        ),
+        Column::new(
+            "chattering_hf_share_axis",
+            "1",
+            "share of the applied command's energy above the chattering cut-off, per axis",
+            Read::Axes(|m| m.high_frequency_share),
+        ),
+        Column::new(
+            "touchdown_time",
+            "s",
+            "first crossing of the landing surface, interpolated within the step (NaN if none)",
+            Read::Scalar(|m| m.touchdown.map_or(NAN, |t| t.time)),
+        ),
+        Column::new(
+            "touchdown_position",
+            "units of q",
+            "the position at touchdown",
+            Read::Axes(|m| m.touchdown.map_or(SVector::repeat(NAN), |t| t.position)),
+        ),
+        Column::new(
+            "touchdown_velocity",
+            "units of q/s",
+            "the velocity at touchdown",
+            Read::Axes(|m| m.touchdown.map_or(SVector::repeat(NAN), |t| t.velocity)),
+        ),
+        Column::new(
+            "touchdown_speed",
+            "units of q/s",
+            "the speed at touchdown",
+            Read::Scalar(|m| m.touchdown.map_or(NAN, |t| t.velocity.norm())),
+        ),
+        Column::new(
+            "diverged",
+            "",
+            "whether the case was stopped before t_final",
+            Read::Flag(|m| m.diverged.is_some()),
+        ),
+        Column::new(
+            "diverged_time",
+            "s",
+            "when the case was stopped (NaN if it was not)",
+            Read::Scalar(|m| m.diverged.map_or(NAN, |d| d.time)),
+        ),
+        Column::new(
+            "diverged_reason",
+            "",
+            "why: a code of Divergence::NAMES (0: not diverged)",
+            Read::Code(|m| m.diverged.map_or(0, |d| d.reason.code())),
+        ),
+    ];
+
     /// Whether every accumulated statistic is finite (the ones that are NaN by definition, such
     /// as the settle time of a case that does not settle, are not looked at).
     pub fn accumulations_finite(&self) -> bool {

@@ -2,12 +2,40 @@
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check, require};
 use crate::lanes::{Gather, Real, add, scale, scale_by, select_vector, zeros};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{FromParams, Param, ParamSource, Schema};
 
-/// The reference kinds at the Python boundary.
-pub const REFERENCE_KINDS: [&str; 2] = ["constant", "cubic"];
+const POSITION: Param = Param::axes("position").unit("q").doc("the target position");
+const VELOCITY: Param = Param::axes("velocity")
+    .unit("q/s")
+    .optional()
+    .doc("the target velocity (zero if absent)");
+const T_END: Param = Param::scalar("t_end")
+    .unit("s")
+    .rule("t_end > 0")
+    .doc("end of the cubic; the end point is held afterwards");
+const C0: Param = Param::axes("c0").unit("q").doc("cubic coefficient of t^0");
+const C1: Param = Param::axes("c1")
+    .unit("q/s")
+    .doc("cubic coefficient of t^1");
+const C2: Param = Param::axes("c2")
+    .unit("q/s^2")
+    .doc("cubic coefficient of t^2");
+const C3: Param = Param::axes("c3")
+    .unit("q/s^3")
+    .doc("cubic coefficient of t^3");
+
+crate::named! {
+    /// The reference kinds at the Python boundary.
+    pub enum ReferenceKind in "reference" {
+        Constant => "constant": Schema::new(&[POSITION, VELOCITY]),
+        Cubic => "cubic": Schema::new(&[T_END, C0, C1, C2, C3]),
+    }
+}
+
+/// The reference kinds' names.
+pub const REFERENCE_KINDS: &[&str] = ReferenceKind::NAMES;
 
 /// Reference position, velocity and acceleration at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -87,15 +115,45 @@ impl<const D: usize> Reference<D> {
         vt: SVector<f64, D>,
         t_end: f64,
     ) -> Result<Self, ParamError> {
-        require(t_end > 0.0, "T", t_end, "T > 0")?;
-        let t = t_end;
-        let c2 = (pt - p0) * (3.0 / (t * t)) - (v0 * 2.0 + vt) / t;
-        let c3 = (p0 - pt) * (2.0 / (t * t * t)) + (v0 + vt) / (t * t);
         Ok(Self::Cubic {
-            coefficients: [p0, v0, c2, c3],
+            coefficients: cubic_coefficients(p0, v0, pt, vt, t_end)?,
             t_end,
         })
     }
+
+    /// Position, velocity and acceleration at times `t`, each row-major (times x D), refusing
+    /// a time at which the reference is not finite (a cubic far before 0 overflows).
+    pub fn trajectory(&self, t: &[f64]) -> Result<[Vec<f64>; 3], ReadError> {
+        let mut out = [(); 3].map(|_| Vec::with_capacity(t.len() * D));
+        for (i, &ti) in t.iter().enumerate() {
+            let pt = self.at(ti);
+            let values = [&pt.position, &pt.velocity, &pt.acceleration];
+            if values.iter().any(|v| v.iter().any(|x| !x.is_finite())) {
+                return Err(ReadError::value(format!(
+                    "t[{i}] = {ti} violates times at which the reference is finite"
+                )));
+            }
+            for (o, v) in out.iter_mut().zip(values) {
+                o.extend_from_slice(v.as_slice());
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The coefficients c0..c3 of the cubic through `p0, v0` at 0 and `pt, vt` at `t_end`.
+pub fn cubic_coefficients<const D: usize>(
+    p0: SVector<f64, D>,
+    v0: SVector<f64, D>,
+    pt: SVector<f64, D>,
+    vt: SVector<f64, D>,
+    t_end: f64,
+) -> Result<[SVector<f64, D>; 4], ParamError> {
+    require(t_end > 0.0, "T", t_end, "T > 0")?;
+    let t = t_end;
+    let c2 = (pt - p0) * (3.0 / (t * t)) - (v0 * 2.0 + vt) / t;
+    let c3 = (p0 - pt) * (2.0 / (t * t * t)) + (v0 + vt) / (t * t);
+    Ok([p0, v0, c2, c3])
 }
 
 impl<const D: usize, R: Real> Reference<D, R> {
@@ -142,17 +200,17 @@ impl<const D: usize> Validate for Reference<D> {
         match self {
             Self::Constant { position, velocity } => {
                 for (i, v) in position.iter().enumerate() {
-                    require(true, "position", *v, "finite values").map_err(|e| e.on_axis(i))?;
+                    check(&POSITION, *v, |_| true).map_err(|e| e.on_axis(i))?;
                 }
                 for (i, v) in velocity.iter().enumerate() {
-                    require(true, "velocity", *v, "finite values").map_err(|e| e.on_axis(i))?;
+                    check(&VELOCITY, *v, |_| true).map_err(|e| e.on_axis(i))?;
                 }
             }
             Self::Cubic {
                 coefficients,
                 t_end,
             } => {
-                require(*t_end > 0.0, "t_end", *t_end, "t_end > 0")?;
+                check(&T_END, *t_end, |v| v > 0.0)?;
                 for c in coefficients {
                     for (i, v) in c.iter().enumerate() {
                         require(true, "coefficients", *v, "finite values")
@@ -167,15 +225,15 @@ impl<const D: usize> Validate for Reference<D> {
 
 impl<const D: usize> FromParams for Reference<D> {
     /// `constant` (position, optional velocity) or `cubic` (coefficients c0..c3, t_end).
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        match p.kind(&REFERENCE_KINDS)? {
-            0 => Ok(Self::Constant {
-                position: p.axes("position")?,
-                velocity: p.opt_axes("velocity")?.unwrap_or_else(SVector::zeros),
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        match p.kind::<ReferenceKind>()? {
+            ReferenceKind::Constant => Ok(Self::Constant {
+                position: p.axes(&POSITION)?,
+                velocity: p.opt_axes(&VELOCITY)?.unwrap_or_else(SVector::zeros),
             }),
-            _ => Ok(Self::Cubic {
-                coefficients: [p.axes("c0")?, p.axes("c1")?, p.axes("c2")?, p.axes("c3")?],
-                t_end: p.scalar("t_end")?,
+            ReferenceKind::Cubic => Ok(Self::Cubic {
+                coefficients: [p.axes(&C0)?, p.axes(&C1)?, p.axes(&C2)?, p.axes(&C3)?],
+                t_end: p.scalar(&T_END)?,
             }),
         }
     }

@@ -19,9 +19,11 @@ use crate::control::{AnyLaw, AnyMemory, LawInput};
 use crate::disturbance::{Disturbance, NoiseStreams, disturbance_stream};
 use crate::error::ParamError;
 use crate::integrator::{IntegratorKind, Stage, StageDerivative};
+use crate::kernel::LawCalls;
 use crate::lanes::{
     Mask, Real, add, all_finite, div, dot, filled, norm, scale_by, select_vector, sub, zeros,
 };
+use crate::limits::MAX_STEPS;
 use crate::metrics::{
     CaseMetrics, CommandStats, Diverged, Divergence, HighPass, MAX_COMMAND, Touchdown,
 };
@@ -72,10 +74,6 @@ pub struct SimConfig {
     /// a tenth of the Nyquist frequency, 1 / (20 dt).
     pub chatter_cutoff: f64,
 }
-
-/// Largest number of control periods a batch may ask for (keeps k dt exact in f64 terms of
-/// the integer counter and guards against an accidental t_final / dt of 1e15).
-pub const MAX_STEPS: u64 = 1 << 40;
 
 impl SimConfig {
     /// Checks the horizon: t_final must be a whole number of control periods (to 1e-9
@@ -179,7 +177,7 @@ impl SimConfig {
     pub fn n_records(&self) -> usize {
         match self.record_every {
             0 => 0,
-            e => (self.steps / e + 1 + u64::from(self.steps % e != 0)) as usize,
+            e => (self.steps / e + 1 + u64::from(!self.steps.is_multiple_of(e))) as usize,
         }
     }
 
@@ -320,28 +318,6 @@ impl<const D: usize> StageTable<D> {
     }
 }
 
-/// How a block calls its law. The laws are the bulk of the code: inlined into every plant's
-/// rollout at every instruction-set level they would be compiled thirty times over; called
-/// out of line (once per control period) they are compiled once per level and axis count
-/// ([`crate::kernel`]), at the price of one call per period.
-pub(crate) trait LawCalls<const D: usize, R: Real> {
-    fn start(law: &AnyLaw<D, R>, input: &LawInput<D, R>) -> AnyMemory<D, R>;
-    fn command(
-        law: &AnyLaw<D, R>,
-        memory: &AnyMemory<D, R>,
-        input: &LawInput<D, R>,
-    ) -> SVector<R, D>;
-    fn advance(law: &AnyLaw<D, R>, memory: &mut AnyMemory<D, R>, input: &LawInput<D, R>);
-    fn diagnostics(
-        law: &AnyLaw<D, R>,
-        memory: &AnyMemory<D, R>,
-        input: &LawInput<D, R>,
-        out: &mut [R],
-    );
-    /// [`CommandStats::add`], out of line like the law.
-    fn add_stats(stats: &mut CommandStats<D, R>, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64);
-}
-
 /// The plant's derivative over one step with the command held: what the integrator steps.
 struct Held<'a, const D: usize, R: Real, P> {
     plant: &'a P,
@@ -446,8 +422,8 @@ fn record<const D: usize, R: Real, S: State<R>, K: LawCalls<D, R>>(
         for c in 0..D {
             out.controls[row * D + c] = u[c].lane(i);
         }
-        for c in 0..nd {
-            out.diagnostics[row * nd + c] = diag[c].lane(i);
+        for (c, d) in diag[..nd].iter().enumerate() {
+            out.diagnostics[row * nd + c] = d.lane(i);
         }
     }
 }

@@ -73,14 +73,14 @@ impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     #[inline(always)]
     fn add_scaled_assign(&mut self, k: &Self, c: R) {
         for i in 0..N {
-            self[i] = self[i] + k[i] * c;
+            self[i] += k[i] * c;
         }
     }
 
     #[inline(always)]
     fn add_assign_state(&mut self, k: &Self) {
         for i in 0..N {
-            self[i] = self[i] + k[i];
+            self[i] += k[i];
         }
     }
 

@@ -160,10 +160,10 @@ fn crossings<const N: usize, const S: usize>(
     let mut last: Option<(f64, f64)> = None;
     integrate(plant, x0, Vector2::zeros(), t_end, h, |t, x| {
         let phi = plant.coordinates(x).0[0];
-        if let Some((t0, p0)) = last {
-            if p0 > 0.0 && phi <= 0.0 || p0 < 0.0 && phi >= 0.0 {
-                out.push(t0 + (t - t0) * p0 / (p0 - phi));
-            }
+        if let Some((t0, p0)) = last
+            && (p0 > 0.0 && phi <= 0.0 || p0 < 0.0 && phi >= 0.0)
+        {
+            out.push(t0 + (t - t0) * p0 / (p0 - phi));
         }
         last = Some((t, phi));
     });

@@ -6,12 +6,12 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::dispersion::{Component, Dispersion};
+use landing_core::dispersion::Dispersion as CoreDispersion;
 use landing_core::limits::MAX_CASES;
 use landing_core::{ParamError, theory};
 
 use crate::errors::{InputError, guard, within_cap};
-use crate::table::Table;
+use crate::table;
 
 /// Runs a theory formula under [`guard`], its `ParamError` as a `ParameterError`.
 fn check<T>(formula: impl FnOnce() -> Result<T, ParamError>) -> PyResult<T> {
@@ -135,76 +135,23 @@ pub fn fntsmc_bounds<'py>(
 }
 
 /// A compiled dispersion (`landing.dispersions.Dispersion` holds one): independent normal or
-/// uniform components, drawn by case from the counter-based generator.
+/// uniform components, drawn by case from the counter-based generator. Also exported under its
+/// former name, `DispersionHandle`.
 #[pyclass(frozen, module = "landing._core")]
-pub struct DispersionHandle {
-    dispersion: Dispersion,
-}
-
-fn parse_dispersion(table: &Table) -> Result<Dispersion, InputError> {
-    let kind = table.kind().unwrap_or_default().to_string();
-    let (a, b) = match kind.as_str() {
-        "normal" => ("mean", "std"),
-        "uniform" => ("low", "high"),
-        other => {
-            return Err(InputError::value(format!(
-                "unknown dispersion kind {other:?}; known: [\"normal\", \"uniform\"]"
-            )));
-        }
-    };
-    let numbers = |key: &str| -> Result<Vec<f64>, InputError> {
-        match table.entry(key) {
-            Some(crate::table::Value::Numbers(arr)) if arr.shape.len() <= 1 => Ok(arr.data.clone()),
-            Some(crate::table::Value::Numbers(arr)) => Err(InputError::value(format!(
-                "{key} has shape {:?}; it takes a scalar or one value per component",
-                arr.shape
-            ))),
-            _ => Err(InputError::type_(format!("missing parameter {key}"))),
-        }
-    };
-    let first = numbers(a)?;
-    let second = numbers(b)?;
-    if first.len() != second.len() && first.len() != 1 && second.len() != 1 {
-        return Err(InputError::value(format!(
-            "{a} has {} components and {b} has {}",
-            first.len(),
-            second.len()
-        )));
-    }
-    let n = first.len().max(second.len());
-    let pick = |v: &[f64], j: usize| v[if v.len() == 1 { 0 } else { j }];
-    let components = (0..n)
-        .map(|j| match kind.as_str() {
-            "normal" => Component::Normal {
-                mean: pick(&first, j),
-                std: pick(&second, j),
-            },
-            _ => Component::Uniform {
-                low: pick(&first, j),
-                high: pick(&second, j),
-            },
-        })
-        .collect();
-    let d = Dispersion { components };
-    d.validate().map_err(|e| {
-        let j = e.axis.unwrap_or(0);
-        InputError::value(format!(
-            "{}[{j}] = {} violates {}",
-            e.param, e.value, e.rule
-        ))
-    })?;
-    Ok(d)
+pub struct Dispersion {
+    dispersion: CoreDispersion,
 }
 
 #[pymethods]
-impl DispersionHandle {
+impl Dispersion {
     #[new]
     fn new(table: &Bound<'_, PyDict>) -> PyResult<Self> {
         guard(|| {
-            let t = Table::from_py(table).map_err(|e| e.context("dispersion"))?;
-            Ok(Self {
-                dispersion: parse_dispersion(&t).map_err(|e| e.context("dispersion"))?,
-            })
+            let t = table::from_py("dispersion", table)?;
+            let dispersion = t
+                .read_one::<CoreDispersion>()
+                .map_err(|e| InputError::from(e).context("dispersion"))?;
+            Ok(Self { dispersion })
         })
     }
 
@@ -256,6 +203,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fntsmc_td_printed, m)?)?;
     m.add_function(wrap_pyfunction!(fntsmc_bounds, m)?)?;
     m.add_function(wrap_pyfunction!(philox4x64, m)?)?;
-    m.add_class::<DispersionHandle>()?;
+    m.add_class::<Dispersion>()?;
+    m.add("DispersionHandle", m.getattr("Dispersion")?)?;
     Ok(())
 }

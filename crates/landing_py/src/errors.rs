@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyType;
 
+use landing_core::error::ReadError;
 use landing_core::{BatchError, ParamError};
 
 /// An input problem found while reading arguments.
@@ -47,30 +48,20 @@ impl From<PyErr> for InputError {
     }
 }
 
+/// A core validation error: "param = value violates rule (axis i)".
 impl From<ParamError> for InputError {
     fn from(e: ParamError) -> Self {
-        param_error(&e, None)
+        ReadError::from(e).into()
     }
 }
 
-/// Formats a core validation error for a parameter, with the case index when per case.
-pub fn param_error(e: &ParamError, case: Option<usize>) -> InputError {
-    let mut where_ = Vec::new();
-    if let Some(a) = e.axis {
-        where_.push(format!("axis {a}"));
+impl From<ReadError> for InputError {
+    fn from(e: ReadError) -> Self {
+        match e {
+            ReadError::Value(m) => Self::Value(m),
+            ReadError::Type(m) => Self::Type(m),
+        }
     }
-    if let Some(c) = case {
-        where_.push(format!("case {c}"));
-    }
-    let at = if where_.is_empty() {
-        String::new()
-    } else {
-        format!(" ({})", where_.join(", "))
-    };
-    InputError::Value(format!(
-        "{} = {} violates {}{}",
-        e.param, e.value, e.rule, at
-    ))
 }
 
 /// The library's exception classes, looked up in `landing.errors` once.
@@ -167,4 +158,9 @@ pub fn within_cap(name: &str, value: u64, cap_name: &str, cap: u64) -> Result<()
         )));
     }
     Ok(())
+}
+
+/// An axis count other than the plants' (2 or 3).
+pub fn axes_error(axes: usize) -> InputError {
+    InputError::value(format!("axes = {axes} violates axes in (2, 3)"))
 }

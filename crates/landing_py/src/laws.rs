@@ -4,17 +4,18 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::control::AnyLaw;
+use landing_core::control::{AnyLaw, LawKind};
+use landing_core::error::ReadError;
+use landing_core::params::{ByAxes, ReadFor, Reader, Table};
 
-use crate::compiled::{ByAxes, ReadFor};
-use crate::errors::{InputError, guard};
-use crate::table::{Reader, Table};
+use crate::errors::{InputError, axes_error, guard};
+use crate::{output, table};
 
-struct Laws;
+pub struct Laws;
 
 impl ReadFor for Laws {
     type At<const D: usize> = AnyLaw<D>;
-    fn read<const D: usize>(p: &mut Reader<'_>) -> Result<AnyLaw<D>, InputError> {
+    fn read<const D: usize>(p: &mut Reader<'_>) -> Result<AnyLaw<D>, ReadError> {
         AnyLaw::<D>::from_params(p)
     }
 }
@@ -23,7 +24,8 @@ impl ReadFor for Laws {
 #[pyclass(frozen, module = "landing._core")]
 pub struct Law {
     pub kind: String,
-    pub compiled: ByAxes,
+    table: Table,
+    pub compiled: ByAxes<Laws>,
 }
 
 #[pymethods]
@@ -31,14 +33,15 @@ impl Law {
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
         guard(|| {
-            let t = Table::from_py(table).map_err(|e| e.context(owner))?;
-            // a table whose per-axis arrays all have length 2 is meant for 2 axes: its error
-            // names the axis (read for 3 axes it would be one value per case)
-            let lengths = t.trailing_lengths();
-            let two_axes = lengths.contains(&2) && !lengths.contains(&3);
+            let t = table::from_py(owner, table)?;
+            // a table meant for 2 axes gets the 2-axis reading's error (read for 3 axes, its
+            // per-axis arrays would be one value per case)
+            let compiled =
+                ByAxes::compile(owner, &t, t.meant_for_two_axes()).map_err(InputError::from)?;
             Ok(Self {
                 kind: t.kind().unwrap_or_default().to_string(),
-                compiled: ByAxes::compile::<Laws>(owner, &t, two_axes)?,
+                table: t,
+                compiled,
             })
         })
     }
@@ -56,30 +59,27 @@ impl Law {
 
     /// Names and widths of the diagnostic signals for `axes` axes.
     fn diagnostic_layout(&self, axes: usize) -> PyResult<Vec<(&'static str, usize)>> {
-        guard(|| self.diagnostic_layout_unguarded(axes))
+        guard(|| {
+            landing_core::with_axes!(axes, D => {
+                Ok(self.compiled.get::<D>().map_err(InputError::from)?.0.get(0).diagnostic_layout())
+            }, a => Err(axes_error(a).into()))
+        })
     }
-}
 
-impl Law {
-    fn diagnostic_layout_unguarded(&self, axes: usize) -> PyResult<Vec<(&'static str, usize)>> {
-        Ok(match axes {
-            3 => self
-                .compiled
-                .get::<AnyLaw<3>, 3>()?
-                .0
-                .get(0)
-                .diagnostic_layout(),
-            2 => self
-                .compiled
-                .get::<AnyLaw<2>, 2>()?
-                .0
-                .get(0)
-                .diagnostic_layout(),
-            _ => {
-                return Err(
-                    InputError::value(format!("axes = {axes} violates axes in (2, 3)")).into(),
-                );
-            }
+    /// The numeric parameter `name` as the law reads it for `axes` axes: (cases, axes) per
+    /// axis, (cases,) for a scalar (cases = 1 when shared).
+    fn parameter<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        axes: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        guard(|| {
+            let v = self
+                .table
+                .values::<LawKind>(name, axes)
+                .map_err(|e| InputError::from(e).context(&self.kind))?;
+            output::values(py, v)
         })
     }
 }

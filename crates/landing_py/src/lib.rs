@@ -6,7 +6,6 @@
 //! released. Nothing here holds simulation logic.
 
 mod analysis;
-mod compiled;
 mod errors;
 mod fuzzy;
 mod gravity;
@@ -18,15 +17,16 @@ mod simulate;
 mod table;
 
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 use landing_core::control::LAW_KINDS;
 use landing_core::gravity::G;
 use landing_core::integrator::IntegratorKind;
 use landing_core::kernel::Level;
 use landing_core::limits::LIMITS;
-use landing_core::metrics::{Divergence, MAX_COMMAND};
-use landing_core::registry::{GRAVITY_KINDS, PLANT_KINDS};
+use landing_core::metrics::{CaseMetrics, Divergence, MAX_COMMAND};
+use landing_core::params::{Layout, Param, Shape};
+use landing_core::registry::{GRAVITY_KINDS, PLANT_KINDS, schemas};
 
 use errors::guard;
 use fuzzy::FuzzySystem;
@@ -74,6 +74,73 @@ fn limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
+/// A parameter's declaration: name, shape, unit, rule, required, doc, and its choices or its
+/// nested tables' family (or fixed layout).
+fn param<'py>(py: Python<'py>, p: &Param) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("name", p.name)?;
+    d.set_item("shape", p.shape.name())?;
+    d.set_item("unit", p.unit)?;
+    d.set_item("rule", p.rules())?;
+    d.set_item("required", p.required)?;
+    d.set_item("doc", p.doc)?;
+    match p.shape {
+        Shape::Choice(names) => d.set_item("choices", names.to_vec())?,
+        Shape::Count(values) => d.set_item("choices", values.to_vec())?,
+        Shape::Nested(layout) | Shape::List(layout) => match layout {
+            Layout::Family(f) => d.set_item("family", f)?,
+            Layout::Fixed(params) => {
+                d.set_item("family", py.None())?;
+                d.set_item("layout", params_list(py, params)?)?;
+            }
+        },
+        _ => {}
+    }
+    Ok(d)
+}
+
+fn params_list<'py>(py: Python<'py>, params: &[Param]) -> PyResult<Bound<'py, PyList>> {
+    let items = params
+        .iter()
+        .map(|p| param(py, p))
+        .collect::<PyResult<Vec<_>>>()?;
+    PyList::new(py, items)
+}
+
+/// `SCHEMAS[family][kind]`: what each kind of model declares (see `_core.pyi`).
+fn schema_table(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let out = PyDict::new(py);
+    for (family, kinds) in schemas() {
+        let f = PyDict::new(py);
+        for (kind, schema) in kinds {
+            let k = PyDict::new(py);
+            k.set_item("parameters", params_list(py, schema.params)?)?;
+            if let Some(random) = schema.random {
+                k.set_item("random", random)?;
+            }
+            f.set_item(kind, k)?;
+        }
+        out.set_item(family, f)?;
+    }
+    Ok(out)
+}
+
+/// The per-case metric columns in output order (`CaseMetrics::COLUMNS`).
+fn metric_list(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
+    let items = CaseMetrics::<3>::COLUMNS
+        .iter()
+        .map(|c| {
+            let d = PyDict::new(py);
+            d.set_item("name", c.name)?;
+            d.set_item("unit", c.unit)?;
+            d.set_item("per_axis", c.per_axis())?;
+            d.set_item("doc", c.doc)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    PyList::new(py, items)
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -100,5 +167,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DIVERGENCE_REASONS", Divergence::NAMES.to_vec())?;
     m.add("MAX_COMMAND", MAX_COMMAND)?;
     m.add("LIMITS", limits(m.py())?)?;
+    m.add("SCHEMAS", schema_table(m.py())?)?;
+    m.add("METRICS", metric_list(m.py())?)?;
     Ok(())
 }

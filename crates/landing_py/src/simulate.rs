@@ -10,14 +10,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use landing_core::batch::{Batch, RunOptions, run};
-use landing_core::control::AnyLaw;
 use landing_core::disturbance::Disturbance as CoreDisturbance;
 use landing_core::integrator::IntegratorKind;
 use landing_core::limits::{MAX_CASES, MAX_SUBSTEPS, MAX_THREADS};
+use landing_core::params::{AxisCount, Dim, Named};
 use landing_core::plant::PlantModel;
 use landing_core::reference::Reference as CoreReference;
-use landing_core::registry::PlantVisitor;
-use landing_core::state::State;
+use landing_core::registry::{PlantVisitor, initial_states};
 use landing_core::{Level, PerCase, SimConfig, Tolerance};
 
 use crate::errors::{InputError, batch_error, guard, internal_error, within_cap};
@@ -25,7 +24,6 @@ use crate::laws::Law;
 use crate::output;
 use crate::plants::Plant;
 use crate::signals::{Disturbance, Reference};
-use crate::table::Cases;
 
 /// Batches of fewer integrator steps than this (cases x periods x substeps) run on the calling
 /// thread and cannot be interrupted: they take milliseconds. Larger ones run on a scoped
@@ -50,11 +48,12 @@ fn interruptible<T: Send>(cancel: &AtomicBool, job: impl FnOnce() -> T + Send) -
         let mut raised = None;
         while !worker.is_finished() {
             std::thread::park_timeout(SIGNAL_POLL);
-            if raised.is_none() && !worker.is_finished() {
-                if let Err(e) = Python::attach(|py| py.check_signals()) {
-                    cancel.store(true, Ordering::Relaxed);
-                    raised = Some(e);
-                }
+            if raised.is_none()
+                && !worker.is_finished()
+                && let Err(e) = Python::attach(|py| py.check_signals())
+            {
+                cancel.store(true, Ordering::Relaxed);
+                raised = Some(e);
             }
         }
         // the job catches its own panics, so the thread cannot have panicked
@@ -66,17 +65,6 @@ fn interruptible<T: Send>(cancel: &AtomicBool, job: impl FnOnce() -> T + Send) -
             None => Ok(out),
         }
     })
-}
-
-/// Checks that a compiled table's case count suits a batch of `n` cases.
-fn check_cases(owner: &str, cases: &Cases, n: usize) -> Result<(), InputError> {
-    match &cases.key {
-        Some(key) if cases.count != n => Err(InputError::value(format!(
-            "{owner}: {key} has {} values per case but the batch has {n} cases",
-            cases.count
-        ))),
-        _ => Ok(()),
-    }
 }
 
 /// Builds the batch for the plant's type and runs it without the GIL.
@@ -94,35 +82,31 @@ struct Simulate<'a, 'py> {
 impl<'py> PlantVisitor for Simulate<'_, 'py> {
     type Output = PyResult<Bound<'py, PyDict>>;
 
-    fn visit<const D: usize, P: PlantModel<D>>(self, plants: &PerCase<P>) -> Self::Output {
+    fn visit<const D: usize, P: PlantModel<D>>(self, plants: &PerCase<P>) -> Self::Output
+    where
+        Dim<D>: AxisCount<D>,
+    {
         let n = self.n;
-        let (laws, law_cases) = self.law.compiled.get::<AnyLaw<D>, D>()?;
-        check_cases(&format!("controller ({})", self.law.kind), law_cases, n)?;
+        let (laws, law_cases) = self.law.compiled.get::<D>().map_err(InputError::from)?;
+        let owner = format!("controller ({})", self.law.kind);
+        law_cases.check(&owner, n).map_err(InputError::from)?;
         let references = match self.reference {
             None => PerCase::shared(CoreReference::default()),
             Some(r) => {
-                let (refs, cases) = r.compiled.get::<CoreReference<D>, D>()?;
-                check_cases("reference", cases, n)?;
+                let (refs, cases) = r.compiled.get::<D>().map_err(InputError::from)?;
+                cases.check("reference", n).map_err(InputError::from)?;
                 refs.clone()
             }
         };
         let disturbances = match self.disturbance {
             None => PerCase::shared(CoreDisturbance::none()),
             Some(d) => {
-                let (ds, cases) = d.compiled.get::<CoreDisturbance<D>, D>()?;
-                check_cases("disturbance", cases, n)?;
+                let (ds, cases) = d.compiled.get::<D>().map_err(InputError::from)?;
+                cases.check("disturbance", n).map_err(InputError::from)?;
                 ds.clone()
             }
         };
-        let nx = P::STATE_DIM;
-        let mut x0 = Vec::with_capacity(n);
-        for (i, row) in self.x0.chunks_exact(nx).enumerate() {
-            plants.get(i).check_initial(row).map_err(|e| {
-                let axis = e.axis.unwrap_or(0);
-                InputError::value(format!("x0[{i}, {axis}] = {} violates {}", e.value, e.rule))
-            })?;
-            x0.push(<P as landing_core::plant::Plant<f64, D>>::State::from_components(|c| row[c]));
-        }
+        let x0 = initial_states(plants, self.x0).map_err(InputError::from)?;
         let batch = Batch {
             plants: plants.clone(),
             laws: laws.clone(),
@@ -239,7 +223,7 @@ pub fn simulate_batch<'py>(
         };
         let shape = x0.shape();
         let n = shape[0];
-        let (names, ..) = plant.plants.visit(crate::plants::Names);
+        let names = plant.plants.info().state_names;
         if shape[1] != names.len() || n == 0 {
             return Err(InputError::value(format!(
                 "x0 has shape ({}, {}); this plant takes (N, {}) with N >= 1 (state {names:?})",
@@ -250,7 +234,10 @@ pub fn simulate_batch<'py>(
             .into());
         }
         within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES)?;
-        check_cases(&format!("plant ({})", plant.kind), &plant.cases, n)?;
+        plant
+            .cases
+            .check(&format!("plant ({})", plant.kind), n)
+            .map_err(InputError::from)?;
         plant.plants.visit(Simulate {
             py,
             law: controller,

@@ -13,11 +13,36 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check, check_axes};
 use crate::lanes::axes::Axes;
 use crate::lanes::{Mask, Real, sub};
-use crate::math::{Switch, sgn};
-use crate::params::{FromParams, ParamSource};
+use crate::math::{BOUNDARY_LAYER, SWITCH, Switch, sgn};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
+
+pub(super) const ALPHA: Param = Param::axes("alpha")
+    .unit("1/s")
+    .rule("alpha > 0")
+    .doc("gain of e in the surface s = e' + alpha e + beta sig^(p/q)(e)");
+pub(super) const BETA: Param = Param::axes("beta")
+    .unit("q^(1 - p/q)/s")
+    .rule("beta > 0")
+    .doc("gain of sig^(p/q)(e) in the surface");
+pub(super) const P: Param = Param::axes("p")
+    .unit("1")
+    .rule("p > 0")
+    .doc("numerator of the exponent p/q");
+pub(super) const Q: Param = Param::axes("q")
+    .unit("1")
+    .rule("q > p")
+    .doc("denominator of the exponent p/q");
+pub(super) const E_FLOOR: Param = Param::scalar("e_floor")
+    .unit("q")
+    .rule("e_floor > 0")
+    .doc("singularity guard: floor on |e| in |e|^(p/q - 1) of the equivalent control");
+pub(super) const K: Param = Param::axes("k")
+    .unit("q/s^2")
+    .rule("k > 0")
+    .doc("switching gain, in command units");
 
 /// The fast terminal surface and its equivalent control, shared with the fuzzy-blended law.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,13 +88,13 @@ impl<const D: usize, R: Real> TerminalSurface<D, R> {
 
 impl<const D: usize> Validate for TerminalSurface<D> {
     fn validate(&self) -> Result<(), ParamError> {
-        require_axes(self.alpha.as_slice(), "alpha", "alpha > 0", |v| v > 0.0)?;
-        require_axes(self.beta.as_slice(), "beta", "beta > 0", |v| v > 0.0)?;
-        require_axes(self.p.as_slice(), "p", "p > 0", |v| v > 0.0)?;
+        check_axes(&ALPHA, self.alpha.as_slice(), |v| v > 0.0)?;
+        check_axes(&BETA, self.beta.as_slice(), |v| v > 0.0)?;
+        check_axes(&P, self.p.as_slice(), |v| v > 0.0)?;
         for i in 0..D {
-            require(self.q[i] > self.p[i], "q", self.q[i], "q > p").map_err(|e| e.on_axis(i))?;
+            check(&Q, self.q[i], |v| v > self.p[i]).map_err(|e| e.on_axis(i))?;
         }
-        require(self.e_floor > 0.0, "e_floor", self.e_floor, "e_floor > 0")
+        check(&E_FLOOR, self.e_floor, |v| v > 0.0)
     }
 }
 
@@ -111,28 +136,32 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FastTerminalSmc<D, R> {
 impl<const D: usize> Validate for FastTerminalSmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
-        require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
+        check_axes(&K, self.k.as_slice(), |v| v > 0.0)?;
         super::validate_switch(&self.switch)
     }
 }
 
 impl<const D: usize> FromParams for TerminalSurface<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            alpha: p.axes("alpha")?,
-            beta: p.axes("beta")?,
-            p: p.axes("p")?,
-            q: p.axes("q")?,
-            e_floor: p.scalar("e_floor")?,
+            alpha: p.axes(&ALPHA)?,
+            beta: p.axes(&BETA)?,
+            p: p.axes(&P)?,
+            q: p.axes(&Q)?,
+            e_floor: p.scalar(&E_FLOOR)?,
         })
     }
 }
 
+impl<const D: usize> Declared for FastTerminalSmc<D> {
+    const SCHEMA: Schema = Schema::new(&[ALPHA, BETA, P, Q, K, SWITCH, BOUNDARY_LAYER, E_FLOOR]);
+}
+
 impl<const D: usize> FromParams for FastTerminalSmc<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
             surface: TerminalSurface::from_params(p)?,
-            k: p.axes("k")?,
+            k: p.axes(&K)?,
             switch: Switch::from_params(p)?,
         })
     }

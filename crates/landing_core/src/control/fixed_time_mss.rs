@@ -19,29 +19,58 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check, check_axes};
 use crate::lanes::axes::{Axes, AxesMask};
 use crate::lanes::math::PowLog;
 use crate::lanes::{Mask, Real, filled, sub};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MssVariant {
-    Printed,
-    Exact,
-}
-
-impl MssVariant {
-    pub const NAMES: [&'static str; 2] = ["printed", "exact"];
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "printed" => Some(Self::Printed),
-            "exact" => Some(Self::Exact),
-            _ => None,
-        }
+crate::named! {
+    /// Eq. 25 as printed, or with the exact derivative of s2.
+    pub enum MssVariant {
+        Printed => "printed",
+        Exact => "exact",
     }
 }
+
+const BETA1: Param = Param::axes("beta1")
+    .unit("(m^(1 - q1))/s")
+    .rule("beta1 > 0")
+    .doc("gain of the first reaching law's sig^q1 term (eq. 21)");
+const BETA2: Param = Param::axes("beta2")
+    .unit("(m^(1 - q2))/s")
+    .rule("beta2 > 0")
+    .doc("gain of the first reaching law's sig^q2 term (eq. 21)");
+const Q1: Param = Param::axes("q1")
+    .unit("1")
+    .rule("0 < q1 < 1")
+    .doc("exponent of the first reaching law, below 1");
+const Q2: Param = Param::axes("q2")
+    .unit("1")
+    .rule("q2 > 1")
+    .doc("exponent of the first reaching law, above 1");
+const ALPHA1: Param = Param::axes("alpha1")
+    .unit("(m/s)^(1 - gamma1)/s")
+    .rule("alpha1 > 0")
+    .doc("gain of the second reaching law's sig^gamma1 term (eq. 26)");
+const ALPHA2: Param = Param::axes("alpha2")
+    .unit("(m/s)^(1 - gamma2)/s")
+    .rule("alpha2 > 0")
+    .doc("gain of the second reaching law's sig^gamma2 term (eq. 26)");
+const GAMMA1: Param = Param::axes("gamma1")
+    .unit("1")
+    .rule("0 < gamma1 < 1")
+    .doc("exponent of the second reaching law (the seed's g1), below 1");
+const GAMMA2: Param = Param::axes("gamma2")
+    .unit("1")
+    .rule("gamma2 > 1")
+    .doc("exponent of the second reaching law (the seed's g2), above 1");
+const VARIANT: Param = Param::choice("variant", MssVariant::NAMES)
+    .doc("printed: eq. 25 as printed; exact: the exact derivative of s2");
+const S1_FLOOR: Param = Param::scalar("s1_floor")
+    .unit("m")
+    .rule("s1_floor > 0")
+    .doc("singularity guard: floor on |s1| wherever it is raised to a negative power");
 
 /// Gains per axis, with the seed's symbols (`gamma1`, `gamma2` are its exponents g1, g2).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -217,41 +246,37 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeMss<D, R> {
 
 impl<const D: usize> Validate for FixedTimeMss<D> {
     fn validate(&self) -> Result<(), ParamError> {
-        require_axes(self.beta1.as_slice(), "beta1", "beta1 > 0", |v| v > 0.0)?;
-        require_axes(self.beta2.as_slice(), "beta2", "beta2 > 0", |v| v > 0.0)?;
-        require_axes(self.q1.as_slice(), "q1", "0 < q1 < 1", |v| {
-            v > 0.0 && v < 1.0
-        })?;
-        require_axes(self.q2.as_slice(), "q2", "q2 > 1", |v| v > 1.0)?;
-        require_axes(self.alpha1.as_slice(), "alpha1", "alpha1 > 0", |v| v > 0.0)?;
-        require_axes(self.alpha2.as_slice(), "alpha2", "alpha2 > 0", |v| v > 0.0)?;
-        require_axes(self.gamma1.as_slice(), "gamma1", "0 < gamma1 < 1", |v| {
-            v > 0.0 && v < 1.0
-        })?;
-        require_axes(self.gamma2.as_slice(), "gamma2", "gamma2 > 1", |v| v > 1.0)?;
-        require(
-            self.s1_floor > 0.0,
-            "s1_floor",
-            self.s1_floor,
-            "s1_floor > 0",
-        )
+        check_axes(&BETA1, self.beta1.as_slice(), |v| v > 0.0)?;
+        check_axes(&BETA2, self.beta2.as_slice(), |v| v > 0.0)?;
+        check_axes(&Q1, self.q1.as_slice(), |v| v > 0.0 && v < 1.0)?;
+        check_axes(&Q2, self.q2.as_slice(), |v| v > 1.0)?;
+        check_axes(&ALPHA1, self.alpha1.as_slice(), |v| v > 0.0)?;
+        check_axes(&ALPHA2, self.alpha2.as_slice(), |v| v > 0.0)?;
+        check_axes(&GAMMA1, self.gamma1.as_slice(), |v| v > 0.0 && v < 1.0)?;
+        check_axes(&GAMMA2, self.gamma2.as_slice(), |v| v > 1.0)?;
+        check(&S1_FLOOR, self.s1_floor, |v| v > 0.0)
     }
 }
 
+impl<const D: usize> Declared for FixedTimeMss<D> {
+    const SCHEMA: Schema = Schema::new(&[
+        BETA1, BETA2, Q1, Q2, ALPHA1, ALPHA2, GAMMA1, GAMMA2, VARIANT, S1_FLOOR,
+    ]);
+}
+
 impl<const D: usize> FromParams for FixedTimeMss<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            beta1: p.axes("beta1")?,
-            beta2: p.axes("beta2")?,
-            q1: p.axes("q1")?,
-            q2: p.axes("q2")?,
-            alpha1: p.axes("alpha1")?,
-            alpha2: p.axes("alpha2")?,
-            gamma1: p.axes("gamma1")?,
-            gamma2: p.axes("gamma2")?,
-            variant: [MssVariant::Printed, MssVariant::Exact]
-                [p.choice("variant", &MssVariant::NAMES)?],
-            s1_floor: p.scalar("s1_floor")?,
+            beta1: p.axes(&BETA1)?,
+            beta2: p.axes(&BETA2)?,
+            q1: p.axes(&Q1)?,
+            q2: p.axes(&Q2)?,
+            alpha1: p.axes(&ALPHA1)?,
+            alpha2: p.axes(&ALPHA2)?,
+            gamma1: p.axes(&GAMMA1)?,
+            gamma2: p.axes(&GAMMA2)?,
+            variant: p.choice(&VARIANT)?,
+            s1_floor: p.scalar(&S1_FLOOR)?,
         })
     }
 }

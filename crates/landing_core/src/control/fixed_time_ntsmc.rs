@@ -37,11 +37,11 @@ use nalgebra::{SMatrix, SVector};
 
 use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check, check_axes};
 use crate::lanes::math::PowLog;
 use crate::lanes::{Mask, Real, sub, vector, zeros};
 use crate::math::sgn;
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 /// zeta of eq. 21 with exponent p and threshold sigma (one case).
 #[inline(always)]
@@ -94,6 +94,63 @@ impl<R: Real> ZetaPair<R> {
         Self { zeta, slope }
     }
 }
+
+const K1: Param = Param::axes("k1")
+    .unit("q^(1 - p1)/s")
+    .rule("k1 > 0")
+    .doc("gain of zeta1 in the surface s = e2 + k1 zeta1(e1) + k2 zeta2(e1)");
+const K2: Param = Param::axes("k2")
+    .unit("q^(1 - p2)/s")
+    .rule("k2 > 0")
+    .doc("gain of zeta2 in the surface");
+const K3: Param = Param::axes("k3")
+    .unit("1/s")
+    .rule("k3 > 0")
+    .doc("gain of the reaching law sig^alpha_s(s) + sig^beta_s(s)");
+const EPS_MAX: Param = Param::axes("eps_max")
+    .unit("N, N m")
+    .rule("eps_max >= 0")
+    .doc("bound of the network's approximation error, in actuator units");
+const P1: Param = Param::axes("p1")
+    .unit("1")
+    .rule("p1 > 1")
+    .doc("exponent of zeta1, above 1");
+const P2: Param = Param::axes("p2")
+    .unit("1")
+    .rule("0 < p2 < 1")
+    .doc("exponent of zeta2, below 1");
+const ALPHA_S: Param = Param::axes("alpha_s")
+    .unit("1")
+    .rule("1/2 < alpha_s < 1")
+    .doc("exponent of the reaching law, below 1");
+const BETA_S: Param = Param::axes("beta_s")
+    .unit("1")
+    .rule("beta_s > 1")
+    .doc("exponent of the reaching law, above 1");
+const SIGMA_PHI: Param = Param::axes("sigma_phi")
+    .unit("q")
+    .rule("sigma_phi > 0")
+    .doc("singularity guard: the threshold inside which zeta is the matching quadratic");
+const GAMMA: Param = Param::axes("gamma")
+    .unit("1")
+    .rule("gamma >= 0")
+    .doc("adaptation gain of the network (Gamma = gamma I); 0 switches it off");
+const RBF_NODES: Param = Param::count("rbf_nodes", &[1, 2, 3, 4, 5, 6, 7])
+    .unit("1")
+    .rule("rbf_nodes in 1..=7")
+    .doc("centres per input of each axis's network (rbf_nodes^2 nodes), shared by the cases");
+const RBF_SCALE_E1: Param = Param::axes("rbf_scale_e1")
+    .unit("q")
+    .rule("rbf_scale_e1 > 0")
+    .doc("e1 at the edge of the centre grid");
+const RBF_SCALE_E2: Param = Param::axes("rbf_scale_e2")
+    .unit("q/s")
+    .rule("rbf_scale_e2 > 0")
+    .doc("e2 at the edge of the centre grid");
+const RBF_WIDTH: Param = Param::axes("rbf_width")
+    .unit("1")
+    .rule("rbf_width > 0")
+    .doc("Gaussian width b on the normalised inputs");
 
 /// Gains per axis with the seed's symbols; `gamma` is Gamma's diagonal value.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -249,74 +306,61 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
 
 impl<const D: usize> Validate for FixedTimeNtsmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
-        require_axes(self.k1.as_slice(), "k1", "k1 > 0", |v| v > 0.0)?;
-        require_axes(self.k2.as_slice(), "k2", "k2 > 0", |v| v > 0.0)?;
-        require_axes(self.k3.as_slice(), "k3", "k3 > 0", |v| v > 0.0)?;
-        require_axes(self.eps_max.as_slice(), "eps_max", "eps_max >= 0", |v| {
-            v >= 0.0
+        check_axes(&K1, self.k1.as_slice(), |v| v > 0.0)?;
+        check_axes(&K2, self.k2.as_slice(), |v| v > 0.0)?;
+        check_axes(&K3, self.k3.as_slice(), |v| v > 0.0)?;
+        check_axes(&EPS_MAX, self.eps_max.as_slice(), |v| v >= 0.0)?;
+        check_axes(&P1, self.p1.as_slice(), |v| v > 1.0)?;
+        check_axes(&P2, self.p2.as_slice(), |v| v > 0.0 && v < 1.0)?;
+        check_axes(&ALPHA_S, self.alpha_s.as_slice(), |v| v > 0.5 && v < 1.0)?;
+        check_axes(&BETA_S, self.beta_s.as_slice(), |v| v > 1.0)?;
+        check_axes(&SIGMA_PHI, self.sigma_phi.as_slice(), |v| v > 0.0)?;
+        check_axes(&GAMMA, self.gamma.as_slice(), |v| v >= 0.0)?;
+        check(&RBF_NODES, self.rbf_nodes as f64, |_| {
+            (1..=MAX_GRID).contains(&self.rbf_nodes)
         })?;
-        require_axes(self.p1.as_slice(), "p1", "p1 > 1", |v| v > 1.0)?;
-        require_axes(self.p2.as_slice(), "p2", "0 < p2 < 1", |v| {
-            v > 0.0 && v < 1.0
-        })?;
-        require_axes(
-            self.alpha_s.as_slice(),
-            "alpha_s",
-            "1/2 < alpha_s < 1",
-            |v| v > 0.5 && v < 1.0,
-        )?;
-        require_axes(self.beta_s.as_slice(), "beta_s", "beta_s > 1", |v| v > 1.0)?;
-        require_axes(
-            self.sigma_phi.as_slice(),
-            "sigma_phi",
-            "sigma_phi > 0",
-            |v| v > 0.0,
-        )?;
-        require_axes(self.gamma.as_slice(), "gamma", "gamma >= 0", |v| v >= 0.0)?;
-        require(
-            (1..=MAX_GRID).contains(&self.rbf_nodes),
-            "rbf_nodes",
-            self.rbf_nodes as f64,
-            "rbf_nodes in 1..=7",
-        )?;
-        require_axes(
-            self.rbf_scale_e1.as_slice(),
-            "rbf_scale_e1",
-            "rbf_scale_e1 > 0",
-            |v| v > 0.0,
-        )?;
-        require_axes(
-            self.rbf_scale_e2.as_slice(),
-            "rbf_scale_e2",
-            "rbf_scale_e2 > 0",
-            |v| v > 0.0,
-        )?;
-        require_axes(
-            self.rbf_width.as_slice(),
-            "rbf_width",
-            "rbf_width > 0",
-            |v| v > 0.0,
-        )
+        check_axes(&RBF_SCALE_E1, self.rbf_scale_e1.as_slice(), |v| v > 0.0)?;
+        check_axes(&RBF_SCALE_E2, self.rbf_scale_e2.as_slice(), |v| v > 0.0)?;
+        check_axes(&RBF_WIDTH, self.rbf_width.as_slice(), |v| v > 0.0)
     }
 }
 
+impl<const D: usize> Declared for FixedTimeNtsmc<D> {
+    const SCHEMA: Schema = Schema::new(&[
+        K1,
+        K2,
+        K3,
+        EPS_MAX,
+        P1,
+        P2,
+        ALPHA_S,
+        BETA_S,
+        SIGMA_PHI,
+        GAMMA,
+        RBF_NODES,
+        RBF_SCALE_E1,
+        RBF_SCALE_E2,
+        RBF_WIDTH,
+    ]);
+}
+
 impl<const D: usize> FromParams for FixedTimeNtsmc<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            k1: p.axes("k1")?,
-            k2: p.axes("k2")?,
-            k3: p.axes("k3")?,
-            eps_max: p.axes("eps_max")?,
-            p1: p.axes("p1")?,
-            p2: p.axes("p2")?,
-            alpha_s: p.axes("alpha_s")?,
-            beta_s: p.axes("beta_s")?,
-            sigma_phi: p.axes("sigma_phi")?,
-            gamma: p.axes("gamma")?,
-            rbf_nodes: p.count("rbf_nodes", &[1, 2, 3, 4, 5, 6, 7], "rbf_nodes in 1..=7")?,
-            rbf_scale_e1: p.axes("rbf_scale_e1")?,
-            rbf_scale_e2: p.axes("rbf_scale_e2")?,
-            rbf_width: p.axes("rbf_width")?,
+            k1: p.axes(&K1)?,
+            k2: p.axes(&K2)?,
+            k3: p.axes(&K3)?,
+            eps_max: p.axes(&EPS_MAX)?,
+            p1: p.axes(&P1)?,
+            p2: p.axes(&P2)?,
+            alpha_s: p.axes(&ALPHA_S)?,
+            beta_s: p.axes(&BETA_S)?,
+            sigma_phi: p.axes(&SIGMA_PHI)?,
+            gamma: p.axes(&GAMMA)?,
+            rbf_nodes: p.count(&RBF_NODES)?,
+            rbf_scale_e1: p.axes(&RBF_SCALE_E1)?,
+            rbf_scale_e2: p.axes(&RBF_SCALE_E2)?,
+            rbf_width: p.axes(&RBF_WIDTH)?,
         })
     }
 }

@@ -11,12 +11,21 @@
 
 use nalgebra::SVector;
 
-use super::fast_terminal::TerminalSurface;
+use super::fast_terminal::{ALPHA, BETA, E_FLOOR, K, P, Q, TerminalSurface};
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check, check_axes};
 use crate::lanes::{Real, norm};
-use crate::math::Switch;
-use crate::params::{FromParams, ParamSource};
+use crate::math::{BOUNDARY_LAYER, SWITCH, Switch};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
+
+const N: Param = Param::scalar("n")
+    .unit("s/q")
+    .rule("n > 0")
+    .doc("N of eq. 22: how fast the equivalent control's weight a(D) = exp(-N D) falls");
+const M: Param = Param::scalar("m")
+    .unit("s/q")
+    .rule("m > 0")
+    .doc("M of eq. 22: how fast the switching weight b(D) = 1 - exp(-M D) rises");
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FuzzyFastTerminalSmc<const D: usize, R = f64> {
@@ -82,21 +91,26 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyFastTerminalSmc<D, R> {
 impl<const D: usize> Validate for FuzzyFastTerminalSmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
-        require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
-        require(self.n > 0.0, "n", self.n, "n > 0")?;
-        require(self.m > 0.0, "m", self.m, "m > 0")?;
+        check_axes(&K, self.k.as_slice(), |v| v > 0.0)?;
+        check(&N, self.n, |v| v > 0.0)?;
+        check(&M, self.m, |v| v > 0.0)?;
         super::validate_switch(&self.switch)
     }
 }
 
+impl<const D: usize> Declared for FuzzyFastTerminalSmc<D> {
+    const SCHEMA: Schema =
+        Schema::new(&[ALPHA, BETA, P, Q, K, N, M, SWITCH, BOUNDARY_LAYER, E_FLOOR]);
+}
+
 impl<const D: usize> FromParams for FuzzyFastTerminalSmc<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
             surface: TerminalSurface::from_params(p)?,
-            k: p.axes("k")?,
+            k: p.axes(&K)?,
             switch: Switch::from_params(p)?,
-            n: p.scalar("n")?,
-            m: p.scalar("m")?,
+            n: p.scalar(&N)?,
+            m: p.scalar(&M)?,
         })
     }
 }

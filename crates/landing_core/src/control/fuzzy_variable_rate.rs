@@ -18,12 +18,28 @@ use std::sync::Arc;
 
 use nalgebra::SVector;
 
-use super::integral_reaching::IntegralSurface;
+use super::integral_reaching::{C1, C2, IntegralSurface, K};
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check_axes};
 use crate::fuzzy::Mamdani;
 use crate::lanes::{Real, add, sub, zeros};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
+
+const KE: Param = Param::axes("ke")
+    .unit("s/q")
+    .rule("ke > 0")
+    .doc("input scaling of s onto the system's universe");
+const KEC: Param = Param::axes("kec")
+    .unit("s^2/q")
+    .rule("kec > 0")
+    .doc("input scaling of s' onto the system's universe");
+const KU: Param = Param::axes("ku")
+    .unit("q/s^2")
+    .rule("ku > 0")
+    .doc("output scaling: command units per unit of the output universe");
+const SYSTEM: Param = Param::fuzzy_system("system")
+    .rule("two inputs (s and s')")
+    .doc("the Mamdani system F(ke s, kec s')");
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct FuzzyVariableRate<const D: usize, R = f64> {
@@ -119,28 +135,32 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyVariableRate<D, R> {
 impl<const D: usize> Validate for FuzzyVariableRate<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
-        require_axes(self.ke.as_slice(), "ke", "ke > 0", |v| v > 0.0)?;
-        require_axes(self.kec.as_slice(), "kec", "kec > 0", |v| v > 0.0)?;
-        require_axes(self.ku.as_slice(), "ku", "ku > 0", |v| v > 0.0)?;
+        check_axes(&KE, self.ke.as_slice(), |v| v > 0.0)?;
+        check_axes(&KEC, self.kec.as_slice(), |v| v > 0.0)?;
+        check_axes(&KU, self.ku.as_slice(), |v| v > 0.0)?;
         if self.system.n_inputs() != 2 {
             return Err(ParamError::new(
-                "system",
+                SYSTEM.name,
                 self.system.n_inputs() as f64,
-                "two inputs (s and s')",
+                SYSTEM.rule,
             ));
         }
         Ok(())
     }
 }
 
+impl<const D: usize> Declared for FuzzyVariableRate<D> {
+    const SCHEMA: Schema = Schema::new(&[C1, C2, K, KE, KEC, KU, SYSTEM]);
+}
+
 impl<const D: usize> FromParams for FuzzyVariableRate<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
             surface: IntegralSurface::from_params(p)?,
-            ke: p.axes("ke")?,
-            kec: p.axes("kec")?,
-            ku: p.axes("ku")?,
-            system: p.fuzzy_system("system")?,
+            ke: p.axes(&KE)?,
+            kec: p.axes(&KEC)?,
+            ku: p.axes(&KU)?,
+            system: p.fuzzy_system(&SYSTEM)?,
         })
     }
 }

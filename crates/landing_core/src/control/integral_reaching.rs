@@ -16,10 +16,27 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check_axes};
 use crate::lanes::{Real, add, mul, neg, scale, sub, zeros};
-use crate::math::Switch;
-use crate::params::{FromParams, ParamSource};
+use crate::math::{BOUNDARY_LAYER, SWITCH, Switch};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
+
+pub(super) const C1: Param = Param::axes("c1")
+    .unit("1/s^2")
+    .rule("c1 > 0")
+    .doc("gain of sigma in the integral, I' = c1 sigma + c2 sigma'");
+pub(super) const C2: Param = Param::axes("c2")
+    .unit("1/s")
+    .rule("c2 > 0")
+    .doc("gain of sigma' in the integral");
+pub(super) const K: Param = Param::axes("k")
+    .unit("1/s")
+    .rule("k >= 0")
+    .doc("rate of the exponential reaching law s' = -k s - ...");
+const EPSILON: Param = Param::axes("epsilon")
+    .unit("q/s^2")
+    .rule("epsilon >= 0")
+    .doc("switching gain of the reaching law");
 
 /// The integral surface with gains c1, c2 and the exponential rate k, shared with the fuzzy
 /// variable-rate law.
@@ -61,9 +78,9 @@ impl<const D: usize, R: Real> IntegralSurface<D, R> {
 
 impl<const D: usize> Validate for IntegralSurface<D> {
     fn validate(&self) -> Result<(), ParamError> {
-        require_axes(self.c1.as_slice(), "c1", "c1 > 0", |v| v > 0.0)?;
-        require_axes(self.c2.as_slice(), "c2", "c2 > 0", |v| v > 0.0)?;
-        require_axes(self.k.as_slice(), "k", "k >= 0", |v| v >= 0.0)
+        check_axes(&C1, self.c1.as_slice(), |v| v > 0.0)?;
+        check_axes(&C2, self.c2.as_slice(), |v| v > 0.0)?;
+        check_axes(&K, self.k.as_slice(), |v| v >= 0.0)
     }
 }
 
@@ -115,28 +132,30 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for IntegralExponentialReaching<D
 impl<const D: usize> Validate for IntegralExponentialReaching<D> {
     fn validate(&self) -> Result<(), ParamError> {
         self.surface.validate()?;
-        require_axes(self.epsilon.as_slice(), "epsilon", "epsilon >= 0", |v| {
-            v >= 0.0
-        })?;
+        check_axes(&EPSILON, self.epsilon.as_slice(), |v| v >= 0.0)?;
         super::validate_switch(&self.switch)
     }
 }
 
 impl<const D: usize> FromParams for IntegralSurface<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            c1: p.axes("c1")?,
-            c2: p.axes("c2")?,
-            k: p.axes("k")?,
+            c1: p.axes(&C1)?,
+            c2: p.axes(&C2)?,
+            k: p.axes(&K)?,
         })
     }
 }
 
+impl<const D: usize> Declared for IntegralExponentialReaching<D> {
+    const SCHEMA: Schema = Schema::new(&[C1, C2, K, EPSILON, SWITCH, BOUNDARY_LAYER]);
+}
+
 impl<const D: usize> FromParams for IntegralExponentialReaching<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
             surface: IntegralSurface::from_params(p)?,
-            epsilon: p.axes("epsilon")?,
+            epsilon: p.axes(&EPSILON)?,
             switch: Switch::from_params(p)?,
         })
     }

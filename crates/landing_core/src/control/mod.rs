@@ -39,10 +39,10 @@ pub use tabulated::{AfterTable, Tabulated};
 
 use nalgebra::SVector;
 
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check};
 use crate::lanes::{Gather, Real};
-use crate::math::Switch;
-use crate::params::{FromParams, ParamSource};
+use crate::math::{BOUNDARY_LAYER, Switch};
+use crate::params::{Declared, FromParams, ParamSource};
 use crate::reference::RefPoint;
 
 /// What a law sees at a control instant.
@@ -111,15 +111,23 @@ fn layout<const D: usize, L: ControlLaw<f64, D>>() -> Vec<(&'static str, usize)>
 /// A switching function's boundary layer must be positive.
 pub(crate) fn validate_switch(switch: &Switch) -> Result<(), ParamError> {
     match switch.width() {
-        Some(phi) => require(phi > 0.0, "boundary_layer", phi, "boundary_layer > 0"),
+        Some(phi) => check(&BOUNDARY_LAYER, phi, |v| v > 0.0),
         None => Ok(()),
     }
 }
 
 /// The law registry: each law once, with its name at the Python boundary. Generates
-/// [`AnyLaw`] (one variant per law), [`AnyMemory`] and [`LAW_KINDS`].
+/// [`LawKind`] (the names), [`AnyLaw`] (one variant per law), [`AnyMemory`], their dispatch and
+/// the parsing of a law's table.
 macro_rules! laws {
     ($($variant:ident => $kind:literal,)*) => {
+        crate::named! {
+            /// The laws' names at the Python boundary, in registry order, and their schemas.
+            pub enum LawKind in "law" {
+                $($variant => $kind: <$variant<3> as Declared>::SCHEMA,)*
+            }
+        }
+
         /// A law chosen at run time (one case's, `AnyLaw<D>`, or a block's,
         /// `AnyLaw<D, Lanes<W>>`).
         #[derive(Clone, Debug, PartialEq)]
@@ -134,7 +142,7 @@ macro_rules! laws {
         }
 
         /// The laws' names at the Python boundary, in registry order.
-        pub const LAW_KINDS: &[&str] = &[$($kind),*];
+        pub const LAW_KINDS: &[&str] = LawKind::NAMES;
 
         $(
             impl<const D: usize, R: Real> From<$variant<D, R>> for AnyLaw<D, R> {
@@ -145,10 +153,10 @@ macro_rules! laws {
         )*
 
         impl<const D: usize, R: Real> AnyLaw<D, R> {
-            /// The law's name at the Python boundary.
-            pub fn kind(&self) -> &'static str {
+            /// The law's kind (its name at the Python boundary).
+            pub fn kind(&self) -> LawKind {
                 match self {
-                    $(Self::$variant(_) => $kind,)*
+                    $(Self::$variant(_) => LawKind::$variant,)*
                 }
             }
 
@@ -230,10 +238,9 @@ macro_rules! laws {
 
         impl<const D: usize> AnyLaw<D> {
             /// The law a table describes (its `kind` names it), validated.
-            pub fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-                let law = match LAW_KINDS[p.kind(LAW_KINDS)?] {
-                    $($kind => Self::$variant(<$variant<D>>::from_params(p)?),)*
-                    _ => unreachable!("kind() returns a registered kind"),
+            pub fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+                let law = match p.kind::<LawKind>()? {
+                    $(LawKind::$variant => Self::$variant(<$variant<D>>::from_params(p)?),)*
                 };
                 law.validate()?;
                 Ok(law)

@@ -22,14 +22,34 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check_also, check_axes};
 use crate::lanes::math::PowLog;
 use crate::lanes::{Real, filled, sub};
 use crate::math::sgn;
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 /// Gains per axis with the seed's symbols (seed: alpha = 1, beta = (0.05, 0.3),
 /// gamma = (1.07, 1.1), K = 0.001).
+const ALPHA: Param = Param::axes("alpha")
+    .unit("1")
+    .rule("alpha > 0")
+    .doc("denominator of the surface's exponent gamma / alpha");
+const BETA: Param = Param::axes("beta")
+    .unit("s^(gamma/alpha) q^(1 - gamma/alpha)")
+    .rule("beta > 0")
+    .doc("the surface s = e1 + (1/beta) sig^(gamma/alpha)(e2)");
+const GAMMA: Param = Param::axes("gamma")
+    .unit("1")
+    .rule("gamma > 0")
+    .also("1 < gamma / alpha < 2")
+    .doc(
+        "numerator of the surface's exponent; the range of gamma / alpha is the singularity guard",
+    );
+const K: Param = Param::axes("k")
+    .unit("q/s^2")
+    .rule("k > 0")
+    .doc("switching gain, in command units divided by the inertia");
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ntsmc<const D: usize, R = f64> {
     pub alpha: SVector<R, D>,
@@ -90,30 +110,28 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for Ntsmc<D, R> {
 
 impl<const D: usize> Validate for Ntsmc<D> {
     fn validate(&self) -> Result<(), ParamError> {
-        require_axes(self.alpha.as_slice(), "alpha", "alpha > 0", |v| v > 0.0)?;
-        require_axes(self.beta.as_slice(), "beta", "beta > 0", |v| v > 0.0)?;
-        require_axes(self.gamma.as_slice(), "gamma", "gamma > 0", |v| v > 0.0)?;
+        check_axes(&ALPHA, self.alpha.as_slice(), |v| v > 0.0)?;
+        check_axes(&BETA, self.beta.as_slice(), |v| v > 0.0)?;
+        check_axes(&GAMMA, self.gamma.as_slice(), |v| v > 0.0)?;
         for i in 0..D {
             let r = self.gamma[i] / self.alpha[i];
-            require(
-                r > 1.0 && r < 2.0,
-                "gamma",
-                self.gamma[i],
-                "1 < gamma / alpha < 2",
-            )
-            .map_err(|e| e.on_axis(i))?;
+            check_also(&GAMMA, self.gamma[i], r > 1.0 && r < 2.0).map_err(|e| e.on_axis(i))?;
         }
-        require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)
+        check_axes(&K, self.k.as_slice(), |v| v > 0.0)
     }
 }
 
+impl<const D: usize> Declared for Ntsmc<D> {
+    const SCHEMA: Schema = Schema::new(&[ALPHA, BETA, GAMMA, K]);
+}
+
 impl<const D: usize> FromParams for Ntsmc<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            alpha: p.axes("alpha")?,
-            beta: p.axes("beta")?,
-            gamma: p.axes("gamma")?,
-            k: p.axes("k")?,
+            alpha: p.axes(&ALPHA)?,
+            beta: p.axes(&BETA)?,
+            gamma: p.axes(&GAMMA)?,
+            k: p.axes(&K)?,
         })
     }
 }

@@ -3,9 +3,13 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check};
 use crate::lanes::Real;
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
+
+const ACCELERATION: Param = Param::axes("acceleration")
+    .unit("q/s^2")
+    .doc("the commanded generalized acceleration, constant");
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OpenLoop<const D: usize, R = f64> {
@@ -30,16 +34,20 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for OpenLoop<D, R> {
 impl<const D: usize> Validate for OpenLoop<D> {
     fn validate(&self) -> Result<(), ParamError> {
         for (i, a) in self.acceleration.iter().enumerate() {
-            require(true, "acceleration", *a, "finite values").map_err(|e| e.on_axis(i))?;
+            check(&ACCELERATION, *a, |_| true).map_err(|e| e.on_axis(i))?;
         }
         Ok(())
     }
 }
 
+impl<const D: usize> Declared for OpenLoop<D> {
+    const SCHEMA: Schema = Schema::new(&[ACCELERATION]);
+}
+
 impl<const D: usize> FromParams for OpenLoop<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            acceleration: p.axes("acceleration")?,
+            acceleration: p.axes(&ACCELERATION)?,
         })
     }
 }

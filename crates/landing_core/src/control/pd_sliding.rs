@@ -4,10 +4,19 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check_axes};
 use crate::lanes::{Real, add, mul, sub};
-use crate::math::Switch;
-use crate::params::{FromParams, ParamSource};
+use crate::math::{BOUNDARY_LAYER, SWITCH, Switch};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
+
+const LAMBDA: Param = Param::axes("lambda")
+    .unit("1/s")
+    .rule("lambda > 0")
+    .doc("slope of the surface s = e' + lambda e (the Python field lambda_)");
+const K: Param = Param::axes("k")
+    .unit("q/s^2")
+    .rule("k > 0")
+    .doc("switching gain, in command units (m/s^2 on a small body)");
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PdSlidingMode<const D: usize, R = f64> {
@@ -55,17 +64,21 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for PdSlidingMode<D, R> {
 
 impl<const D: usize> Validate for PdSlidingMode<D> {
     fn validate(&self) -> Result<(), ParamError> {
-        require_axes(self.lambda.as_slice(), "lambda", "lambda > 0", |v| v > 0.0)?;
-        require_axes(self.k.as_slice(), "k", "k > 0", |v| v > 0.0)?;
+        check_axes(&LAMBDA, self.lambda.as_slice(), |v| v > 0.0)?;
+        check_axes(&K, self.k.as_slice(), |v| v > 0.0)?;
         super::validate_switch(&self.switch)
     }
 }
 
+impl<const D: usize> Declared for PdSlidingMode<D> {
+    const SCHEMA: Schema = Schema::new(&[LAMBDA, K, SWITCH, BOUNDARY_LAYER]);
+}
+
 impl<const D: usize> FromParams for PdSlidingMode<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            lambda: p.axes("lambda")?,
-            k: p.axes("k")?,
+            lambda: p.axes(&LAMBDA)?,
+            k: p.axes(&K)?,
             switch: Switch::from_params(p)?,
         })
     }

@@ -20,28 +20,37 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require, require_axes};
+use crate::error::{ParamError, ReadError, Validate, check, check_axes};
 use crate::lanes::{Real, add, mul, sub, zeros};
 use crate::math::sgn;
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SuperTwistingVariant {
-    Printed,
-    Standard,
-}
-
-impl SuperTwistingVariant {
-    pub const NAMES: [&'static str; 2] = ["printed", "standard"];
-
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "printed" => Some(Self::Printed),
-            "standard" => Some(Self::Standard),
-            _ => None,
-        }
+crate::named! {
+    /// Eq. 46 as printed, or the textbook algorithm.
+    pub enum SuperTwistingVariant {
+        Printed => "printed",
+        Standard => "standard",
     }
 }
+
+const B1: Param = Param::axes("b1")
+    .unit("N")
+    .rule("b1 > 0")
+    .doc("gain of the s' (printed) or sig^(1/2)(sigma) (standard) term, force units divided by the inertia");
+const B2: Param = Param::axes("b2")
+    .unit("N")
+    .rule("b2 > 0")
+    .doc("gain of sgn(s) (printed) or of the integral state's rate (standard), force units");
+const VARIANT: Param = Param::choice("variant", SuperTwistingVariant::NAMES)
+    .doc("printed: eq. 46 on s; standard: the textbook algorithm on sigma = s' + c s");
+const C: Param = Param::axes("c")
+    .unit("1/s")
+    .rule("c > 0")
+    .doc("slope of sigma in the standard variant");
+const S_FLOOR: Param = Param::scalar("s_floor")
+    .unit("m")
+    .rule("s_floor > 0")
+    .doc("singularity guard: floor on |s| in |s|^(-1/2) of the printed variant");
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SuperTwisting<const D: usize, R = f64> {
@@ -121,24 +130,25 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for SuperTwisting<D, R> {
 
 impl<const D: usize> Validate for SuperTwisting<D> {
     fn validate(&self) -> Result<(), ParamError> {
-        require_axes(self.b1.as_slice(), "b1", "b1 > 0", |v| v > 0.0)?;
-        require_axes(self.b2.as_slice(), "b2", "b2 > 0", |v| v > 0.0)?;
-        require_axes(self.c.as_slice(), "c", "c > 0", |v| v > 0.0)?;
-        require(self.s_floor > 0.0, "s_floor", self.s_floor, "s_floor > 0")
+        check_axes(&B1, self.b1.as_slice(), |v| v > 0.0)?;
+        check_axes(&B2, self.b2.as_slice(), |v| v > 0.0)?;
+        check_axes(&C, self.c.as_slice(), |v| v > 0.0)?;
+        check(&S_FLOOR, self.s_floor, |v| v > 0.0)
     }
 }
 
+impl<const D: usize> Declared for SuperTwisting<D> {
+    const SCHEMA: Schema = Schema::new(&[B1, B2, VARIANT, C, S_FLOOR]);
+}
+
 impl<const D: usize> FromParams for SuperTwisting<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            b1: p.axes("b1")?,
-            b2: p.axes("b2")?,
-            c: p.axes("c")?,
-            variant: [
-                SuperTwistingVariant::Printed,
-                SuperTwistingVariant::Standard,
-            ][p.choice("variant", &SuperTwistingVariant::NAMES)?],
-            s_floor: p.scalar("s_floor")?,
+            b1: p.axes(&B1)?,
+            b2: p.axes(&B2)?,
+            c: p.axes(&C)?,
+            variant: p.choice(&VARIANT)?,
+            s_floor: p.scalar(&S_FLOOR)?,
         })
     }
 }

@@ -26,20 +26,32 @@
 use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check, require};
 use crate::lanes::{Gather, Real};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Layout, Param, ParamSource, Schema};
 
-/// What the law commands after its table.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum AfterTable {
-    /// The last row, held.
-    Hold,
-    /// Zero force.
-    Zero,
+crate::named! {
+    /// What the law commands after its table.
+    pub enum AfterTable {
+        /// The last row, held.
+        Hold => "hold",
+        /// Zero force.
+        Zero => "zero",
+    }
 }
 
-const AFTER: &[&str] = &["hold", "zero"];
+const FORCE: Param = Param::axes("force")
+    .unit("N")
+    .doc("the row's generalized force per axis (N on the Mars lander)");
+const ROWS: Param = Param::list("rows", Layout::Fixed(&[FORCE]))
+    .rule("at least one row")
+    .doc("the table, one row per hold period, every case the same number of rows");
+const HOLD: Param = Param::scalar("hold")
+    .unit("1")
+    .rule("hold a whole number >= 1")
+    .doc("control periods each row is held for");
+const AFTER: Param = Param::choice("after", AfterTable::NAMES)
+    .doc("after the table: hold the last row, or command zero (engine off)");
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tabulated<const D: usize, R = f64> {
@@ -108,34 +120,35 @@ impl<const D: usize> Validate for Tabulated<D> {
     fn validate(&self) -> Result<(), ParamError> {
         require(
             !self.rows.is_empty(),
-            "rows",
+            ROWS.name,
             self.rows.len() as f64,
-            "at least one row",
+            ROWS.rule,
         )?;
-        require(self.hold >= 1, "hold", self.hold as f64, "hold >= 1")?;
+        check(&HOLD, self.hold as f64, |v| v >= 1.0)?;
         for row in &self.rows {
             for (i, f) in row.iter().enumerate() {
-                require(f.is_finite(), "force", *f, "finite values").map_err(|e| e.on_axis(i))?;
+                check(&FORCE, *f, |_| true).map_err(|e| e.on_axis(i))?;
             }
         }
         Ok(())
     }
 }
 
+impl<const D: usize> Declared for Tabulated<D> {
+    const SCHEMA: Schema = Schema::new(&[ROWS, HOLD, AFTER]);
+}
+
 impl<const D: usize> FromParams for Tabulated<D> {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        let hold = p.scalar("hold")?;
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        let hold = p.scalar(&HOLD)?;
         if !(hold >= 1.0 && hold.fract() == 0.0 && hold <= u32::MAX as f64) {
-            return Err(ParamError::new("hold", hold, "hold a whole number >= 1").into());
+            return Err(ParamError::new(HOLD.name, hold, HOLD.rule).into());
         }
-        let after = match p.choice("after", AFTER)? {
-            0 => AfterTable::Hold,
-            _ => AfterTable::Zero,
-        };
-        let n = p.list_len("rows")?;
+        let after = p.choice::<AfterTable>(&AFTER)?;
+        let n = p.list_len(&ROWS)?;
         let mut rows = Vec::with_capacity(n);
         for j in 0..n {
-            rows.push(p.list_item("rows", j, |q| q.axes::<D>("force"))?);
+            rows.push(p.list_item(&ROWS, j, |q| q.axes::<D>(&FORCE))?);
         }
         Ok(Self {
             rows,

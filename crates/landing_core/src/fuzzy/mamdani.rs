@@ -8,9 +8,44 @@
 //! elsewhere the aggregated membership is zero and adds nothing to the centroid's sums.
 
 use super::Membership;
-use crate::error::{ParamError, require};
+use crate::error::{ParamError, ReadError, require};
 use crate::lanes::{Mask, Real};
 use crate::limits::MAX_FUZZY_RESOLUTION;
+use crate::params::schema::{Declared, Layout, Param, Schema};
+
+/// A variable's universe, low end.
+pub const LO: Param = Param::scalar("lo")
+    .unit("units of the variable")
+    .doc("low end of the universe");
+/// Its high end.
+pub const HI: Param = Param::scalar("hi")
+    .unit("units of the variable")
+    .rule("universe hi > lo")
+    .doc("high end of the universe");
+/// Its fuzzy sets.
+pub const SETS: Param = Param::list("sets", Layout::Family("fuzzy"))
+    .rule("at least one fuzzy set")
+    .doc("the fuzzy sets, each a pair (shape, corners)");
+/// A linguistic variable's table.
+pub const VARIABLE: &[Param] = &[LO, HI, SETS];
+/// The set indices of one rule.
+pub const RULE: Param = Param::components("values")
+    .unit("1")
+    .rule("antecedent sets that exist")
+    .doc("the set index of each input, then the output's");
+pub const INPUTS: Param = Param::list("inputs", Layout::Fixed(VARIABLE))
+    .rule("1 to 4 inputs")
+    .doc("the input variables");
+pub const OUTPUT: Param = Param::nested("output", Layout::Fixed(VARIABLE))
+    .rule("at most 16 output sets")
+    .doc("the output variable");
+pub const RULES: Param = Param::list("rules", Layout::Fixed(&[RULE]))
+    .rule("at least one rule")
+    .doc("IF input_0 is a_0 AND ... THEN output is c, each a list of set indices (a_0, ..., c)");
+pub const RESOLUTION: Param = Param::scalar("resolution")
+    .unit("1")
+    .rule("2 <= resolution <= max_fuzzy_resolution (100000)")
+    .doc("points sampling the output universe for the centroid, ends included");
 
 /// Most sets one output variable may have (the aggregation keeps one activation per set on
 /// the stack, so evaluation never allocates).
@@ -19,6 +54,25 @@ pub const MAX_OUTPUT_SETS: usize = 16;
 pub const MAX_INPUTS: usize = 4;
 /// Most sets one input variable may have (their memberships are kept on the stack).
 pub const MAX_INPUT_SETS: usize = 16;
+
+impl Mamdani {
+    /// The crisp outputs for rows of [`Mamdani::n_inputs`] inputs each (row-major), refusing
+    /// non-finite inputs by their position.
+    pub fn evaluate_rows(&self, rows: &[f64]) -> Result<Vec<f64>, ReadError> {
+        let n = self.n_inputs();
+        if let Some((k, v)) = rows.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(ReadError::value(format!(
+                "inputs[{}, {}] = {v} violates finite values",
+                k / n,
+                k % n
+            )));
+        }
+        Ok(rows
+            .chunks_exact(n)
+            .map(|r| self.evaluate::<f64>(r))
+            .collect())
+    }
+}
 
 /// A linguistic variable on the universe [lo, hi].
 #[derive(Clone, Debug, PartialEq)]
@@ -30,8 +84,8 @@ pub struct Variable {
 
 impl Variable {
     pub fn validate(&self, name: &'static str) -> Result<(), ParamError> {
-        require(self.hi > self.lo, name, self.hi, "universe hi > lo")?;
-        require(!self.sets.is_empty(), name, 0.0, "at least one fuzzy set")?;
+        require(self.hi > self.lo, name, self.hi, HI.rule)?;
+        require(!self.sets.is_empty(), name, 0.0, SETS.rule)?;
         for (i, s) in self.sets.iter().enumerate() {
             s.validate().map_err(|e| e.on_axis(i))?;
         }
@@ -45,6 +99,10 @@ pub struct Rule {
     /// Set index per input.
     pub antecedent: Vec<usize>,
     pub consequent: usize,
+}
+
+impl Declared for Mamdani {
+    const SCHEMA: Schema = Schema::new(&[INPUTS, OUTPUT, RULES, RESOLUTION]);
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -71,51 +129,46 @@ impl Mamdani {
     ) -> Result<Self, ParamError> {
         require(
             !inputs.is_empty() && inputs.len() <= MAX_INPUTS,
-            "inputs",
+            INPUTS.name,
             inputs.len() as f64,
-            "1 to 4 inputs",
+            INPUTS.rule,
         )?;
         for v in &inputs {
-            v.validate("inputs")?;
+            v.validate(INPUTS.name)?;
             require(
                 v.sets.len() <= MAX_INPUT_SETS,
-                "inputs",
+                INPUTS.name,
                 v.sets.len() as f64,
                 "at most 16 sets per input",
             )?;
         }
-        output.validate("output")?;
+        output.validate(OUTPUT.name)?;
         require(
             output.sets.len() <= MAX_OUTPUT_SETS,
-            "output",
+            OUTPUT.name,
             output.sets.len() as f64,
-            "at most 16 output sets",
+            OUTPUT.rule,
         )?;
         require(
             (2..=MAX_FUZZY_RESOLUTION).contains(&(resolution as u64)),
-            "resolution",
+            RESOLUTION.name,
             resolution as f64,
-            "2 <= resolution <= max_fuzzy_resolution (100000)",
+            RESOLUTION.rule,
         )?;
-        require(!rules.is_empty(), "rules", 0.0, "at least one rule")?;
+        require(!rules.is_empty(), RULES.name, 0.0, RULES.rule)?;
         for (k, r) in rules.iter().enumerate() {
             require(
                 r.antecedent.len() == inputs.len(),
-                "rules",
+                RULES.name,
                 k as f64,
                 "one antecedent set per input in every rule",
             )?;
             for (i, &a) in r.antecedent.iter().enumerate() {
-                require(
-                    a < inputs[i].sets.len(),
-                    "rules",
-                    k as f64,
-                    "antecedent sets that exist",
-                )?;
+                require(a < inputs[i].sets.len(), RULES.name, k as f64, RULE.rule)?;
             }
             require(
                 r.consequent < output.sets.len(),
-                "rules",
+                RULES.name,
                 k as f64,
                 "consequent sets that exist",
             )?;

@@ -3,6 +3,27 @@
 
 use crate::error::{ParamError, require};
 use crate::lanes::Real;
+use crate::params::schema::{Param, Schema};
+
+/// A triangle's corners, as a fuzzy system's table gives them.
+pub const TRIANGLE: Param = Param::components("values")
+    .unit("units of the variable")
+    .rule("corners in non-decreasing order")
+    .doc("the corners a, b, c: feet a and c, peak b");
+/// A trapezoid's corners.
+pub const TRAPEZOID: Param = Param::components("values")
+    .unit("units of the variable")
+    .rule("corners in non-decreasing order")
+    .doc("the corners a, b, c, d: feet a and d, shoulders b and c");
+
+crate::named! {
+    /// The membership functions' shapes, in a fuzzy system's table: each set is a pair
+    /// (shape, corners).
+    pub enum MembershipShape in "fuzzy" {
+        Triangle => "triangle": Schema::new(&[TRIANGLE]),
+        Trapezoid => "trapezoid": Schema::new(&[TRAPEZOID]),
+    }
+}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Membership {
@@ -13,6 +34,22 @@ pub enum Membership {
 }
 
 impl Membership {
+    /// The set's shape.
+    pub fn shape(&self) -> MembershipShape {
+        match self {
+            Membership::Triangle(..) => MembershipShape::Triangle,
+            Membership::Trapezoid(..) => MembershipShape::Trapezoid,
+        }
+    }
+
+    /// The set's corners, in order.
+    pub fn corners(&self) -> Vec<f64> {
+        match *self {
+            Membership::Triangle(a, b, c) => vec![a, b, c],
+            Membership::Trapezoid(a, b, c, d) => vec![a, b, c, d],
+        }
+    }
+
     #[inline]
     pub fn eval(&self, x: f64) -> f64 {
         match *self {
@@ -33,12 +70,10 @@ impl Membership {
     }
 
     pub fn validate(&self) -> Result<(), ParamError> {
-        let (name, pts): (&'static str, &[f64]) = match self {
-            Membership::Triangle(a, b, c) => ("triangle", &[*a, *b, *c]),
-            Membership::Trapezoid(a, b, c, d) => ("trapezoid", &[*a, *b, *c, *d]),
-        };
+        let (name, rule) = (self.shape().name(), TRIANGLE.rule);
+        let pts = self.corners();
         for w in pts.windows(2) {
-            require(w[1] >= w[0], name, w[1], "corners in non-decreasing order")?;
+            require(w[1] >= w[0], name, w[1], rule)?;
         }
         require(
             pts[pts.len() - 1] > pts[0],

@@ -1,9 +1,11 @@
-//! Fuzzy logic: membership functions and a general Mamdani inference engine.
+//! Fuzzy logic: membership functions and a general Mamdani inference engine, read from a
+//! table (`table.rs`).
 
 mod mamdani;
 mod membership;
+mod table;
 
 pub use mamdani::{
     MAX_INPUTS, MAX_OUTPUT_SETS, Mamdani, Rule, Variable, even_triangles, variable_rate_system,
 };
-pub use membership::Membership;
+pub use membership::{Membership, MembershipShape, TRAPEZOID, TRIANGLE};

@@ -3,9 +3,9 @@
 use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check};
 use crate::lanes::{Real, add, dot, scale_by, sub};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 /// `U = (mu/r) [1 + (R0/r)^2 (C20 (3 z^2/r^2 - 1)/2 + 3 C22 (x^2 - y^2)/r^2)]`.
 ///
@@ -41,10 +41,10 @@ impl Harmonic2 {
 
 impl Validate for Harmonic2 {
     fn validate(&self) -> Result<(), ParamError> {
-        require(self.mu > 0.0, "mu", self.mu, "mu > 0")?;
-        require(self.r0 > 0.0, "r0", self.r0, "r0 > 0")?;
-        require(true, "c20", self.c20, "finite values")?;
-        require(true, "c22", self.c22, "finite values")
+        check(&MU, self.mu, |v| v > 0.0)?;
+        check(&R0, self.r0, |v| v > 0.0)?;
+        check(&C20, self.c20, |_| true)?;
+        check(&C22, self.c22, |_| true)
     }
 }
 
@@ -89,13 +89,32 @@ impl GravityModel for Harmonic2 {
     type At<R: Real> = Harmonic2<R>;
 }
 
+const MU: Param = Param::scalar("mu")
+    .unit("m^3/s^2")
+    .rule("mu > 0")
+    .doc("gravitational parameter G M");
+const R0: Param = Param::scalar("r0")
+    .unit("m")
+    .rule("r0 > 0")
+    .doc("reference radius R0 of the coefficients");
+const C20: Param = Param::scalar("c20")
+    .unit("1")
+    .doc("second-degree zonal coefficient C20");
+const C22: Param = Param::scalar("c22")
+    .unit("1")
+    .doc("second-degree sectoral coefficient C22");
+
+impl Declared for Harmonic2 {
+    const SCHEMA: Schema = Schema::new(&[MU, R0, C20, C22]);
+}
+
 impl FromParams for Harmonic2 {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            mu: p.scalar("mu")?,
-            r0: p.scalar("r0")?,
-            c20: p.scalar("c20")?,
-            c22: p.scalar("c22")?,
+            mu: p.scalar(&MU)?,
+            r0: p.scalar(&R0)?,
+            c20: p.scalar(&C20)?,
+            c22: p.scalar(&C22)?,
         })
     }
 }

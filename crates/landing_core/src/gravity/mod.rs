@@ -12,7 +12,7 @@ mod uniform;
 pub use harmonic2::Harmonic2;
 pub use point_mass::PointMass;
 pub use two_point::{G, TwoPointMass};
-pub use uniform::Uniform;
+pub use uniform::{GRAVITY, Uniform};
 
 use nalgebra::Vector3;
 

@@ -1,9 +1,9 @@
 use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check};
 use crate::lanes::{Real, dot, scale_by};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 /// A point mass, `U = mu / r`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -16,7 +16,7 @@ crate::gather_struct!(PointMass<R> { lanes: [mu], shared: [] });
 
 impl Validate for PointMass {
     fn validate(&self) -> Result<(), ParamError> {
-        require(self.mu > 0.0, "mu", self.mu, "mu > 0")
+        check(&MU, self.mu, |v| v > 0.0)
     }
 }
 
@@ -37,10 +37,17 @@ impl GravityModel for PointMass {
     type At<R: Real> = PointMass<R>;
 }
 
+const MU: Param = Param::scalar("mu")
+    .unit("m^3/s^2")
+    .rule("mu > 0")
+    .doc("gravitational parameter G M");
+
+impl Declared for PointMass {
+    const SCHEMA: Schema = Schema::new(&[MU]);
+}
+
 impl FromParams for PointMass {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        Ok(Self {
-            mu: p.scalar("mu")?,
-        })
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        Ok(Self { mu: p.scalar(&MU)? })
     }
 }

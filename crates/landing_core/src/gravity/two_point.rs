@@ -3,9 +3,9 @@
 use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check, require};
 use crate::lanes::{Real, dot, scale_by, sub, zeros};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 /// Newton's constant, m^3 / (kg s^2) (CODATA 2018).
 pub const G: f64 = 6.6743e-11;
@@ -54,14 +54,13 @@ impl TwoPointMass {
 impl Validate for TwoPointMass {
     fn validate(&self) -> Result<(), ParamError> {
         // named as the user gives them (m1, m2, position1, position2); the field keeps G m_i
-        const MU: [(&str, &str); 2] = [("G m1", "G m1 > 0"), ("G m2", "G m2 > 0")];
-        const POSITION: [&str; 2] = ["position1", "position2"];
-        for (&m, (name, rule)) in self.mu.iter().zip(MU) {
-            require(m > 0.0, name, m, rule)?;
+        const MU: [(&str, &Param); 2] = [("G m1", &M1), ("G m2", &M2)];
+        for (&m, (name, param)) in self.mu.iter().zip(MU) {
+            require(m > 0.0, name, m, param.rule)?;
         }
-        for (p, name) in self.positions.iter().zip(POSITION) {
+        for (p, param) in self.positions.iter().zip([&POSITION1, &POSITION2]) {
             for (i, v) in p.iter().enumerate() {
-                require(true, name, *v, "finite values").map_err(|e| e.on_axis(i))?;
+                check(param, *v, |_| true).map_err(|e| e.on_axis(i))?;
             }
         }
         Ok(())
@@ -95,11 +94,33 @@ impl GravityModel for TwoPointMass {
     type At<R: Real> = TwoPointMass<R>;
 }
 
+const M1: Param = Param::scalar("m1")
+    .unit("kg")
+    .rule("G m1 > 0")
+    .doc("mass of the first point");
+const M2: Param = Param::scalar("m2")
+    .unit("kg")
+    .rule("G m2 > 0")
+    .doc("mass of the second point");
+const POSITION1: Param = Param::axes("position1")
+    .unit("m")
+    .doc("position of the first point in the body frame");
+const POSITION2: Param = Param::axes("position2")
+    .unit("m")
+    .doc("position of the second point in the body frame");
+const G_PARAM: Param = Param::scalar("G")
+    .unit("m^3/(kg s^2)")
+    .doc("Newton's constant");
+
+impl Declared for TwoPointMass {
+    const SCHEMA: Schema = Schema::new(&[M1, M2, POSITION1, POSITION2, G_PARAM]);
+}
+
 impl FromParams for TwoPointMass {
     /// Masses `m1`, `m2` (kg) at `position1`, `position2` (m), with Newton's constant `G`.
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        let m = [p.scalar("m1")?, p.scalar("m2")?];
-        let positions = [p.axes::<3>("position1")?, p.axes::<3>("position2")?];
-        Ok(Self::from_masses_with(p.scalar("G")?, m, positions))
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        let m = [p.scalar(&M1)?, p.scalar(&M2)?];
+        let positions = [p.axes::<3>(&POSITION1)?, p.axes::<3>(&POSITION2)?];
+        Ok(Self::from_masses_with(p.scalar(&G_PARAM)?, m, positions))
     }
 }

@@ -1,8 +1,9 @@
 use nalgebra::Vector3;
 
 use super::{GravityField, GravityModel};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, Validate, check};
 use crate::lanes::Real;
+use crate::params::Param;
 
 /// Uniform field `g = (0, 0, -g0)` of a flat planet near its surface (Mars descent, seed 001).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -12,9 +13,15 @@ pub struct Uniform<R = f64> {
 
 crate::gather_struct!(Uniform<R> { lanes: [g0], shared: [] });
 
+/// The field's strength, as the Mars lander's table gives it.
+pub const GRAVITY: Param = Param::scalar("gravity")
+    .unit("m/s^2")
+    .rule("gravity >= 0")
+    .doc("Mars surface gravity, along -z");
+
 impl Validate for Uniform {
     fn validate(&self) -> Result<(), ParamError> {
-        require(self.g0 >= 0.0, "gravity", self.g0, "gravity >= 0")
+        check(&GRAVITY, self.g0, |v| v >= 0.0)
     }
 }
 

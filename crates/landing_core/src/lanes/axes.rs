@@ -201,8 +201,8 @@ impl<R: Real, const D: usize> Neg for Axes<R, D> {
     #[inline(always)]
     fn neg(self) -> Self {
         let mut out = self.0;
-        for i in 0..D {
-            out[i] = -self.0[i];
+        for v in &mut out {
+            *v = -*v;
         }
         Self(out)
     }
@@ -292,16 +292,16 @@ impl<R: Real, const D: usize> Real for Axes<R, D> {
     #[inline(always)]
     fn select(mask: Self::Mask, a: Self, b: Self) -> Self {
         let mut out = a.0;
-        for i in 0..D {
-            out[i] = R::select(mask.0[i], a.0[i], b.0[i]);
+        for ((o, m), b) in out.iter_mut().zip(mask.0).zip(b.0) {
+            *o = R::select(m, *o, b);
         }
         Self(out)
     }
     #[inline(always)]
     fn is_finite(self) -> Self::Mask {
         let mut out = [R::Mask::splat(false); D];
-        for i in 0..D {
-            out[i] = self.0[i].is_finite();
+        for (o, v) in out.iter_mut().zip(self.0) {
+            *o = v.is_finite();
         }
         AxesMask(out)
     }

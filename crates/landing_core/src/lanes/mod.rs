@@ -437,9 +437,9 @@ impl<const W: usize> Not for LaneMask<W> {
     type Output = Self;
     #[inline(always)]
     fn not(self) -> Self {
-        let mut out = [0u64; W];
-        for i in 0..W {
-            out[i] = !self.0[i];
+        let mut out = self.0;
+        for m in &mut out {
+            *m = !*m;
         }
         Self(out)
     }
@@ -567,17 +567,19 @@ impl<const W: usize> Real for Lanes<W> {
     #[inline(always)]
     fn select(mask: LaneMask<W>, a: Self, b: Self) -> Self {
         let mut out = [0.0; W];
-        for i in 0..W {
-            let m = mask.0[i];
-            out[i] = f64::from_bits((a.0[i].to_bits() & m) | (b.0[i].to_bits() & !m));
+        for (o, (m, (a, b))) in out
+            .iter_mut()
+            .zip(mask.0.into_iter().zip(a.0.into_iter().zip(b.0)))
+        {
+            *o = f64::from_bits((a.to_bits() & m) | (b.to_bits() & !m));
         }
         Self(out)
     }
     #[inline(always)]
     fn is_finite(self) -> LaneMask<W> {
         let mut out = [0u64; W];
-        for i in 0..W {
-            out[i] = if (self.0[i].to_bits() & EXPONENT_BITS) != EXPONENT_BITS {
+        for (o, v) in out.iter_mut().zip(self.0) {
+            *o = if (v.to_bits() & EXPONENT_BITS) != EXPONENT_BITS {
                 u64::MAX
             } else {
                 0

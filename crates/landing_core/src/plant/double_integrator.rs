@@ -5,9 +5,9 @@
 use nalgebra::SVector;
 
 use super::{Plant, PlantModel};
-use crate::error::{ParamError, Validate};
+use crate::error::{ParamError, ReadError, Validate};
 use crate::lanes::{Real, add, filled, zeros};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 pub type DoubleIntegratorState<R = f64> = SVector<R, 6>;
 
@@ -83,7 +83,7 @@ impl Validate for DoubleIntegrator {
         for (i, &l) in self.acceleration_limit.iter().enumerate() {
             if l.is_nan() || l <= 0.0 {
                 return Err(
-                    ParamError::new("acceleration_limit", l, "acceleration_limit > 0").on_axis(i),
+                    ParamError::new(ACCELERATION_LIMIT.name, l, ACCELERATION_LIMIT.rule).on_axis(i),
                 );
             }
         }
@@ -91,11 +91,21 @@ impl Validate for DoubleIntegrator {
     }
 }
 
+const ACCELERATION_LIMIT: Param = Param::axes("acceleration_limit")
+    .unit("m/s^2")
+    .rule("acceleration_limit > 0")
+    .optional()
+    .doc("per-axis limit on |u_i|; None for none");
+
+impl Declared for DoubleIntegrator {
+    const SCHEMA: Schema = Schema::new(&[ACCELERATION_LIMIT]);
+}
+
 impl FromParams for DoubleIntegrator {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
             acceleration_limit: p
-                .opt_axes::<3>("acceleration_limit")?
+                .opt_axes::<3>(&ACCELERATION_LIMIT)?
                 .unwrap_or(SVector::repeat(f64::INFINITY)),
         })
     }

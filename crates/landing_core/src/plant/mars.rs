@@ -18,11 +18,11 @@
 use nalgebra::{SVector, Vector3};
 
 use super::{Plant, PlantModel};
-use crate::error::{ParamError, Validate, require, require_axes};
-use crate::gravity::{GravityField, Uniform};
+use crate::error::{ParamError, ReadError, Validate, check, check_axes, require};
+use crate::gravity::{GRAVITY, GravityField, Uniform};
 use crate::lanes::math::{INV_LN2_16, exp16};
 use crate::lanes::{Gather, Real, filled, norm, zeros};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 pub type MarsState<R = f64> = SVector<R, 7>;
 
@@ -288,45 +288,76 @@ impl PlantModel<3> for MarsLander {
 
 impl Validate for MarsLander {
     fn validate(&self) -> Result<(), ParamError> {
-        require(self.isp > 0.0, "isp", self.isp, "isp > 0")?;
-        require_axes(self.area.as_slice(), "area", "area > 0", |a| a > 0.0)?;
+        check(&ISP, self.isp, |v| v > 0.0)?;
+        check_axes(&AREA, self.area.as_slice(), |a| a > 0.0)?;
         self.gravity.validate()?;
-        require(self.g0 > 0.0, "g0", self.g0, "g0 > 0")?;
-        require(
-            self.drag_coefficient >= 0.0,
-            "drag_coefficient",
-            self.drag_coefficient,
-            "drag_coefficient >= 0",
-        )?;
-        require(
-            self.density_decay >= 0.0,
-            "density_decay",
-            self.density_decay,
-            "density_decay >= 0",
-        )?;
+        check(&G0, self.g0, |v| v > 0.0)?;
+        check(&DRAG_COEFFICIENT, self.drag_coefficient, |v| v >= 0.0)?;
+        check(&DENSITY_DECAY, self.density_decay, |v| v >= 0.0)?;
         for (i, &l) in self.thrust_limit.iter().enumerate() {
             if l.is_nan() || l <= 0.0 {
-                return Err(ParamError::new("thrust_limit", l, "thrust_limit > 0").on_axis(i));
+                return Err(ParamError::new(THRUST_LIMIT.name, l, THRUST_LIMIT.rule).on_axis(i));
             }
         }
         Ok(())
     }
 }
 
+const ISP: Param = Param::scalar("isp")
+    .unit("s")
+    .rule("isp > 0")
+    .doc("specific impulse");
+const AREA: Param = Param::axes("area")
+    .unit("m^2")
+    .rule("area > 0")
+    .doc("effective cross-sections perpendicular to x, y, z");
+const DRAG: Param =
+    Param::flag("drag").doc("whether the plant has drag (the guidance then models it)");
+const THRUST_LIMIT: Param = Param::axes("thrust_limit")
+    .unit("N")
+    .rule("thrust_limit > 0")
+    .optional()
+    .doc("per-axis limit on |F_i|; None for unlimited");
+const DRAG_COEFFICIENT: Param = Param::scalar("drag_coefficient")
+    .unit("kg/m")
+    .rule("drag_coefficient >= 0")
+    .doc("k_d of seed 001 eq. 12");
+const DENSITY_DECAY: Param = Param::scalar("density_decay")
+    .unit("1/m")
+    .rule("density_decay >= 0")
+    .doc("h_d of seed 001 eq. 12");
+const G0: Param = Param::scalar("g0")
+    .unit("m/s^2")
+    .rule("g0 > 0")
+    .doc("standard gravity in the rocket equation");
+
+impl Declared for MarsLander {
+    const SCHEMA: Schema = Schema::new(&[
+        ISP,
+        AREA,
+        GRAVITY,
+        DRAG,
+        THRUST_LIMIT,
+        DRAG_COEFFICIENT,
+        DENSITY_DECAY,
+        G0,
+    ]);
+}
+
 impl FromParams for MarsLander {
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            isp: p.scalar("isp")?,
-            area: p.axes::<3>("area")?,
+            isp: p.scalar(&ISP)?,
+            area: p.axes::<3>(&AREA)?,
             gravity: Uniform {
-                g0: p.scalar("gravity")?,
+                g0: p.scalar(&GRAVITY)?,
             },
-            g0: p.scalar("g0")?,
-            drag: p.flag("drag")?,
-            drag_coefficient: p.scalar("drag_coefficient")?,
-            density_decay: p.scalar("density_decay")?,
+            g0: p.scalar(&G0)?,
+            drag: p.flag(&DRAG)?,
+            drag_coefficient: p.scalar(&DRAG_COEFFICIENT)?,
+            density_decay: p.scalar(&DENSITY_DECAY)?,
             thrust_limit: p
-                .opt_axes::<3>("thrust_limit")?
+                .opt_axes::<3>(&THRUST_LIMIT)?
                 .unwrap_or(Vector3::repeat(f64::INFINITY)),
         })
     }

@@ -10,7 +10,7 @@
 
 mod double_integrator;
 mod mars;
-mod small_body;
+pub mod small_body;
 pub mod tether;
 
 pub use double_integrator::DoubleIntegrator;

@@ -14,10 +14,10 @@
 use nalgebra::{SVector, Vector3};
 
 use super::{Plant, PlantModel};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check};
 use crate::gravity::{GravityField, GravityModel};
 use crate::lanes::{Gather, Real, add, filled};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{FromParams, Layout, Param, ParamSource};
 
 pub type SmallBodyState<R = f64> = SVector<R, 6>;
 
@@ -149,11 +149,11 @@ impl<G: GravityModel> PlantModel<3> for SmallBody<G> {
 
 impl<G: Validate> Validate for SmallBody<G> {
     fn validate(&self) -> Result<(), ParamError> {
-        require(true, "omega", self.omega, "finite values")?;
+        check(&OMEGA, self.omega, |_| true)?;
         for (i, &l) in self.acceleration_limit.iter().enumerate() {
             if l.is_nan() || l <= 0.0 {
                 return Err(
-                    ParamError::new("acceleration_limit", l, "acceleration_limit > 0").on_axis(i),
+                    ParamError::new(ACCELERATION_LIMIT.name, l, ACCELERATION_LIMIT.rule).on_axis(i),
                 );
             }
         }
@@ -161,15 +161,30 @@ impl<G: Validate> Validate for SmallBody<G> {
     }
 }
 
+/// The nested gravity field (its kind picks the plant's type, in the registry).
+pub const GRAVITY: Param = Param::nested("gravity", Layout::Family("gravity"))
+    .doc("the body's gravity field (a landing.gravity field)");
+const OMEGA: Param = Param::scalar("omega")
+    .unit("rad/s")
+    .doc("the body's rotation rate about z");
+const ACCELERATION_LIMIT: Param = Param::axes("acceleration_limit")
+    .unit("m/s^2")
+    .rule("acceleration_limit > 0")
+    .optional()
+    .doc("per-axis limit on |u_i|; None for none");
+
+/// A small body's parameters, whatever its field.
+pub const SMALL_BODY: &[Param] = &[GRAVITY, OMEGA, ACCELERATION_LIMIT];
+
 impl<G: FromParams> FromParams for SmallBody<G> {
     /// The body's rotation and limit, and its field from the nested table `gravity` (whose kind
     /// the registry has matched with `G`).
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         Ok(Self {
-            gravity: p.nested("gravity", G::from_params)?,
-            omega: p.scalar("omega")?,
+            gravity: p.nested(&GRAVITY, G::from_params)?,
+            omega: p.scalar(&OMEGA)?,
             acceleration_limit: p
-                .opt_axes::<3>("acceleration_limit")?
+                .opt_axes::<3>(&ACCELERATION_LIMIT)?
                 .unwrap_or(Vector3::repeat(f64::INFINITY)),
         })
     }

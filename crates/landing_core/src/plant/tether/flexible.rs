@@ -34,9 +34,9 @@ use nalgebra::{SVector, Vector2};
 
 use super::names::{MAX_NODES, NAMES};
 use super::{TetherBody, rigid_tension};
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check, require};
 use crate::lanes::{Gather, Real, add, neg, scale_by, sub, zeros};
-use crate::params::{FromParams, ParamSource};
+use crate::params::{FromParams, Param, ParamSource};
 use crate::plant::{Plant, PlantModel};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,9 +50,37 @@ pub struct TetheredFlexible<const N: usize, const S: usize, R = f64> {
     pub axial_damping: R,
 }
 
-/// The node counts the bindings offer (each is its own fixed-size state type): enough for the
-/// refinement study to show convergence, few enough to keep the compiled rollouts few.
-pub const NODE_COUNTS: [usize; 4] = [2, 4, 8, 16];
+crate::named! {
+    /// The node counts the bindings offer (each is its own fixed-size state type): enough for
+    /// the refinement study to show convergence, few enough to keep the compiled rollouts few.
+    pub enum NodeCount {
+        N2 = 2,
+        N4 = 4,
+        N8 = 8,
+        N16 = 16,
+    }
+}
+
+/// The node counts' values.
+pub const NODE_COUNTS: &[usize] = NodeCount::VALUES;
+
+/// The node count (it picks the type, in the registry).
+pub const NODES: Param = Param::count("nodes", NodeCount::VALUES)
+    .unit("1")
+    .rule("nodes in {2, 4, 8, 16}")
+    .doc("tether nodes of the flexible model, shared by the cases (each is its own state size)");
+pub(super) const TETHER_DENSITY: Param = Param::scalar("tether_density")
+    .unit("kg/m")
+    .rule("tether_density > 0")
+    .doc("the tether's linear density");
+pub(super) const AXIAL_STIFFNESS: Param = Param::scalar("axial_stiffness")
+    .unit("N")
+    .rule("axial_stiffness > 0")
+    .doc("the tether's axial stiffness EA");
+pub(super) const AXIAL_DAMPING: Param = Param::scalar("axial_damping")
+    .unit("N s")
+    .rule("axial_damping >= 0")
+    .doc("Kelvin-Voigt axial damping c_A (tension per unit strain rate)");
 
 pub type TetheredFlexible2<R = f64> = TetheredFlexible<2, 14, R>;
 pub type TetheredFlexible4<R = f64> = TetheredFlexible<4, 22, R>;
@@ -512,36 +540,21 @@ impl<const N: usize, const S: usize> Validate for TetheredFlexible<N, S> {
     fn validate(&self) -> Result<(), ParamError> {
         let () = Self::LAYOUT;
         self.body.validate()?;
-        require(
-            self.density > 0.0,
-            "tether_density",
-            self.density,
-            "tether_density > 0",
-        )?;
-        require(
-            self.axial_stiffness > 0.0,
-            "axial_stiffness",
-            self.axial_stiffness,
-            "axial_stiffness > 0",
-        )?;
-        require(
-            self.axial_damping >= 0.0,
-            "axial_damping",
-            self.axial_damping,
-            "axial_damping >= 0",
-        )
+        check(&TETHER_DENSITY, self.density, |v| v > 0.0)?;
+        check(&AXIAL_STIFFNESS, self.axial_stiffness, |v| v > 0.0)?;
+        check(&AXIAL_DAMPING, self.axial_damping, |v| v >= 0.0)
     }
 }
 
 impl<const N: usize, const S: usize> FromParams for TetheredFlexible<N, S> {
     /// The shared body and the tether (`nodes` itself picks the type, in the registry).
-    fn from_params<Src: ParamSource>(p: &mut Src) -> Result<Self, Src::Error> {
-        p.skip("nodes");
+    fn from_params<Src: ParamSource>(p: &mut Src) -> Result<Self, ReadError> {
+        p.skip(&NODES);
         Ok(Self {
             body: TetherBody::from_params(p)?,
-            density: p.scalar("tether_density")?,
-            axial_stiffness: p.scalar("axial_stiffness")?,
-            axial_damping: p.scalar("axial_damping")?,
+            density: p.scalar(&TETHER_DENSITY)?,
+            axial_stiffness: p.scalar(&AXIAL_STIFFNESS)?,
+            axial_damping: p.scalar(&AXIAL_DAMPING)?,
         })
     }
 }

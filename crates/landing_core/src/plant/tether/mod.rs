@@ -27,40 +27,93 @@ mod names;
 mod simplified;
 
 pub use flexible::{
-    NODE_COUNTS, TetheredFlexible, TetheredFlexible2, TetheredFlexible4, TetheredFlexible8,
-    TetheredFlexible16,
+    NODE_COUNTS, NODES, NodeCount, TetheredFlexible, TetheredFlexible2, TetheredFlexible4,
+    TetheredFlexible8, TetheredFlexible16,
 };
 pub use names::MAX_NODES;
 pub use simplified::TetheredSimplified;
 
 use nalgebra::Vector2;
 
-use crate::error::{ParamError, Validate, require};
+use crate::error::{ParamError, ReadError, Validate, check, check_also, require};
 use crate::lanes::Real;
-use crate::params::{FromParams, ParamSource};
+use crate::params::{FromParams, Param, ParamSource};
+
+crate::named! {
+    /// The two models of the tethered satellite.
+    pub enum Fidelity {
+        /// The rigid dumbbell of seed eq. 17 ([`TetheredSimplified`]).
+        Simplified => "simplified",
+        /// The lumped-mass tether ([`TetheredFlexible`]).
+        Flexible => "flexible",
+    }
+}
 
 /// Earth's gravitational parameter, m^3/s^2 (WGS 84).
 pub const MU_EARTH: f64 = 3.986_004_418e14;
 /// Earth's equatorial radius, m (WGS 84).
 pub const EARTH_RADIUS: f64 = 6_378_137.0;
 
+/// The model's name.
+pub const FIDELITY: Param = Param::choice("fidelity", Fidelity::NAMES)
+    .doc("simplified: the rigid dumbbell of seed 003 eq. 17; flexible: the lumped-mass tether");
+const MAIN_MASS: Param = Param::scalar("main_mass")
+    .unit("kg")
+    .rule("main_mass > 0")
+    .doc("main satellite mass m_m");
+const SUB_MASS: Param = Param::scalar("sub_mass")
+    .unit("kg")
+    .rule("sub_mass > 0")
+    .doc("sub-satellite mass m_s");
+const TETHER_LENGTH: Param = Param::scalar("tether_length")
+    .unit("m")
+    .rule("tether_length > 0")
+    .doc("unstretched tether length L0");
+const SIDE: Param = Param::scalar("side")
+    .unit("m")
+    .rule("side > 0")
+    .also("side < tether_length")
+    .doc("side a of the cubic sub-satellite; the tether is attached a/2 from its centre");
+const ORBIT_ALTITUDE: Param = Param::scalar("orbit_altitude")
+    .unit("m")
+    .rule("orbit_altitude > -6378137 m")
+    .also("a positive, finite mean motion sqrt(mu / (R + orbit_altitude)^3)")
+    .doc("altitude of the main satellite's circular Earth orbit");
+const THRUST_LIMIT: Param = Param::scalar("thrust_limit")
+    .unit("N")
+    .rule("thrust_limit > 0")
+    .optional()
+    .doc("limit on the in-plane thrust; None for none");
+const TORQUE_LIMIT: Param = Param::scalar("torque_limit")
+    .unit("N m")
+    .rule("torque_limit > 0")
+    .optional()
+    .doc("limit on the attitude torque; None for thrust_limit * side / 2");
+
+/// The tethered satellite's parameters, both fidelities' (the simplified model skips the
+/// tether's).
+pub const TETHERED_SATELLITE: &[Param] = &[
+    FIDELITY,
+    MAIN_MASS,
+    SUB_MASS,
+    TETHER_LENGTH,
+    SIDE,
+    ORBIT_ALTITUDE,
+    THRUST_LIMIT,
+    TORQUE_LIMIT,
+    flexible::NODES,
+    flexible::TETHER_DENSITY,
+    flexible::AXIAL_STIFFNESS,
+    flexible::AXIAL_DAMPING,
+];
+
 /// Mean motion of a circular Earth orbit at `altitude` (m): `sqrt(mu / (R + h)^3)`, rad/s.
 pub fn orbital_rate(altitude: f64) -> Result<f64, ParamError> {
-    require(
-        altitude > -EARTH_RADIUS,
-        "orbit_altitude",
-        altitude,
-        "orbit_altitude > -6378137 m",
-    )?;
+    check(&ORBIT_ALTITUDE, altitude, |h| h > -EARTH_RADIUS)?;
     let r = EARTH_RADIUS + altitude;
     let rate = (MU_EARTH / (r * r * r)).sqrt();
     // beyond about 5e102 m, r^3 overflows and the orbit would not turn at all
-    require(
-        rate > 0.0 && rate.is_finite(),
-        "orbit_altitude",
-        altitude,
-        "a positive, finite mean motion sqrt(mu / (R + orbit_altitude)^3)",
-    )?;
+    check_also(&ORBIT_ALTITUDE, altitude, rate > 0.0 && rate.is_finite())?;
     Ok(rate)
 }
 
@@ -152,43 +205,23 @@ impl TetherBody {
 
 impl Validate for TetherBody {
     fn validate(&self) -> Result<(), ParamError> {
-        require(
-            self.main_mass > 0.0,
-            "main_mass",
-            self.main_mass,
-            "main_mass > 0",
-        )?;
-        require(
-            self.sub_mass > 0.0,
-            "sub_mass",
-            self.sub_mass,
-            "sub_mass > 0",
-        )?;
-        require(
-            self.length > 0.0,
-            "tether_length",
-            self.length,
-            "tether_length > 0",
-        )?;
-        require(self.side > 0.0, "side", self.side, "side > 0")?;
-        require(
-            self.side < self.length,
-            "side",
-            self.side,
-            "side < tether_length",
-        )?;
+        check(&MAIN_MASS, self.main_mass, |v| v > 0.0)?;
+        check(&SUB_MASS, self.sub_mass, |v| v > 0.0)?;
+        check(&TETHER_LENGTH, self.length, |v| v > 0.0)?;
+        check(&SIDE, self.side, |v| v > 0.0)?;
+        check_also(&SIDE, self.side, self.side < self.length)?;
         require(
             self.orbital_rate > 0.0,
             "orbital_rate",
             self.orbital_rate,
             "orbital_rate > 0",
         )?;
-        for (name, v, rule) in [
-            ("thrust_limit", self.thrust_limit, "thrust_limit > 0"),
-            ("torque_limit", self.torque_limit, "torque_limit > 0"),
+        for (param, v) in [
+            (&THRUST_LIMIT, self.thrust_limit),
+            (&TORQUE_LIMIT, self.torque_limit),
         ] {
             if v.is_nan() || v <= 0.0 {
-                return Err(ParamError::new(name, v, rule));
+                return Err(ParamError::new(param.name, v, param.rule));
             }
         }
         Ok(())
@@ -199,18 +232,18 @@ impl FromParams for TetherBody {
     /// Table 1 and the orbit: the orbital rate from `orbit_altitude` (a circular Earth orbit);
     /// no limit where `thrust_limit` is absent, and the torque limit from the thrust limit
     /// where `torque_limit` is ([`TetherBody::default_torque_limit`]).
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        let side = p.scalar("side")?;
-        let thrust_limit = p.opt_scalar("thrust_limit")?.unwrap_or(f64::INFINITY);
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        let side = p.scalar(&SIDE)?;
+        let thrust_limit = p.opt_scalar(&THRUST_LIMIT)?.unwrap_or(f64::INFINITY);
         Ok(Self {
-            main_mass: p.scalar("main_mass")?,
-            sub_mass: p.scalar("sub_mass")?,
-            length: p.scalar("tether_length")?,
+            main_mass: p.scalar(&MAIN_MASS)?,
+            sub_mass: p.scalar(&SUB_MASS)?,
+            length: p.scalar(&TETHER_LENGTH)?,
             side,
-            orbital_rate: orbital_rate(p.scalar("orbit_altitude")?)?,
+            orbital_rate: orbital_rate(p.scalar(&ORBIT_ALTITUDE)?)?,
             thrust_limit,
             torque_limit: p
-                .opt_scalar("torque_limit")?
+                .opt_scalar(&TORQUE_LIMIT)?
                 .unwrap_or(Self::default_torque_limit(side, thrust_limit)),
         })
     }

@@ -20,8 +20,9 @@
 
 use nalgebra::{SVector, Vector2};
 
+use super::flexible::{AXIAL_DAMPING, AXIAL_STIFFNESS, NODES, TETHER_DENSITY};
 use super::{TetherBody, rigid_tension};
-use crate::error::{ParamError, Validate};
+use crate::error::{ParamError, ReadError, Validate};
 use crate::lanes::{Real, zeros};
 use crate::params::{FromParams, ParamSource};
 use crate::plant::{Plant, PlantModel};
@@ -140,14 +141,9 @@ impl Validate for TetheredSimplified {
 
 impl FromParams for TetheredSimplified {
     /// The shared body; the flexible model's tether parameters are known but unused here.
-    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, S::Error> {
-        for key in [
-            "nodes",
-            "tether_density",
-            "axial_stiffness",
-            "axial_damping",
-        ] {
-            p.skip(key);
+    fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        for param in [&NODES, &TETHER_DENSITY, &AXIAL_STIFFNESS, &AXIAL_DAMPING] {
+            p.skip(param);
         }
         Ok(Self {
             body: TetherBody::from_params(p)?,
