@@ -54,7 +54,7 @@ _Array: TypeAlias = npt.NDArray[np.float64]
 class Plant:
     """A compiled plant table (one case, or one per case)."""
 
-    def __new__(cls, owner: str, table: _Table) -> "Plant": ...
+    def __new__(cls, owner: str, table: _Table) -> Plant: ...
     @property
     def kind(self) -> str: ...
     @property
@@ -85,7 +85,7 @@ class Law:
     "after": "hold" | "zero"}``: one table per row, every case the same number of rows.
     """
 
-    def __new__(cls, owner: str, table: _Table) -> "Law": ...
+    def __new__(cls, owner: str, table: _Table) -> Law: ...
     @property
     def kind(self) -> str: ...
     @property
@@ -100,7 +100,7 @@ class Law:
 
 @final
 class Reference:
-    def __new__(cls, owner: str, table: _Table) -> "Reference": ...
+    def __new__(cls, owner: str, table: _Table) -> Reference: ...
     def evaluate(self, axes: int, t: list[float]) -> dict[str, _Array]:
         """position, velocity and acceleration at times t, each (len(t), axes)."""
     def parameter(self, name: str, axes: int) -> _Array:
@@ -108,7 +108,7 @@ class Reference:
 
 @final
 class Disturbance:
-    def __new__(cls, owner: str, table: _Table) -> "Disturbance":
+    def __new__(cls, owner: str, table: _Table) -> Disturbance:
         """From a table {"components": [component tables...]}."""
     @staticmethod
     def combine(parts: Sequence[Disturbance]) -> Disturbance:
@@ -121,7 +121,7 @@ class Disturbance:
 
 @final
 class Gravity:
-    def __new__(cls, owner: str, table: _Table) -> "Gravity": ...
+    def __new__(cls, owner: str, table: _Table) -> Gravity: ...
     @property
     def kind(self) -> str: ...
     def evaluate(self, positions: _Array, potential: bool) -> _Array:
@@ -131,13 +131,13 @@ class Gravity:
 
 @final
 class FuzzySystem:
-    def __new__(cls, table: _Table) -> "FuzzySystem": ...
+    def __new__(cls, table: _Table) -> FuzzySystem: ...
     def evaluate(self, inputs: _Array) -> _Array:
         """Crisp outputs (N,) for inputs (N, number of inputs)."""
 
 @final
 class Dispersion:
-    def __new__(cls, table: _Table) -> "Dispersion": ...
+    def __new__(cls, table: _Table) -> Dispersion: ...
     @property
     def dim(self) -> int: ...
     def sample(self, seed: int, first_case: int, n: int) -> _Array:

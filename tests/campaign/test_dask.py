@@ -5,6 +5,7 @@ nothing of Dask on the local path."""
 
 from __future__ import annotations
 
+import asyncio
 import json
 import os
 import signal
@@ -130,6 +131,21 @@ def test_ctrl_c_cancels_the_outstanding_chunks_and_a_rerun_resumes(client, local
     assert sorted(written) == sorted(set(range(12)) - set(first))  # only the missing chunks ran
     assert_same_campaign(mc, local["long"])
     assert_same_campaign(landing.load(path), local["long"])
+
+
+def test_a_fetch_cancelled_by_an_earlier_ctrl_c_does_not_break_the_next_campaign(client, local):
+    # Ctrl-C inside future.result() can leave distributed's shared fetch cancelled in place
+    # (Client._gather_future); every later fetch on the client then failed. Put the client in
+    # that state on purpose, then run a campaign on it.
+    async def cancelled_fetch() -> None:
+        pending = asyncio.get_running_loop().create_future()
+        pending.cancel()
+        client._gather_future = pending
+        client._gather_keys = set()
+
+    client.sync(cancelled_fetch)
+    mc = landing.monte_carlo(small(), 30, seed=3, client=client)
+    assert_same_campaign(mc, local["small"])
 
 
 @pytest.mark.io

@@ -144,5 +144,6 @@ def test_a_fuzzy_system_reads_its_table_through_the_core():
     system = _core.FuzzySystem(table)
     assert system.evaluate(np.zeros((1, 2)))[0] == pytest.approx(0.0, abs=1e-12)
     bad = dict(table, inputs=[dict(table["inputs"][0], sets=[("triangle", [1.0, 0.0, 2.0])]), table["inputs"][1]])
-    with pytest.raises(ValueError, match=r"fuzzy system: input 0: sets\[0\] triangle = 0 violates corners in non-decreasing order"):
+    unordered = r"fuzzy system: input 0: sets\[0\] triangle = 0 violates corners in non-decreasing order"
+    with pytest.raises(ValueError, match=unordered):
         _core.FuzzySystem(bad)

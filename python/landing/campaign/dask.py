@@ -181,6 +181,22 @@ class _InFlight:
         return self.value
 
 
+def _clear_cancelled_gather(client: Any) -> None:
+    """Forgets a result fetch that Ctrl-C cancelled in an earlier call on this client.
+
+    distributed batches concurrent fetches behind one pending task (``Client._gather_future``).
+    When Ctrl-C lands in ``future.result()`` after the task was made and before it ran, its
+    ``sync`` cancels the task, which is left in place: every later fetch on that client awaits
+    the cancelled task and fails (a ``CancelledError`` that surfaces from ``sync`` as an
+    UnboundLocalError), so the re-run a user makes after Ctrl-C would fail on its first chunk.
+    A pending fetch that is not cancelled is left alone.
+    """
+    pending = getattr(client, "_gather_future", None)
+    if pending is not None and pending.done() and pending.cancelled():
+        client._gather_future = None
+        client._gather_keys = None
+
+
 def run_campaign(
     client: Any,
     scenario: Scenario,
@@ -235,6 +251,7 @@ def run_campaign(
     try:
         for future in completed:
             index, start, stop = chunk_of.pop(future.key)
+            _clear_cancelled_gather(client)
             part = future.result()  # waits if the worker holding it was lost and it is re-run
             del outstanding[future.key]
             future.release()
