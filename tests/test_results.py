@@ -93,3 +93,16 @@ def test_metrics_cases(batch):
     m = batch.metrics.cases(1, 3)
     assert isinstance(m, landing.Metrics) and list(m) == list(batch.metrics)
     assert _same(m["final_error"], batch.metrics["final_error"][1:3])
+
+
+def test_metric_units_put_in_the_plants_coordinate_and_command_units():
+    from landing.results import metric_units
+
+    mars = metric_units(("rx", "ry", "rz", "vx", "vy", "vz", "m"), ("Fx", "Fy", "Fz"), 3)
+    assert mars["final_error"] == "m" and mars["touchdown_velocity"] == "m/s" and mars["peak_command"] == "N"
+    assert mars["iae"] == "m s" and mars["fuel_used"] == "kg" and "diverged" not in mars
+    tether = metric_units(("phi", "theta", "phi_dot", "theta_dot"), ("thrust", "torque"), 2)
+    assert tether["final_error"] == "rad" and tether["final_velocity_error"] == "rad/s"
+    # thrust in N and torque in N m: the command's metrics have no one unit
+    assert "peak_command" not in tether and "chattering_variation" not in tether
+    assert tether["chattering_hf_share"] == "1" and tether["settle_time"] == "s"

@@ -9,8 +9,10 @@ thrust or torque and saturates it.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Literal
+from types import MappingProxyType
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
@@ -37,6 +39,8 @@ __all__ = [
 
 class Controller(Table):
     """Base class of the control laws."""
+
+    family: ClassVar[str] = "law"
 
     _compiler = _core.Law
 
@@ -73,7 +77,7 @@ class FixedTimeMSS(Controller):
     variant: Literal["printed", "exact"] = "printed"
     s1_floor: ArrayLike = 1e-3
 
-    kind = "fixed_time_mss"
+    kind: ClassVar[str] = "fixed_time_mss"
 
 
 @dataclass(frozen=True, eq=False)
@@ -98,7 +102,7 @@ class SuperTwisting(Controller):
     c: ArrayLike = 1.0
     s_floor: ArrayLike = 1e-3
 
-    kind = "super_twisting"
+    kind: ClassVar[str] = "super_twisting"
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,7 +114,7 @@ class OpenLoop(Controller):
 
     acceleration: ArrayLike = 0.0
 
-    kind = "open_loop"
+    kind: ClassVar[str] = "open_loop"
 
 
 @dataclass(frozen=True, eq=False)
@@ -130,12 +134,8 @@ class PDSlidingMode(Controller):
     switch: Literal["sign", "sat", "tanh"] = "sign"
     boundary_layer: float = 1.0
 
-    kind = "pd_sliding_mode"
-
-    def _table(self) -> dict[str, Any]:
-        table = super()._table()
-        table["lambda"] = table.pop("lambda_")
-        return table
+    kind: ClassVar[str] = "pd_sliding_mode"
+    _renamed: ClassVar[Mapping[str, str]] = MappingProxyType({"lambda_": "lambda"})
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,7 +161,7 @@ class FastTerminalSMC(Controller):
     boundary_layer: float = 1.0
     e_floor: ArrayLike = 1e-3
 
-    kind = "fast_terminal_smc"
+    kind: ClassVar[str] = "fast_terminal_smc"
 
 
 @dataclass(frozen=True, eq=False)
@@ -185,7 +185,7 @@ class FuzzyFastTerminalSMC(Controller):
     boundary_layer: float = 1.0
     e_floor: ArrayLike = 1e-3
 
-    kind = "fuzzy_fast_terminal_smc"
+    kind: ClassVar[str] = "fuzzy_fast_terminal_smc"
 
 
 @dataclass(frozen=True, eq=False)
@@ -204,7 +204,7 @@ class IntegralExponentialReaching(Controller):
     switch: Literal["sign", "sat", "tanh"] = "sign"
     boundary_layer: float = 1.0
 
-    kind = "integral_exponential_reaching"
+    kind: ClassVar[str] = "integral_exponential_reaching"
 
 
 @dataclass(frozen=True, eq=False)
@@ -231,7 +231,7 @@ class FuzzyVariableRate(Controller):
     ku: ArrayLike
     system: Any = None
 
-    kind = "fuzzy_variable_rate"
+    kind: ClassVar[str] = "fuzzy_variable_rate"
 
     def __post_init__(self) -> None:
         if self.system is None:
@@ -258,7 +258,7 @@ class NTSMC(Controller):
     gamma: ArrayLike = (1.07, 1.1)
     k: ArrayLike = 0.001
 
-    kind = "ntsmc"
+    kind: ClassVar[str] = "ntsmc"
 
 
 @dataclass(frozen=True, eq=False)
@@ -305,7 +305,7 @@ class FixedTimeNTSMC(Controller):
     rbf_scale_e2: ArrayLike = (0.0045, 0.00036)
     rbf_width: ArrayLike = (5.9, 1.4)
 
-    kind = "fixed_time_ntsmc"
+    kind: ClassVar[str] = "fixed_time_ntsmc"
 
 
 @dataclass(frozen=True, eq=False)
@@ -333,7 +333,7 @@ class Tabulated(Controller):
     hold: int = 1
     after: Literal["hold", "zero"] = "zero"
 
-    kind = "tabulated"
+    kind: ClassVar[str] = "tabulated"
 
     def _table(self) -> dict[str, Any]:
         force = as_float_array("Tabulated", "force", self.force)

@@ -23,6 +23,8 @@ __all__ = ["Dispersion", "Normal", "Uniform"]
 class Dispersion(Table):
     """Independent distributions of the state components."""
 
+    family: ClassVar[str] = "dispersion"
+
     @staticmethod
     def _compiler(owner: str, table: dict) -> _core.DispersionHandle:
         return _core.DispersionHandle(table)

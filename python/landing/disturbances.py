@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import ClassVar, Union
+from typing import Any, ClassVar, Union
 
 from landing import _core
 from landing._internal.table import ArrayLike, Table
@@ -21,6 +21,17 @@ __all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "CommandNoise"
 
 class Disturbance(Table):
     """Base class of the disturbance components."""
+
+    family: ClassVar[str] = "disturbance"
+    #: Whether the component draws random numbers (declared by the core; the draws are held
+    #: over each control period and keyed by seed and case).
+    random: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        kind = cls.__dict__.get("kind")
+        if isinstance(kind, str):
+            cls.random = bool(_core.SCHEMAS["disturbance"][kind]["random"])
 
     @staticmethod
     def _compiler(owner: str, table: dict) -> _core.Disturbance:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -85,7 +85,8 @@ class Mamdani(Table):
     ``((input set names...), output set name)``; ``resolution`` points sample the output
     universe for the centroid."""
 
-    kind = "mamdani"
+    kind: ClassVar[str] = "mamdani"
+    family: ClassVar[str] = "fuzzy"
 
     def __init__(self, inputs: Sequence[Variable], output: Variable,
                  rules: Sequence[tuple[Sequence[str], str]], resolution: int = 401):

@@ -29,6 +29,8 @@ _EROS_D = 17_200.0 / np.sqrt(5.0)
 class Gravity(Table):
     """Base class of the gravity fields."""
 
+    family: ClassVar[str] = "gravity"
+
     _compiler = _core.Gravity
 
     def _evaluate(self, r: ArrayLike, potential: bool) -> np.ndarray:

@@ -25,6 +25,8 @@ __all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSate
 class Plant(Table):
     """Base class of the plants."""
 
+    family: ClassVar[str] = "plant"
+
     _compiler = _core.Plant
 
     def _info(self) -> dict[str, Any]:

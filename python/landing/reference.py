@@ -18,6 +18,8 @@ __all__ = ["Reference", "Constant", "Cubic"]
 class Reference(Table):
     """Base class of the references."""
 
+    family: ClassVar[str] = "reference"
+
     _compiler = _core.Reference
 
     def evaluate(self, t: ArrayLike, axes: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

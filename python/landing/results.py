@@ -14,6 +14,7 @@ import dataclasses
 import importlib
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
@@ -29,7 +30,7 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = [
     "DIVERGENCE_REASONS",
     "IO_PACKAGES",
-    "METRIC_UNITS",
+    "METRICS",
     "SIGNALS",
     "UNITS",
     "Metrics",
@@ -38,6 +39,8 @@ __all__ = [
     "describe_diverged",
     "diverged_cases",
     "flat_columns",
+    "flat_metric_units",
+    "metric_units",
     "require_io",
 ]
 
@@ -85,11 +88,48 @@ UNITS: dict[str, str] = {
     "phi": "rad", "theta": "rad", "phi_dot": "rad/s", "theta_dot": "rad/s", "thrust": "N", "torque": "N m",
 }
 
-#: Units of the metrics whose unit does not depend on the plant.
-METRIC_UNITS: dict[str, str] = {
-    "settle_time": "s", "touchdown_time": "s", "diverged_time": "s",
-    "fuel_used": "kg", "fuel_to_settle": "kg", "chattering_variation": "command units/s",
-}
+#: The per-case metric columns as the core declares them, in output order: each a mapping with
+#: ``name``, ``unit`` (SI; "units of q" for the plant's generalized coordinate's, "command
+#: units" for the applied command's), ``per_axis`` and ``doc``.
+METRICS: tuple[Mapping[str, Any], ...] = tuple(MappingProxyType(dict(m)) for m in _core.METRICS)
+
+
+def _common_unit(names: Sequence[str]) -> str:
+    units = {UNITS.get(n, "") for n in names}
+    return units.pop() if len(units) == 1 else ""
+
+
+def metric_units(state_names: Sequence[str], control_names: Sequence[str], axes: int) -> dict[str, str]:
+    """The unit of each metric for a plant with these components: the core's declaration with
+    the generalized coordinate's unit (the first ``axes`` states') and the command's put in. A
+    metric whose unit is mixed on this plant (the tethered satellite's thrust and torque) or
+    none (a flag, a code) has none."""
+    q = _common_unit(state_names[:axes])
+    u = _common_unit(control_names)
+    out: dict[str, str] = {}
+    for m in METRICS:
+        unit = str(m["unit"])
+        for placeholder, value in (("units of q", q), ("command units", u)):
+            if placeholder in unit:
+                unit = unit.replace(placeholder, value) if value else ""
+        if unit:
+            out[str(m["name"])] = unit
+    return out
+
+
+def flat_metric_units(state_names: Sequence[str], control_names: Sequence[str],
+                      axes: Sequence[str]) -> dict[str, str]:
+    """:func:`metric_units` by the column names of :func:`flat_columns` (``name_<axis>`` for the
+    per-axis metrics)."""
+    units = metric_units(state_names, control_names, len(axes))
+    per_axis = {str(m["name"]) for m in METRICS if m["per_axis"]}
+    out: dict[str, str] = {}
+    for name, unit in units.items():
+        if name in per_axis:
+            out.update({f"{name}_{a}": unit for a in axes})
+        else:
+            out[name] = unit
+    return out
 
 
 # --- optional imports ----------------------------------------------------------------------------
@@ -200,12 +240,13 @@ def result_dataset(
                            {"long_name": "state at t_final", "units_by": "state_units"})
     if x0 is not None:
         data["x0"] = (case + ("state",), x0, {"long_name": "initial state", "units_by": "state_units"})
+    units = metric_units(result.state_names, result.control_names, len(axes))
     for name, v in result.metrics.items():
         v = np.asarray(v)
         dims = case + (("axis",) if v.ndim == len(case) + 1 else ())
         meta = {"long_name": f"metric {name}"}
-        if name in METRIC_UNITS:
-            meta["units"] = METRIC_UNITS[name]
+        if name in units:
+            meta["units"] = units[name]
         data[name if name not in data else f"metric_{name}"] = (dims, v, meta)
     ds_attrs: dict[str, Any] = {"kernel": result.kernel}
     if seed is not None:
@@ -218,41 +259,7 @@ def result_dataset(
 
 
 class Metrics(Mapping[str, np.ndarray]):
-    """Per-case figures of merit: a table of columns, one row per case.
-
-    Columns (N cases, D axes):
-
-    - ``final_position_error`` (N,), ``final_velocity_error`` (N,): norms of the tracking
-      error and its rate at t_final; ``final_error``, ``final_rate_error`` (N, D) per axis.
-    - ``fuel_used`` (N,): m(0) - m(t_final), for plants with mass (NaN otherwise).
-    - ``fuel_to_settle`` (N,): m(0) - m(settle_time), the propellant spent until the error
-      settles (NaN if it does not, or the plant has no mass).
-    - ``peak_command`` (N,): largest |u| applied (for the Mars lander, the peak thrust in N);
-      ``peak_command_axis`` (N, D): largest |u_i|.
-    - ``control_effort`` (N,): integral of |u| dt.
-    - ``settle_time`` (N,): first control instant from which |q - q_ref| stays within the
-      settle tolerance until t_final (NaN if it is outside at t_final); seed 000's "time to
-      track".
-    - ``iae`` (N,), ``iae_axis`` (N, D): integral of |e_i| dt over the run (rectangle rule at
-      the control instants), summed over the axes or per axis.
-    - ``chattering_variation`` (N,), ``chattering_variation_axis`` (N, D): total variation of
-      the applied command per unit time, sum_k |u(k+1) - u(k)| / T.
-    - ``chattering_hf_share`` (N,), ``chattering_hf_share_axis`` (N, D): share of the applied
-      command's energy above the chattering cut-off (2nd-order Butterworth high-pass).
-    - ``touchdown_time``, ``touchdown_speed`` (N,), ``touchdown_position``,
-      ``touchdown_velocity`` (N, D): first crossing of the surface, interpolated within the
-      step; NaN if none (or the plant has no surface).
-    - ``diverged`` (N,) bool, ``diverged_time`` (N,), ``diverged_reason`` (N,) uint8: cases
-      stopped before t_final, when and why. The reason codes index
-      :data:`landing.DIVERGENCE_REASONS` (0 ``none``; ``non_finite_command``: the law returned
-      NaN or infinity; ``command_out_of_range``: a command component beyond
-      ``landing.MAX_COMMAND`` = 1e100; ``non_finite_state``; ``out_of_domain``: the state left
-      the plant's domain, listed in docs/parameters.md; ``non_finite_metric``: a statistic
-      overflowed). Their final errors and fuel are NaN; no metric is infinite without the flag.
-      :meth:`Metrics.diverged_cases` groups them by reason.
-
-    Columns are also attributes: ``res.metrics.fuel_used``.
-    """
+    # The docstring is made below from the core's declaration of the columns (METRICS).
 
     def __init__(self, columns: Mapping[str, np.ndarray]):
         self._columns = dict(columns)
@@ -349,6 +356,32 @@ class Metrics(Mapping[str, np.ndarray]):
                     lines.append(f"  {k:<22} (none)")
         lines.append(f"  {'diverged':<22} {describe_diverged(self._columns)}")
         return "\n".join(lines)
+
+
+def _metrics_doc() -> str:
+    """The Metrics docstring: the column list is the core's declaration (METRICS)."""
+    lines = ["Per-case figures of merit: a table of columns, one row per case.", "",
+             "Columns (N cases, D axes; units as the core declares them, \"units of q\" being the",
+             "plant's generalized coordinate's and \"command units\" the applied command's):", ""]
+    for m in METRICS:
+        shape = "(N, D)" if m["per_axis"] else "(N,)"
+        unit = f" [{m['unit']}]" if m["unit"] else ""
+        lines.append(f"- ``{m['name']}`` {shape}{unit}: {m['doc']}.")
+    lines += [
+        "",
+        "The divergence codes index :data:`landing.DIVERGENCE_REASONS` (0 ``none``;",
+        "``non_finite_command``: the law returned NaN or infinity; ``command_out_of_range``: a",
+        "command component beyond ``landing.MAX_COMMAND`` = 1e100; ``non_finite_state``;",
+        "``out_of_domain``: the state left the plant's domain, listed in docs/parameters.md;",
+        "``non_finite_metric``: a statistic overflowed). No metric is infinite without the flag;",
+        ":meth:`Metrics.diverged_cases` groups the diverged cases by reason.",
+        "",
+        "Columns are also attributes: ``res.metrics.fuel_used``.",
+    ]
+    return "\n".join(lines)
+
+
+Metrics.__doc__ = _metrics_doc()
 
 
 @dataclass(frozen=True, eq=False)

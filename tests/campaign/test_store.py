@@ -78,6 +78,27 @@ def test_store_round_trip_is_bit_identical(tmp_path, reference_run):
     np.testing.assert_array_equal(initial[[f"draw_{j}" for j in range(7)]].to_numpy(), reference_run.x0)
 
 
+def test_the_metric_columns_carry_their_units(tmp_path, reference_run):
+    import pyarrow.parquet as pq
+
+    landing.monte_carlo(small(), 20, seed=3, chunk_size=7, store=tmp_path / "c")
+    schema = pq.read_schema(tmp_path / "c" / "chunks" / "metrics" / "part-000001.parquet")
+
+    def units(name: str) -> str | None:
+        meta = schema.field(name).metadata
+        return None if meta is None else meta[b"units"].decode()
+
+    # the Mars lander: q in m, the command in N
+    expected = {"final_position_error": "m", "final_error_y": "m", "final_velocity_error": "m/s",
+                "fuel_used": "kg", "peak_command": "N", "peak_command_axis_z": "N", "control_effort": "N s",
+                "iae_axis_x": "m s", "chattering_variation": "N/s", "chattering_hf_share": "1",
+                "touchdown_time": "s", "touchdown_speed": "m/s", "diverged_time": "s"}
+    assert {name: units(name) for name in expected} == expected
+    assert units("case") is None and units("diverged") is None and units("diverged_reason") is None
+    ds = reference_run.to_xarray()
+    assert ds["touchdown_velocity"].attrs["units"] == "m/s" and ds["peak_command"].attrs["units"] == "N"
+
+
 def test_zarr_opens_in_xarray_with_dims_coords_and_units(tmp_path, reference_run):
     landing.monte_carlo(small(), 20, seed=3, chunk_size=7, store=tmp_path / "c")
     ds = xr.open_zarr(tmp_path / "c" / "trajectories.zarr")

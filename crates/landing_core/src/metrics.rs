@@ -219,7 +219,7 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "final_position_error",
             "units of q",
-            "|e(t_final)|, the norm of the tracking error",
+            "|e(t_final)|, the norm of the tracking error at t_final",
             Read::Scalar(|m| m.final_error.norm()),
         ),
         Column::new(
@@ -243,19 +243,19 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "fuel_used",
             "kg",
-            "m(0) - m(t_final), for plants with mass",
+            "m(0) - m(t_final), for plants with mass (NaN otherwise)",
             Read::Scalar(|m| m.fuel_used),
         ),
         Column::new(
             "fuel_to_settle",
             "kg",
-            "m(0) - m(settle_time): the propellant spent until the error settles",
+            "m(0) - m(settle_time): the propellant spent until the error settles (NaN if it does not, or the plant has no mass)",
             Read::Scalar(|m| m.fuel_to_settle),
         ),
         Column::new(
             "peak_command",
             "command units",
-            "largest |u| applied (Euclidean)",
+            "largest |u| applied, Euclidean (for the Mars lander, the peak thrust)",
             Read::Scalar(|m| m.peak_command),
         ),
         Column::new(
@@ -273,13 +273,13 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "settle_time",
             "s",
-            "first control instant from which |e| stays within the settle tolerance",
+            "first control instant from which |e| stays within the settle tolerance until t_final (NaN if it is outside at t_final); seed 000's \"time to track\"",
             Read::Scalar(|m| m.settle_time),
         ),
         Column::new(
             "iae",
             "units of q s",
-            "integral of |e_i| dt, summed over the axes",
+            "integral of |e_i| dt over the run (rectangle rule at the control instants), summed over the axes",
             Read::Scalar(|m| m.iae.sum()),
         ),
         Column::new(
@@ -291,7 +291,7 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "chattering_variation",
             "command units/s",
-            "total variation of the applied command per unit time, summed over the axes",
+            "total variation of the applied command per unit time, sum_k |u(k+1) - u(k)| / T, summed over the axes",
             Read::Scalar(|m| m.command_variation.sum()),
         ),
         Column::new(
@@ -303,7 +303,7 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "chattering_hf_share",
             "1",
-            "share of the applied command's energy above the chattering cut-off, all axes",
+            "share of the applied command's energy above the chattering cut-off (2nd-order Butterworth high-pass), all axes",
             Read::Scalar(|m| m.high_frequency_share_total),
         ),
         Column::new(
@@ -315,7 +315,7 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "touchdown_time",
             "s",
-            "first crossing of the landing surface, interpolated within the step (NaN if none)",
+            "first crossing of the landing surface, interpolated within the step (NaN if none, or the plant has no surface)",
             Read::Scalar(|m| m.touchdown.map_or(NAN, |t| t.time)),
         ),
         Column::new(
@@ -339,7 +339,7 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "diverged",
             "",
-            "whether the case was stopped before t_final",
+            "whether the case was stopped before t_final (its final errors and fuel are then NaN)",
             Read::Flag(|m| m.diverged.is_some()),
         ),
         Column::new(
@@ -351,7 +351,7 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "diverged_reason",
             "",
-            "why: a code of Divergence::NAMES (0: not diverged)",
+            "why: an index into landing.DIVERGENCE_REASONS (0: none)",
             Read::Code(|m| m.diverged.map_or(0, |d| d.reason.code())),
         ),
     ];

@@ -11,11 +11,13 @@ which is validated in turn.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
-from typing import Any, Callable, ClassVar, Union
+from collections.abc import Mapping, Sequence
+from types import MappingProxyType
+from typing import Any, Callable, ClassVar, Optional, Union
 
 import numpy as np
 
+from landing import _core
 from landing._internal.args import real_array
 
 ArrayLike = Union[float, Sequence[float], Sequence[Sequence[float]], np.ndarray]
@@ -27,16 +29,70 @@ def as_float_array(owner: str, name: str, value: Any) -> np.ndarray:
     return real_array(name, value, owner=owner)
 
 
+@dataclasses.dataclass(frozen=True)
+class Parameter:
+    """One parameter of a plant, law, gravity field, disturbance, reference, dispersion or fuzzy
+    system, as the core declares it (and reads and checks it): ``Law.parameters["b1"]``.
+
+    ``shape`` is how its table gives it: ``"scalar"`` (a number, shared or one per case),
+    ``"per_axis"`` (a number per axis: a scalar, ``(D,)``, or per case ``(N,)``, ``(N, 1)``,
+    ``(N, D)``), ``"per_component"``, ``"choice"`` (one of ``choices``), ``"flag"``,
+    ``"count"`` (a whole number among ``choices``), ``"nested"`` or ``"list"`` (tables of the
+    kinds of ``family``), ``"fuzzy_system"``. ``unit`` is SI ("1" dimensionless; "q" stands for
+    the plant's generalized coordinate, m for the landers and rad for the tethered satellite);
+    ``rule`` is the inequality the core enforces ("" when only finiteness).
+    """
+
+    name: str
+    shape: str
+    unit: str
+    rule: str
+    required: bool
+    doc: str
+    choices: tuple[Any, ...] = ()
+    family: Optional[str] = None
+
+    @property
+    def numeric(self) -> bool:
+        """Whether the parameter is numbers a case reads (so it can be swept or tuned)."""
+        return self.shape in ("scalar", "per_axis")
+
+
+def schema(family: str, kind: str) -> Mapping[str, Parameter]:
+    """The parameters the core declares for ``kind`` of ``family`` (``"law"``, ``"plant"``, ...),
+    by name in declaration order."""
+    declared = _core.SCHEMAS[family][kind]["parameters"]
+    return MappingProxyType({
+        p["name"]: Parameter(
+            name=p["name"], shape=p["shape"], unit=p["unit"], rule=p["rule"], required=p["required"],
+            doc=p["doc"], choices=tuple(p.get("choices", ())), family=p.get("family"),
+        )
+        for p in declared
+    })
+
+
 class Table:
     """Base of the configuration dataclasses: ``kind`` names the core type; ``_compiler`` is the
-    core's handle type that compiles the table."""
+    core's handle type that compiles the table; ``family`` names the core's registry the kind is
+    in, and ``parameters`` is what the core declares for it (:class:`Parameter`)."""
 
     kind: ClassVar[str]
+    family: ClassVar[str]
+    parameters: ClassVar[Mapping[str, Parameter]]
     _compiler: ClassVar[Callable[..., Any]]
+    #: Fields whose table key is spelt otherwise (a Python keyword cannot be a field name).
+    _renamed: ClassVar[Mapping[str, str]] = MappingProxyType({})
     #: The compiled handle (a ``landing._core`` type), made once by :meth:`_compile`.
     _core: Any
     #: What ``@dataclass`` gives every configuration class (declared for the type checker).
     __dataclass_fields__: ClassVar[dict[str, dataclasses.Field[Any]]]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        kind = cls.__dict__.get("kind")
+        if isinstance(kind, str) and hasattr(cls, "family"):
+            # a kind the core does not declare fails here, at import
+            cls.parameters = schema(cls.family, kind)
 
     def _table(self) -> dict[str, Any]:
         owner = type(self).__name__
@@ -45,12 +101,13 @@ class Table:
             if not field.init:
                 continue
             value = getattr(self, field.name)
+            key = self._renamed.get(field.name, field.name)
             if value is None or isinstance(value, (bool, str)):
-                out[field.name] = value
+                out[key] = value
             elif isinstance(value, Table):
-                out[field.name] = value._nested()
+                out[key] = value._nested()
             else:
-                out[field.name] = as_float_array(owner, field.name, value)
+                out[key] = as_float_array(owner, field.name, value)
         return out
 
     def _nested(self) -> Any:

@@ -43,7 +43,7 @@ import numpy as np
 
 from landing._core import __version__
 from landing.errors import LandingError, ParameterError, ParameterTypeError
-from landing.results import Metrics, SimulationResult, dataset_coords, flat_columns, require_io
+from landing.results import Metrics, SimulationResult, dataset_coords, flat_columns, flat_metric_units, require_io
 from landing.scenarios import Scenario, files
 
 __all__ = ["CampaignKey", "CampaignStore", "STORE_FORMAT", "default_chunk_size", "open_campaign_store",
@@ -386,10 +386,15 @@ class CampaignStore:
         if draws is not None:
             for j in range(draws.shape[1]):
                 initial[f"draw_{j}"] = draws[:, j]
+        units = flat_metric_units(self.layout["state_names"], self.layout["control_names"], axes)
         for folder, columns in ((METRICS_DIR, metrics), (INITIAL_DIR, initial)):
             target = self.path / folder / _part(index)
             tmp = target.with_name(f".{target.name}.tmp")  # hidden from Parquet dataset readers
-            pq.write_table(pa.table(columns), str(tmp))
+            table = pa.table(columns)
+            # each metric column carries its unit (the core's declaration) in its field metadata
+            table = table.cast(pa.schema([f.with_metadata({"units": units[f.name]}) if f.name in units else f
+                                          for f in table.schema]))
+            pq.write_table(table, str(tmp))
             _fsync_file(tmp)
             os.replace(tmp, target)
             files.append(target)

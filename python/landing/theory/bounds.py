@@ -15,9 +15,9 @@ from landing import _core
 from landing._internal.args import integer, real, real_array
 from landing._internal.limits import require_memory
 from landing._internal.table import ArrayLike
-from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
+from landing.controllers import Controller, FixedTimeMSS, FixedTimeNTSMC
 from landing.disturbances import DisturbanceLike, compiled
-from landing.errors import ParameterError, ParameterTypeError
+from landing.errors import LandingError, ParameterError, ParameterTypeError
 from landing.scenarios import Scenario
 
 __all__ = [
@@ -133,16 +133,13 @@ def _fmt_cases(a: Any) -> str:
     return _fmt(a)
 
 
-def _axes_or_cases(value: Any, axes: int) -> np.ndarray:
-    """A law parameter as the core reads it: a scalar for every axis, ``(axes,)`` per axis,
-    ``(N,)`` or ``(N, 1)`` per case (a 1-D array of length ``axes`` is per axis), ``(N, axes)``
-    per case and axis. Returns ``(axes,)`` or ``(N, axes)``."""
-    g = np.asarray(value, dtype=float)
-    if g.ndim == 0:
-        return np.full(axes, float(g))
-    if g.ndim == 1:
-        return g if g.size == axes else np.repeat(g[:, None], axes, axis=1)
-    return np.broadcast_to(g, (g.shape[0], axes))
+def law_parameter(law: Controller, name: str, axes: int) -> np.ndarray:
+    """The numeric parameter ``name`` of ``law`` as the core reads it for ``axes`` axes:
+    ``(axes,)`` when shared by every case, ``(N, axes)`` per case."""
+    values = np.asarray(law._core.parameter(name, axes), dtype=float)
+    if values.ndim == 1:  # a scalar parameter: (cases,)
+        values = np.repeat(values[:, None], axes, axis=1)
+    return values[0] if values.shape[0] == 1 else values
 
 
 def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2: float = 0.5) -> MSSBounds:
@@ -151,7 +148,7 @@ def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2
     if not isinstance(law, FixedTimeMSS):
         raise ParameterTypeError(f"mss_bounds takes a FixedTimeMSS law, got {type(law).__name__}")
     names = ("beta1", "q1", "beta2", "q2", "alpha1", "gamma1", "alpha2", "gamma2")
-    gains = [_axes_or_cases(getattr(law, n), 3) for n in names]
+    gains = [law_parameter(law, n, 3) for n in names]
     ap = real_array("ap_max", ap_max, finite=True, owner="mss_bounds")
     theta1 = real("theta1", theta1, owner="mss_bounds")
     theta2 = real("theta2", theta2, owner="mss_bounds")
@@ -286,13 +283,14 @@ class FNTSMCBounds:
 
 
 def law_gains(law: FixedTimeNTSMC, names: tuple[str, ...], axes: Optional[int]) -> list[np.ndarray]:
-    """The gains ``names`` of ``law`` per axis, ``(axes,)`` (or ``(N, axes)`` per case); ``axes``
-    defaults to the gains' own length (2, the tethered satellite's, when they are scalars)."""
-    gains = [np.asarray(getattr(law, n), dtype=float) for n in names]
+    """The gains ``names`` of ``law`` per axis, ``(axes,)`` (or ``(N, axes)`` per case), as the core
+    reads them; ``axes`` defaults to the gains' own length (2, the tethered satellite's, when
+    they are scalars)."""
     if axes is None:
-        sizes = {g.shape[-1] for g in gains if g.ndim >= 1 and g.shape[-1] > 1}
+        sizes = {np.shape(getattr(law, n))[-1] for n in names if np.ndim(getattr(law, n)) >= 1}
+        sizes.discard(1)
         axes = sizes.pop() if len(sizes) == 1 else 2
-    return [np.broadcast_to(g, np.broadcast_shapes(g.shape, (axes,))) if g.ndim <= 1 else g for g in gains]
+    return [law_parameter(law, n, axes) for n in names]
 
 
 def fntsmc_bounds(law: FixedTimeNTSMC, tol: Any, *, d_max: Any = 0.0, theta: float = 0.5, d: float = 0.5,
@@ -314,8 +312,8 @@ def fntsmc_bounds(law: FixedTimeNTSMC, tol: Any, *, d_max: Any = 0.0, theta: flo
     d = real("d", d, owner=owner)
     try:
         gains = law_gains(law, FNTSMC_GAINS, axes)
-    except ValueError:
-        raise ParameterError(f"{owner}: axes = {axes} violates the law's gains having 1 or axes values") from None
+    except LandingError as e:
+        raise ParameterError(f"{owner}: axes = {axes} violates the law's gains having 1 or axes values ({e})") from None
     try:
         args = np.broadcast_arrays(*gains, tol_a, d_max_a)
     except ValueError:

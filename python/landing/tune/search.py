@@ -13,10 +13,11 @@ from typing import Any, Optional, Union
 
 import numpy as np
 
-from landing import controllers, disturbances, theory
+from landing import controllers, theory
 from landing._internal.args import integer, real
 from landing._internal.progress import ProgressBar
-from landing.errors import DivergenceWarning, LandingError, ParameterError
+from landing._internal.table import Parameter
+from landing.errors import DivergenceWarning, ParameterError
 from landing.results import Metrics, SimulationResult
 from landing.scenarios import Scenario
 from landing.simulation import RunOptions, simulate_batch
@@ -37,6 +38,12 @@ def _parse_gains(gains: Mapping[str, Any], law: controllers.Controller) -> tuple
             raise ParameterError(
                 f"gains: {name!r} is not a parameter of {type(law).__name__} (its parameters: {sorted(names)})"
             )
+        declared = _declared(law, name)
+        if declared is None or not declared.numeric:
+            numeric = sorted(n for n in names if (d := _declared(law, n)) is not None and d.numeric)
+            raise ParameterError(
+                f"gains: {name!r} of {type(law).__name__} is not a number to tune (its numeric parameters: {numeric})"
+            )
         if not isinstance(spec, (tuple, list)) or len(spec) not in (2, 3):
             raise ParameterError(f"gains[{name!r}] = {spec!r} must be (low, high) or (low, high, 'log')")
         try:
@@ -55,20 +62,23 @@ def _parse_gains(gains: Mapping[str, Any], law: controllers.Controller) -> tuple
 
 
 def _is_random(disturbance: Any) -> bool:
+    """Whether a component of the disturbance draws random numbers (the core declares which)."""
     if disturbance is None:
         return False
     parts = disturbance.components() if hasattr(disturbance, "components") else list(disturbance)
-    return any(isinstance(p, (disturbances.UniformNoise, disturbances.CommandNoise)) for p in parts)
+    return any(p.random for p in parts)
+
+
+def _declared(law: controllers.Controller, name: str) -> Optional[Parameter]:
+    """What the core declares for the law's field ``name`` (None if the field is not a table key)."""
+    return law.parameters.get(type(law)._renamed.get(name, name))
 
 
 def _column_shape(law: controllers.Controller, name: str) -> bool:
     """Whether the law reads ``name`` per axis, so that a per-case gain must be given as
     (N, 1) (a 1-D array of length D would be read per axis); scalar parameters take (N,)."""
-    try:
-        law.replace(**{name: np.ones((2, 1))})
-        return True
-    except LandingError:
-        return False
+    declared = _declared(law, name)
+    return declared is not None and declared.shape == "per_axis"
 
 
 def _per_case(value: np.ndarray, column: bool) -> np.ndarray:
