@@ -35,8 +35,8 @@ LAYERS: list[tuple[str, ...]] = [
 
 #: What a function may import: the optional extras, and tqdm (heavy to import, a dependency
 #: only a progress bar needs); ruff's TID253 keeps them off module level.
-EXTRAS = {"cma", "casadi", "distributed", "dask", "pyarrow", "zarr", "xarray", "pandas", "matplotlib", "SALib",
-          "tqdm"}
+EXTRAS = {"cma", "casadi", "distributed", "dask", "cloudpickle", "pyarrow", "zarr", "xarray", "pandas",
+          "matplotlib", "SALib", "tqdm"}
 
 #: The one-line delegations up (xarray's Dataset.to_zarr way): (module, function, target).
 DELEGATIONS = {

@@ -1,7 +1,7 @@
 # Hand-written stubs of the Rust extension module (crates/landing_py). The public API is the
 # Python package; its configuration classes compile their parameter tables into these handles
 # once, and batches take the handles.
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any, Optional, final
 
 import numpy as np
@@ -148,7 +148,7 @@ DispersionHandle = Dispersion
 
 def simulate_batch(
     plant: Plant,
-    controller: Law,
+    controller: Law | Callable[..., tuple[_Array, _Array]],
     x0: _Array,
     *,
     t_final: float,
@@ -165,9 +165,16 @@ def simulate_batch(
     chatter_cutoff: Optional[float],
     threads: Optional[int],
     kernel: Optional[str] = None,
+    diagnostic_layout: Optional[list[tuple[str, int]]] = None,
 ) -> dict[str, Any]:
     """Run a batch. Returns t, states, controls, diagnostics, final_state, metrics (a dict of
-    arrays), state_names, control_names, diagnostic_layout, axes and kernel (the level used)."""
+    arrays), state_names, control_names, diagnostic_layout, axes and kernel (the level used).
+
+    ``controller`` is a compiled law, or a law computed in Python: a callable ``step(t, k, e,
+    de, position, velocity, acceleration, drift, inertia)`` (each (N, axes) but t and k),
+    called once per control instant, returning ``(command, diagnostics)``, float64 (N, axes)
+    and (N, width), with ``diagnostic_layout`` the names and widths of its signals. An
+    exception it raises is raised as it is."""
 
 def kernel_levels() -> list[str]:
     """The instruction-set levels this CPU supports, lowest first."""

@@ -8,16 +8,18 @@ thrust or torque and saturates it.
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal, Optional, Union
 
 import numpy as np
 
 from landing import _core
-from landing._internal.table import ArrayLike, Table, as_float_array
+from landing._internal.table import ArrayLike, Parameter, Table, as_float_array
+from landing._internal.user_law import qualified_name, source_hash
 from landing.errors import ParameterError, ParameterTypeError
 from landing.fuzzy import variable_rate_system
 
@@ -34,6 +36,7 @@ __all__ = [
     "NTSMC",
     "FixedTimeNTSMC",
     "Tabulated",
+    "PythonLaw",
 ]
 
 
@@ -43,6 +46,11 @@ class Controller(Table):
     family: ClassVar[str] = "law"
 
     _compiler = _core.Law
+
+    def diagnostic_layout(self, axes: int) -> list[tuple[str, int]]:
+        """Names and widths of the law's diagnostic signals on a plant of ``axes`` axes, in
+        recording order."""
+        return [(str(name), int(width)) for name, width in self._core.diagnostic_layout(axes)]
 
 
 @dataclass(frozen=True, eq=False)
@@ -347,3 +355,139 @@ class Tabulated(Controller):
         rows = [{"force": np.ascontiguousarray(force[j] if force.ndim == 2 else force[:, j, :])}
                 for j in range(force.shape[-2])]
         return {"kind": self.kind, "rows": rows, "hold": np.asarray(float(self.hold)), "after": self.after}
+
+
+def _diagnostic_kinds(diagnostics: Union[Sequence[str], Mapping[str, str]]) -> dict[str, str]:
+    """Diagnostic names and kinds, from a mapping or a sequence of per-axis names."""
+    return dict(diagnostics) if isinstance(diagnostics, Mapping) else {d: "axes" for d in diagnostics}
+
+
+Memory = Union[Mapping[str, ArrayLike], Callable[..., Mapping[str, Any]], None]
+
+
+@dataclass(frozen=True, eq=False)
+class PythonLaw(Controller):
+    """A control law written in Python: ``function`` is called once per control period for a
+    block of cases at once, exactly where a built-in law is (the command is then actuated by the
+    plant and held over the period), and the core advances the plant between calls.
+
+    ``function(t, e, de, ref, drift, inertia, params, memory)`` receives the control instant t
+    (s), the tracking errors ``e = q - q_ref`` and ``de = q' - q_ref'``, the reference ``ref``
+    (``ref.position``, ``ref.velocity``, ``ref.acceleration``), the plant's modelled
+    acceleration ``drift`` and its diagonal ``inertia`` (each an (n, D) numpy array, read-only),
+    the parameters (a dict of (n, D) arrays) and the memory (a dict of arrays with one row per
+    case, or None). It returns the commanded generalized acceleration, an (n, D) float array
+    (``q'' = drift + command + disturbance``), or ``(command, new_memory)``, or ``(command,
+    new_memory, diagnostics)``. Any callable on arrays serves: numpy, a numba-jitted or a
+    JAX-jitted function.
+
+    Parameters
+    ----------
+    function : the law.
+    params : its parameters, by name: each a scalar, a per-axis ``(D,)`` value, or per case
+        ``(N,)``, ``(N, 1)``, ``(N, D)`` (N the batch's cases; a 1-d value of length D is per
+        axis, so give ``(N, 1)`` for a value per case when N equals D). The function sees each
+        as (n, D). ``law.replace(kp=2.0)`` changes one; ``landing.tune`` tunes them.
+    memory : the law's internal state at t = 0: a dict of initial values shared by every case
+        (each broadcast to one row per case), or a function ``memory(t, e, de, ref, drift,
+        inertia, params)`` returning the dict from the first inputs, or None for a law
+        without one. The function returns the new memory, advanced over the period.
+    diagnostics : names of signals the function returns in its diagnostics dict, recorded with
+        the states: a sequence of names of per-axis signals ((n, D) each), or a mapping of
+        name to ``"axes"`` or ``"scalar"`` ((n,) each).
+    name : how the law is named in messages and a campaign's provenance (default: the
+        function's ``module:qualname``).
+
+    Examples
+    --------
+    >>> import landing
+    >>> def pd(t, e, de, ref, drift, inertia, params, memory):
+    ...     return -drift - params["kp"] * e - params["kd"] * de
+    >>> law = landing.controllers.PythonLaw(pd, params={"kp": 1.0, "kd": 2.0})
+    """
+
+    function: Callable[..., Any]
+    params: Mapping[str, ArrayLike] = field(default_factory=dict)
+    memory: Memory = None
+    diagnostics: Union[Sequence[str], Mapping[str, str]] = ()
+    name: Optional[str] = None
+
+    kind: ClassVar[str] = "python"
+    _in_core: ClassVar[bool] = False
+
+    def __post_init__(self) -> None:
+        owner = "PythonLaw"
+        if not callable(self.function):
+            raise ParameterTypeError(f"{owner}: function must be callable, got {type(self.function).__name__}")
+        if not isinstance(self.params, Mapping):
+            raise ParameterTypeError(f"{owner}: params must be a dict of numbers, got {type(self.params).__name__}")
+        params = {}
+        for key, value in self.params.items():
+            if not isinstance(key, str) or not key.isidentifier():
+                raise ParameterError(f"{owner}: params key {key!r} must be a name (an identifier)")
+            arr = as_float_array(owner, f"params[{key!r}]", value).copy()
+            if arr.ndim > 2:
+                raise ParameterError(f"{owner}: params[{key!r}] has shape {arr.shape}; it takes a scalar, (D,), "
+                                     "(N,), (N, 1) or (N, D)")
+            arr.setflags(write=False)
+            params[key] = arr
+        object.__setattr__(self, "params", MappingProxyType(params))
+        memory = self.memory
+        if memory is not None and not callable(memory):
+            if not isinstance(memory, Mapping):
+                raise ParameterTypeError(f"{owner}: memory must be a dict of initial values, a function or None, "
+                                         f"got {type(memory).__name__}")
+            object.__setattr__(self, "memory", MappingProxyType(
+                {k: as_float_array(owner, f"memory[{k!r}]", v) for k, v in memory.items()}))
+        diagnostics = self.diagnostics
+        if isinstance(diagnostics, str):
+            raise ParameterTypeError(f"{owner}: diagnostics must be a sequence of names or a mapping, "
+                                     f"got the string {diagnostics!r}")
+        kinds = _diagnostic_kinds(diagnostics)
+        for key, kind in kinds.items():
+            if not isinstance(key, str) or kind not in ("axes", "scalar"):
+                raise ParameterError(f"{owner}: diagnostics[{key!r}] = {kind!r}; each is 'axes' or 'scalar'")
+        object.__setattr__(self, "diagnostics", MappingProxyType(kinds))
+        if self.name is None:
+            object.__setattr__(self, "name", qualified_name(self.function))
+        self._compile()
+
+    def _compile(self) -> None:
+        """Nothing for the core to compile: the function runs in Python."""
+        object.__setattr__(self, "_core", None)
+
+    @property
+    def parameters(self) -> Mapping[str, Parameter]:  # type: ignore[override]
+        """The law's parameters, each per axis (a scalar, (D,), or per case)."""
+        return MappingProxyType({
+            k: Parameter(name=k, shape="per_axis", unit="", rule="", required=True, doc="a parameter of the law")
+            for k in self.params
+        })
+
+    @property
+    def diagnostic_kinds(self) -> Mapping[str, str]:
+        """The diagnostic signals' names and kinds (``"axes"`` or ``"scalar"``)."""
+        return MappingProxyType(_diagnostic_kinds(self.diagnostics))
+
+    def diagnostic_layout(self, axes: int) -> list[tuple[str, int]]:
+        """Names and widths of the diagnostic signals on a plant of ``axes`` axes."""
+        return [(k, axes if kind == "axes" else 1) for k, kind in _diagnostic_kinds(self.diagnostics).items()]
+
+    @property
+    def source_hash(self) -> str:
+        """SHA-256 of the function's source: what a campaign's provenance records, so that a
+        store is not resumed with a changed function."""
+        return source_hash(self.function)
+
+    def replace(self, **changes: Any) -> PythonLaw:
+        """A copy with some fields or parameters changed: ``law.replace(kp=2.0)`` changes
+        ``params["kp"]``; ``law.replace(params={...})`` replaces them all."""
+        fields = {f.name for f in dataclasses.fields(self)}
+        unknown = [k for k in changes if k not in fields and k not in self.params]
+        if unknown:
+            raise ParameterError(f"PythonLaw: {unknown[0]!r} is neither a field ({sorted(fields)}) nor one of "
+                                 f"its params ({sorted(self.params)})")
+        params = dict(changes.pop("params", self.params))
+        for k in [k for k in changes if k not in fields]:
+            params[k] = changes.pop(k)
+        return dataclasses.replace(self, params=params, **changes)

@@ -96,6 +96,9 @@ class Sum(Disturbance):
                     f"disturbance must be a landing.disturbances component or a list of them, got {p!r}"
                 )
             self.parts.extend(p.components())
+        self._compile()
+
+    def _compile(self) -> None:
         self._core = _core.Disturbance.combine([p._core for p in self.parts])
 
     def components(self) -> list[Disturbance]:

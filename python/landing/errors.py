@@ -13,6 +13,7 @@ __all__ = [
     "ParameterError",
     "ParameterTypeError",
     "SimulationError",
+    "UserFunctionError",
     "DivergenceWarning",
 ]
 
@@ -31,6 +32,13 @@ class ParameterTypeError(LandingError, TypeError):
 
 class SimulationError(LandingError, RuntimeError):
     """The simulation could not run (thread pool, internal error)."""
+
+
+class UserFunctionError(LandingError, RuntimeError):
+    """A function the user gave the engine (a :class:`~landing.controllers.PythonLaw`'s) raised,
+    or returned something other than what it must: the message names the function, the control
+    instant and the cases, and what was expected; a raised exception is chained
+    (``__cause__``)."""
 
 
 class DivergenceWarning(RuntimeWarning):

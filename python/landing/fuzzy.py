@@ -122,6 +122,9 @@ class Mamdani(Table):
                 raise ParameterError(
                     f"Mamdani: a rule names {len(antecedent)} input sets for {len(self.inputs)} inputs"
                 )
+        self._compile()
+
+    def _compile(self) -> None:
         self._core = _core.FuzzySystem(self._table())
 
     def _nested(self) -> _core.FuzzySystem:

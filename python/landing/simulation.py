@@ -13,7 +13,8 @@ import numpy as np
 
 from landing import _core
 from landing._internal.args import choice, integer, real, real_array
-from landing.controllers import Controller
+from landing._internal.user_law import LawStep, per_axis
+from landing.controllers import Controller, PythonLaw
 from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
 from landing.plants import Plant
@@ -186,16 +187,18 @@ def simulate_batch(
     seed_i = integer("seed", seed, minimum=0, maximum=2**64 - 1)
     first = integer("first_case", first_case, minimum=0, maximum=2**63 - 1)
     integer("x0 cases N", x.shape[0], cap="max_cases")
-    out = _core.simulate_batch(
-        plant._core,
-        controller._core,
-        x,
+    arguments = dict(
         reference=None if reference is None else reference._core,
         disturbance=compiled(disturbance),
         seed=seed_i,
         first_case=first,
         **options._core_arguments(),
     )
+    if isinstance(controller, PythonLaw):
+        step, layout = _python_step(controller, plant, x.shape[0], first)
+        out = _core.simulate_batch(plant._core, step, x, diagnostic_layout=layout, **arguments)
+    else:
+        out = _core.simulate_batch(plant._core, controller._core, x, **arguments)
     diag = out["diagnostics"]
     diagnostics = {}
     offset = 0
@@ -223,6 +226,18 @@ def simulate_batch(
         control_names=tuple(out["control_names"]),
         kernel=str(out["kernel"]),
     )
+
+
+def _python_step(law: PythonLaw, plant: Plant, n: int, first_case: int) -> tuple[LawStep, list[tuple[str, int]]]:
+    """What the core calls for a law written in Python, for n cases of ``plant``, and the
+    layout of its diagnostics."""
+    axes = plant._core.axes
+    name = law.name or ""
+    params = {k: per_axis(f"PythonLaw {name}", k, v, n, axes) for k, v in law.params.items()}
+    layout = law.diagnostic_layout(axes)
+    step = LawStep(law.function, name=name, params=params, memory=law.memory, layout=layout, n=n, axes=axes,
+                   first_case=first_case)
+    return step, layout
 
 
 def _as_states(x0: Any) -> np.ndarray:

@@ -202,17 +202,19 @@ def test_a_client_of_another_type_is_refused():
         landing.monte_carlo(small(), 2, client="tcp://127.0.0.1:8786")
 
 
-def test_a_scenario_that_cannot_reach_the_workers_is_refused_by_name(client, monkeypatch):
-    import landing.scenarios.files
-    from landing.errors import LandingError, ParameterError
+def test_a_scenario_that_cannot_reach_the_workers_is_refused_by_name(client):
+    from landing.errors import ParameterError
 
-    def unreadable(*args, **kwargs):
-        raise LandingError("not a scenario file")
+    lock = threading.Lock()
 
-    # its TOML does not read back, and a scenario (compiled core handles) does not pickle
-    monkeypatch.setattr(landing.scenarios.files, "scenario_from_dict", unreadable)
+    def locked(t, e, de, ref, drift, inertia, params, memory):
+        with lock:
+            return -drift - e - de
+
+    # a law no file can name (a closure) and no pickle can carry (it holds a lock)
+    s = small().replace(controller=landing.controllers.PythonLaw(locked))
     with pytest.raises(ParameterError, match="scenario = 'mars_monte_carlo' cannot be sent to the cluster"):
-        landing.monte_carlo(small(), 4, client=client)
+        landing.monte_carlo(s, 4, client=client)
 
 
 def test_without_dask_the_error_names_the_extra(monkeypatch, capsys):

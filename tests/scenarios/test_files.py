@@ -77,3 +77,16 @@ def test_replace_changes_one_gain_in_one_call():
         s.replace(controler={"alpha1": 6.0})
     with pytest.raises(landing.ParameterError, match="alpha1"):
         s.replace(controller={"alpha1": -1.0})
+
+
+def test_every_preset_pickles_and_compiles_again_on_arrival():
+    # how a scenario a file cannot describe travels to Dask workers (cloudpickle reads as pickle)
+    import pickle
+
+    for name in PRESETS:
+        s = preset(name)
+        back = pickle.loads(pickle.dumps(s))
+        assert back.to_toml() == s.to_toml(), name
+        a = s.replace(t_final=s.dt * 3).simulate()
+        b = back.replace(t_final=s.dt * 3).simulate()
+        np.testing.assert_array_equal(b.states, a.states, err_msg=name)

@@ -57,7 +57,8 @@ def kinds() -> list[type]:
     for module in MODULES:
         for name in module.__all__:
             cls = getattr(module, name)
-            if inspect.isclass(cls) and issubclass(cls, Table) and "kind" in vars(cls):
+            # the kinds the core declares (a law written in Python is not one)
+            if inspect.isclass(cls) and issubclass(cls, Table) and "kind" in vars(cls) and cls._in_core:
                 found.append(cls)
     return found
 

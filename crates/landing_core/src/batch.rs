@@ -24,7 +24,7 @@ use crate::metrics::CaseMetrics;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
 use crate::rollout::{
-    BlockBuffers, Cancelled, MAX_DIAGNOSTIC_WIDTH, SimConfig, StageTable, rollout_block,
+    BlockBuffers, Cancelled, MAX_DIAGNOSTIC_WIDTH, Setting, SimConfig, StageTable, rollout_block,
 };
 use crate::state::State;
 
@@ -65,10 +65,12 @@ impl<T> PerCase<T> {
     }
 }
 
-/// Everything that varies between the cases of a batch.
-pub struct Batch<const D: usize, P: PlantModel<D>> {
+/// Everything that varies between the cases of a batch. `L` is its laws: built-in ones per
+/// case (the default), or `()` for a batch whose law is computed outside the core
+/// ([`run_external`]).
+pub struct Batch<const D: usize, P: PlantModel<D>, L = PerCase<AnyLaw<D>>> {
     pub plants: PerCase<P>,
-    pub laws: PerCase<AnyLaw<D>>,
+    pub laws: L,
     pub references: PerCase<Reference<D>>,
     pub disturbances: PerCase<Disturbance<D>>,
     pub x0: Vec<<P as Plant<f64, D>>::State>,
@@ -231,6 +233,50 @@ struct Shared<'a, const D: usize, P: PlantModel<D>> {
     cancel: &'a AtomicBool,
 }
 
+/// The cases `first .. first + used` of a batch gathered into the lanes of `R`: lane i is case
+/// `first + i`, the padding lanes repeat the last case.
+pub(crate) struct BlockCases<const D: usize, R: Real, P: PlantModel<D>> {
+    pub plant: P::At<R>,
+    pub reference: Reference<D, R>,
+    pub disturbance: Disturbance<D, R>,
+    pub x0: <P::At<R> as Plant<R, D>>::State,
+    /// The global index of each lane's case (its random streams' key).
+    pub cases: Vec<u64>,
+    first: usize,
+    used: usize,
+}
+
+impl<const D: usize, R: Real, P: PlantModel<D>> BlockCases<D, R, P> {
+    #[inline(always)]
+    pub(crate) fn gather<L>(
+        batch: &Batch<D, P, L>,
+        cfg: &SimConfig,
+        first: usize,
+        used: usize,
+    ) -> Self {
+        let case = |i: usize| first + i.min(used - 1);
+        Self {
+            plant: <P::At<R> as Gather<R>>::gather(&|i| batch.plants.get(case(i))),
+            reference: Reference::<D, R>::gather(&|i| batch.references.get(case(i))),
+            disturbance: Disturbance::<D, R>::gather(&|i| batch.disturbances.get(case(i))),
+            x0: <<P::At<R> as Plant<R, D>>::State as State<R>>::from_components(|c| {
+                R::from_fn(|i| batch.x0[case(i)].component(c))
+            }),
+            cases: (0..R::LANES)
+                .map(|i| cfg.first_case + case(i) as u64)
+                .collect(),
+            first,
+            used,
+        }
+    }
+
+    /// The batch's case in lane i.
+    #[inline(always)]
+    pub(crate) fn case(&self, i: usize) -> usize {
+        self.first + i.min(self.used - 1)
+    }
+}
+
 /// One block's cases: `first .. first + used` of the batch.
 struct BlockJob<'a, 'b, const D: usize, P: PlantModel<D>> {
     shared: &'a Shared<'a, D, P>,
@@ -249,44 +295,60 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for BlockJob<'_, '_, D, P> {
     #[inline(always)]
     fn run<R: Real, K: LawCalls<D, R>>(mut self) -> Result<(), Cancelled> {
         let sh = self.shared;
-        let b = sh.batch;
-        // lane i is case first + i; the padding lanes repeat the last case
-        let case = |i: usize| self.first + i.min(self.used - 1);
-        let plant = <P::At<R> as Gather<R>>::gather(&|i| b.plants.get(case(i)));
-        let law = AnyLaw::<D, R>::gather(&|i| b.laws.get(case(i)));
-        let reference = Reference::<D, R>::gather(&|i| b.references.get(case(i)));
-        let disturbance = Disturbance::<D, R>::gather(&|i| b.disturbances.get(case(i)));
-        let x0 = <<P::At<R> as Plant<R, D>>::State as State<R>>::from_components(|c| {
-            R::from_fn(|i| b.x0[case(i)].component(c))
-        });
-        let cases: Vec<u64> = (0..R::LANES)
-            .map(|i| sh.cfg.first_case + case(i) as u64)
-            .collect();
-        rollout_block::<D, R, _, K>(
-            &plant,
-            &law,
-            &reference,
-            &disturbance,
-            sh.table,
-            &x0,
-            sh.cfg,
-            &cases,
-            self.used,
-            sh.cancel,
-            &mut self.out,
-        )
+        let block = BlockCases::<D, R, P>::gather(sh.batch, sh.cfg, self.first, self.used);
+        let law = AnyLaw::<D, R>::gather(&|i| sh.batch.laws.get(block.case(i)));
+        let set = Setting {
+            plant: &block.plant,
+            reference: &block.reference,
+            disturbance: &block.disturbance,
+            table: sh.table,
+            cfg: sh.cfg,
+        };
+        let (x0, cases) = (&block.x0, &block.cases);
+        rollout_block::<D, R, _, K>(&set, &law, x0, cases, self.used, sh.cancel, &mut self.out)
     }
 }
 
 /// Checks that the per-case tables have 1 or `n` entries and agree on what a block shares.
 fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result<(), BatchError> {
+    check_cases(batch, &[("controller", batch.laws.len())])?;
+    same(
+        "controller",
+        &batch.laws,
+        <AnyLaw<D> as Gather<f64>>::same_shape,
+    )?;
+    let width = batch.laws.get(0).diagnostic_width();
+    assert!(
+        width <= MAX_DIAGNOSTIC_WIDTH,
+        "a law records {width} diagnostics, more than {MAX_DIAGNOSTIC_WIDTH}"
+    );
+    Ok(())
+}
+
+fn same<T, F: Fn(&T, &T) -> bool>(
+    what: &'static str,
+    v: &PerCase<T>,
+    f: F,
+) -> Result<(), BatchError> {
+    let first = v.get(0);
+    match v.iter().position(|x| !f(first, x)) {
+        Some(case) => Err(BatchError::Shape { what, case }),
+        None => Ok(()),
+    }
+}
+
+/// The checks of [`check_shapes`] on everything but the laws (whose lengths are `laws`).
+pub(crate) fn check_cases<const D: usize, P: PlantModel<D>, L>(
+    batch: &Batch<D, P, L>,
+    laws: &[(&'static str, usize)],
+) -> Result<(), BatchError> {
     let n = batch.x0.len();
-    for (what, len) in [
+    let tables = [
         ("plant", batch.plants.len()),
-        ("controller", batch.laws.len()),
         ("reference", batch.references.len()),
         ("disturbance", batch.disturbances.len()),
-    ] {
+    ];
+    for &(what, len) in tables.iter().chain(laws) {
         if len != 1 && len != n {
             return Err(BatchError::Length {
                 what,
@@ -295,26 +357,10 @@ fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result
             });
         }
     }
-    fn same<T, F: Fn(&T, &T) -> bool>(
-        what: &'static str,
-        v: &PerCase<T>,
-        f: F,
-    ) -> Result<(), BatchError> {
-        let first = v.get(0);
-        match v.iter().position(|x| !f(first, x)) {
-            Some(case) => Err(BatchError::Shape { what, case }),
-            None => Ok(()),
-        }
-    }
     same(
         "plant",
         &batch.plants,
         <P::At<f64> as Gather<f64>>::same_shape,
-    )?;
-    same(
-        "controller",
-        &batch.laws,
-        <AnyLaw<D> as Gather<f64>>::same_shape,
     )?;
     same(
         "reference",
@@ -326,11 +372,6 @@ fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result
         &batch.disturbances,
         <Disturbance<D> as Gather<f64>>::same_shape,
     )?;
-    let width = batch.laws.get(0).diagnostic_width();
-    assert!(
-        width <= MAX_DIAGNOSTIC_WIDTH,
-        "a law records {width} diagnostics, more than {MAX_DIAGNOSTIC_WIDTH}"
-    );
     Ok(())
 }
 
@@ -352,38 +393,8 @@ fn run_here<const D: usize, P: PlantModel<D>>(
     let nx = P::STATE_DIM;
     let nd = batch.laws.get(0).diagnostic_width();
     let nr = cfg.n_records();
-    // Refused before anything is allocated: Linux grants virtual memory freely and kills the
-    // process when the pages are touched, so a failed allocation is no protection.
-    let (bytes, recording) = output_bytes::<D>(n, nr, nx, nd);
-    let available = available_bytes();
-    if bytes > isize::MAX as u128 || available.is_some_and(|a| bytes > u128::from(a)) {
-        return Err(BatchError::Allocation {
-            bytes,
-            recording,
-            available,
-        });
-    }
-    let mut states = nan_filled(n * nr * nx, bytes, recording)?;
-    let mut controls = nan_filled(n * nr * D, bytes, recording)?;
-    let mut diagnostics = nan_filled(n * nr * nd, bytes, recording)?;
-    let mut final_state = nan_filled(n * nx, bytes, recording)?;
-    let mut metrics = Vec::new();
-    metrics
-        .try_reserve_exact(n)
-        .map_err(|_| BatchError::Allocation {
-            bytes,
-            recording,
-            available,
-        })?;
-    metrics.resize(n, CaseMetrics::new());
-
-    let shared_disturbance =
-        batch.disturbances.is_shared() && batch.disturbances.get(0).is_time_varying();
-    let table = if shared_disturbance {
-        StageTable::new(batch.disturbances.get(0), cfg)
-    } else {
-        None
-    };
+    let mut o = Outputs::<D>::allocate(n, nr, nx, nd)?;
+    let table = shared_table(batch, cfg);
     let shared = Shared {
         batch,
         cfg,
@@ -394,25 +405,15 @@ fn run_here<const D: usize, P: PlantModel<D>>(
         Kernel::Lanes(level) => (level.lanes::<P::Blocks>(), level),
         Kernel::Scalar => (1, Level::Baseline),
     };
-    let blocks = n.div_ceil(w);
-    let jobs: Vec<_> = chunks(&mut states, w * nr * nx, blocks)
+    let jobs: Vec<_> = o
+        .blocks(w, nr, nx, nd)
         .into_iter()
-        .zip(chunks(&mut controls, w * nr * D, blocks))
-        .zip(chunks(&mut diagnostics, w * nr * nd, blocks))
-        .zip(chunks(&mut final_state, w * nx, blocks))
-        .zip(metrics.chunks_mut(w))
         .enumerate()
-        .map(|(b, ((((s, c), d), f), m))| BlockJob {
+        .map(|(b, out)| BlockJob {
             shared: &shared,
             first: b * w,
             used: w.min(n - b * w),
-            out: BlockBuffers {
-                states: s,
-                controls: c,
-                diagnostics: d,
-                final_state: f,
-                metrics: m,
-            },
+            out,
         })
         .collect();
     jobs.into_par_iter()
@@ -422,19 +423,110 @@ fn run_here<const D: usize, P: PlantModel<D>>(
             Kernel::Scalar => kernel::run_scalar(job),
         })
         .map_err(|Cancelled| BatchError::Cancelled)?;
+    Ok(o.finish(cfg, nx, nd, level))
+}
 
-    Ok(BatchOutput {
-        n_cases: n,
-        state_dim: nx,
-        diagnostic_dim: nd,
-        times: cfg.record_times(),
-        states,
-        controls,
-        diagnostics,
-        final_state,
-        metrics,
-        level,
-    })
+/// A batch's output buffers, allocated once, before any case runs.
+pub(crate) struct Outputs<const D: usize> {
+    states: Vec<f64>,
+    controls: Vec<f64>,
+    diagnostics: Vec<f64>,
+    final_state: Vec<f64>,
+    metrics: Vec<CaseMetrics<D>>,
+}
+
+impl<const D: usize> Outputs<D> {
+    /// The buffers of `n` cases, `nr` records of `nx` states and `nd` diagnostics, refused
+    /// before anything is allocated when they would not fit: Linux grants virtual memory
+    /// freely and kills the process when the pages are touched, so a failed allocation is no
+    /// protection.
+    pub(crate) fn allocate(n: usize, nr: usize, nx: usize, nd: usize) -> Result<Self, BatchError> {
+        let (bytes, recording) = output_bytes::<D>(n, nr, nx, nd);
+        let available = available_bytes();
+        if bytes > isize::MAX as u128 || available.is_some_and(|a| bytes > u128::from(a)) {
+            return Err(BatchError::Allocation {
+                bytes,
+                recording,
+                available,
+            });
+        }
+        let mut metrics = Vec::new();
+        metrics
+            .try_reserve_exact(n)
+            .map_err(|_| BatchError::Allocation {
+                bytes,
+                recording,
+                available,
+            })?;
+        metrics.resize(n, CaseMetrics::new());
+        Ok(Self {
+            states: nan_filled(n * nr * nx, bytes, recording)?,
+            controls: nan_filled(n * nr * D, bytes, recording)?,
+            diagnostics: nan_filled(n * nr * nd, bytes, recording)?,
+            final_state: nan_filled(n * nx, bytes, recording)?,
+            metrics,
+        })
+    }
+
+    /// Disjoint per-block views of `w` cases each.
+    pub(crate) fn blocks(
+        &mut self,
+        w: usize,
+        nr: usize,
+        nx: usize,
+        nd: usize,
+    ) -> Vec<BlockBuffers<'_, D>> {
+        let blocks = self.metrics.len().div_ceil(w);
+        chunks(&mut self.states, w * nr * nx, blocks)
+            .into_iter()
+            .zip(chunks(&mut self.controls, w * nr * D, blocks))
+            .zip(chunks(&mut self.diagnostics, w * nr * nd, blocks))
+            .zip(chunks(&mut self.final_state, w * nx, blocks))
+            .zip(self.metrics.chunks_mut(w))
+            .map(|((((s, c), d), f), m)| BlockBuffers {
+                states: s,
+                controls: c,
+                diagnostics: d,
+                final_state: f,
+                metrics: m,
+            })
+            .collect()
+    }
+
+    pub(crate) fn finish(
+        self,
+        cfg: &SimConfig,
+        nx: usize,
+        nd: usize,
+        level: Level,
+    ) -> BatchOutput<D> {
+        BatchOutput {
+            n_cases: self.metrics.len(),
+            state_dim: nx,
+            diagnostic_dim: nd,
+            times: cfg.record_times(),
+            states: self.states,
+            controls: self.controls,
+            diagnostics: self.diagnostics,
+            final_state: self.final_state,
+            metrics: self.metrics,
+            level,
+        }
+    }
+}
+
+/// The deterministic disturbance evaluated once per stage for the whole batch, when every
+/// case shares it.
+pub(crate) fn shared_table<const D: usize, P: PlantModel<D>, L>(
+    batch: &Batch<D, P, L>,
+    cfg: &SimConfig,
+) -> Option<StageTable<D>> {
+    let shared = batch.disturbances.is_shared() && batch.disturbances.get(0).is_time_varying();
+    if shared {
+        StageTable::new(batch.disturbances.get(0), cfg)
+    } else {
+        None
+    }
 }
 
 /// Runs every case of the batch.

@@ -15,7 +15,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use nalgebra::SVector;
 
-use crate::control::{AnyLaw, AnyMemory, LawInput};
+use crate::control::{AnyLaw, LawInput};
 use crate::disturbance::{Disturbance, NoiseStreams, disturbance_stream};
 use crate::error::ParamError;
 use crate::integrator::{IntegratorKind, Stage, StageDerivative};
@@ -392,10 +392,11 @@ fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
     }
 }
 
-/// Writes record `slot` of the live lanes.
+/// Writes record `slot` of the live lanes: the state, the applied command and the law's
+/// diagnostics.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn record<const D: usize, R: Real, S: State<R>, K: LawCalls<D, R>>(
+fn record<const D: usize, R: Real, S: State<R>>(
     out: &mut BlockBuffers<'_, D>,
     used: usize,
     n_records: usize,
@@ -403,14 +404,10 @@ fn record<const D: usize, R: Real, S: State<R>, K: LawCalls<D, R>>(
     live: R::Mask,
     x: &S,
     u: &SVector<R, D>,
-    law: &AnyLaw<D, R>,
-    memory: &AnyMemory<D, R>,
-    input: &LawInput<D, R>,
+    diag: &[R],
 ) {
     let nx = S::DIM;
-    let nd = law.diagnostic_width();
-    let mut diag = [R::zero(); MAX_DIAGNOSTIC_WIDTH];
-    K::diagnostics(law, memory, input, &mut diag[..nd]);
+    let nd = diag.len();
     for i in 0..used {
         if !live.lane(i) {
             continue;
@@ -422,213 +419,361 @@ fn record<const D: usize, R: Real, S: State<R>, K: LawCalls<D, R>>(
         for c in 0..D {
             out.controls[row * D + c] = u[c].lane(i);
         }
-        for (c, d) in diag[..nd].iter().enumerate() {
+        for (c, d) in diag.iter().enumerate() {
             out.diagnostics[row * nd + c] = d.lane(i);
         }
     }
 }
 
-/// Simulates the cases of one block. Lane i is case `cases[i]` (its global index, which keys
-/// its random streams); the first `used` lanes are real cases, the others padding whose results
-/// are dropped. Stops early, with nothing written that matters, when `cancel` is raised.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls<D, R>>(
-    plant: &P,
-    law: &AnyLaw<D, R>,
-    reference: &Reference<D, R>,
-    disturbance: &Disturbance<D, R>,
-    table: Option<&StageTable<D>>,
-    x0: &P::State,
-    cfg: &SimConfig,
-    cases: &[u64],
-    used: usize,
-    cancel: &AtomicBool,
-    out: &mut BlockBuffers<'_, D>,
-) -> Result<(), Cancelled> {
-    let recording = cfg.record_every > 0;
-    let n_records = cfg.n_records();
-    let rng: Vec<NoiseStreams> = cases
-        .iter()
-        .map(|&c| disturbance_stream(cfg.seed, c))
-        .collect();
-    let h = cfg.dt / f64::from(cfg.substeps);
-    let substeps = cfg.substeps as usize;
-    let zero = R::zero();
-    let nan = R::splat(f64::NAN);
-    let mut stats = CommandStats::<D, R>::new(cfg.chatter_filter());
+/// What the periods of a block read and never change.
+pub(crate) struct Setting<'a, const D: usize, R: Real, P> {
+    pub plant: &'a P,
+    pub reference: &'a Reference<D, R>,
+    pub disturbance: &'a Disturbance<D, R>,
+    pub table: Option<&'a StageTable<D>>,
+    pub cfg: &'a SimConfig,
+}
 
-    let mut x = *x0;
-    // the step's result, kept outside the loop so that the integrator writes it in place
-    let mut next = *x0;
-    let m0 = plant.mass(&x);
-    let mut input = law_input(plant, reference, 0.0, cfg.dt, &x);
-    let mut memory = K::start(law, &input);
-    let advances = law.has_memory();
-    let mut live = R::Mask::splat(true);
-    let mut stops = Stops::<R>::new();
-    let poll_every = (CANCEL_POLL_STEPS / u64::from(cfg.substeps)).max(1);
-    let mut touched = R::Mask::splat(false);
-    let mut td_time = nan;
-    let mut td_position = filled(nan);
-    let mut td_velocity = filled(nan);
-    let mut slot = 0usize;
-    let mut next_record = 0u64;
-    let tolerance = match cfg.settle {
-        Tolerance::Absolute(v) => R::splat(v),
-        Tolerance::Relative(f) => norm(&input.e) * f,
-    };
+/// A block of cases between two control periods: the plant's state, the law's input at the
+/// coming instant, the metric accumulators, the stops and the recording cursor. The law is
+/// not here: a built-in law's memory lives in the lanes beside it ([`rollout_block`]), an
+/// external law's outside the core ([`crate::batch::run_external`]). Both drive a block the
+/// same way, [`Block::start`], one [`Block::period`] per control period with the law's
+/// command, [`Block::finish`], so the physics and the metrics are one implementation.
+pub(crate) struct Block<const D: usize, R: Real, P: Plant<R, D>> {
+    rng: Vec<NoiseStreams>,
+    stats: CommandStats<D, R>,
+    x: P::State,
+    // the step's result, kept in the block so that the integrator writes it in place
+    next: P::State,
+    m0: Option<R>,
+    input: LawInput<D, R>,
+    live: R::Mask,
+    stops: Stops<R>,
+    touched: R::Mask,
+    td_time: R,
+    td_position: SVector<R, D>,
+    td_velocity: SVector<R, D>,
+    slot: usize,
+    next_record: u64,
     // compared squared: no square root per step
-    let tolerance_sq = tolerance * tolerance;
-    // per lane: the last control instant at which |e| was outside the tolerance (-1 for none),
-    // and the mass at the instant after it (the settle instant, should the error stay inside
-    // from there on)
-    let mut last_outside = R::splat(-1.0);
-    let mut settle_mass = m0;
-    let mut was_outside = R::Mask::splat(false);
+    tolerance_sq: R,
+    // per lane: the last control instant at which |e| was outside the tolerance (-1 for
+    // none), and the mass at the instant after it (the settle instant, should the error stay
+    // inside from there on)
+    last_outside: R,
+    settle_mass: Option<R>,
+    was_outside: R::Mask,
+    used: usize,
+}
 
-    'periods: for k in 0..cfg.steps {
-        if k % poll_every == 0 && cancel.load(Ordering::Relaxed) {
-            return Err(Cancelled);
+impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
+    /// The block at t = 0: lane i is case `cases[i]` (its global index, which keys its random
+    /// streams); the first `used` lanes are real cases, the others padding.
+    #[inline(always)]
+    pub(crate) fn start(
+        set: &Setting<'_, D, R, P>,
+        x0: &P::State,
+        cases: &[u64],
+        used: usize,
+    ) -> Self {
+        let cfg = set.cfg;
+        let nan = R::splat(f64::NAN);
+        let input = law_input(set.plant, set.reference, 0.0, cfg.dt, x0);
+        let tolerance = match cfg.settle {
+            Tolerance::Absolute(v) => R::splat(v),
+            Tolerance::Relative(f) => norm(&input.e) * f,
+        };
+        let m0 = set.plant.mass(x0);
+        Self {
+            rng: cases
+                .iter()
+                .map(|&c| disturbance_stream(cfg.seed, c))
+                .collect(),
+            stats: CommandStats::<D, R>::new(cfg.chatter_filter()),
+            x: *x0,
+            next: *x0,
+            m0,
+            input,
+            live: R::Mask::splat(true),
+            stops: Stops::<R>::new(),
+            touched: R::Mask::splat(false),
+            td_time: nan,
+            td_position: filled(nan),
+            td_velocity: filled(nan),
+            slot: 0,
+            next_record: 0,
+            tolerance_sq: tolerance * tolerance,
+            last_outside: R::splat(-1.0),
+            settle_mass: m0,
+            was_outside: R::Mask::splat(false),
+            used,
         }
+    }
+
+    /// What the law sees at the coming control instant.
+    #[inline(always)]
+    pub(crate) fn input(&self) -> &LawInput<D, R> {
+        &self.input
+    }
+
+    /// Whether any lane still runs.
+    #[inline(always)]
+    pub(crate) fn any_live(&self) -> bool {
+        self.live.any()
+    }
+
+    /// Whether control instant `k` is recorded (the law's diagnostics are then needed).
+    #[inline(always)]
+    pub(crate) fn records(&self, cfg: &SimConfig, k: u64) -> bool {
+        cfg.record_every > 0 && k == self.next_record
+    }
+
+    /// Control period k under the law's commanded acceleration `a` (and, when the instant is
+    /// recorded, its diagnostics `diag`): the command is actuated and held, checked, recorded
+    /// and counted in the statistics; the random disturbance is drawn; the plant is advanced by
+    /// the period's substeps, each crossing of the ground located and each stop flagged; the
+    /// law's input at t_(k+1) is made. Returns whether any lane still runs.
+    #[inline(always)]
+    pub(crate) fn period<K: LawCalls<D, R>>(
+        &mut self,
+        set: &Setting<'_, D, R, P>,
+        k: u64,
+        a: &SVector<R, D>,
+        diag: &[R],
+        out: &mut BlockBuffers<'_, D>,
+    ) -> bool {
+        let (plant, cfg) = (set.plant, set.cfg);
+        let h = cfg.dt / f64::from(cfg.substeps);
+        let zero = R::zero();
         let t = k as f64 * cfg.dt;
-        let u = plant.actuate(&x, &K::command(law, &memory, &input));
-        let bad = bad_command(live, &u, t, &mut stops);
+        let u = plant.actuate(&self.x, a);
+        let bad = bad_command(self.live, &u, t, &mut self.stops);
         if bad.any() {
-            stats.freeze(bad);
-            live = live & !bad;
-            if !live.any() {
-                break;
+            self.stats.freeze(bad);
+            self.live = self.live & !bad;
+            if !self.live.any() {
+                return false;
             }
         }
-        if recording && k == next_record {
-            record::<D, R, _, K>(
-                out, used, n_records, slot, live, &x, &u, law, &memory, &input,
+        if self.records(cfg, k) {
+            record(
+                out,
+                self.used,
+                cfg.n_records(),
+                self.slot,
+                self.live,
+                &self.x,
+                &u,
+                diag,
             );
-            slot += 1;
-            next_record += cfg.record_every;
+            self.slot += 1;
+            self.next_record += cfg.record_every;
         }
-        K::add_stats(&mut stats, &u, &input.e, cfg.dt);
-        let outside = dot(&input.e, &input.e).simd_gt(tolerance_sq);
-        last_outside = R::select(live & outside, R::splat(k as f64), last_outside);
-        if let (Some(sm), Some(m)) = (settle_mass.as_mut(), plant.mass(&x)) {
-            *sm = R::select(live & was_outside & !outside, m, *sm);
+        let live = self.live;
+        let input = &self.input;
+        K::add_stats(&mut self.stats, &u, &input.e, cfg.dt);
+        let outside = dot(&input.e, &input.e).simd_gt(self.tolerance_sq);
+        self.last_outside = R::select(live & outside, R::splat(k as f64), self.last_outside);
+        if let (Some(sm), Some(m)) = (self.settle_mass.as_mut(), plant.mass(&self.x)) {
+            *sm = R::select(live & self.was_outside & !outside, m, *sm);
         }
-        was_outside = (live & outside) | (!live & was_outside);
+        self.was_outside = (live & outside) | (!live & self.was_outside);
 
-        let held = if disturbance.is_random() {
-            disturbance.draw(&rng, k, &div(&u, &input.inertia))
+        let held = if set.disturbance.is_random() {
+            set.disturbance.draw(&self.rng, k, &div(&u, &input.inertia))
         } else {
             zeros()
         };
-        if advances {
-            K::advance(law, &mut memory, &input);
-        }
-        for j in 0..substeps {
+        for j in 0..cfg.substeps as usize {
             let tj = t + j as f64 * h;
             let f = Held {
                 plant,
-                disturbance,
-                table,
+                disturbance: set.disturbance,
+                table: set.table,
                 k,
                 j,
                 tj,
                 h,
                 u: &u,
                 held: &held,
-                drift: &input.drift,
+                drift: &self.input.drift,
             };
-            cfg.integrator.step_into(&f, &x, h, &mut next);
-            if let (Some(z0), Some(z1)) = (plant.altitude(&x), plant.altitude(&next)) {
-                let cross = live & !touched & z0.simd_gt(zero) & z1.simd_le(zero);
+            cfg.integrator.step_into(&f, &self.x, h, &mut self.next);
+            let (x, next) = (&self.x, &self.next);
+            if let (Some(z0), Some(z1)) = (plant.altitude(x), plant.altitude(next)) {
+                let cross = self.live & !self.touched & z0.simd_gt(zero) & z1.simd_le(zero);
                 if cross.any() {
                     let w = z0 / (z0 - z1);
-                    let (q0, v0) = plant.coordinates(&x);
-                    let (q1, v1) = plant.coordinates(&next);
-                    td_time = R::select(cross, w * h + tj, td_time);
-                    td_position =
-                        select_vector(cross, &add(&q0, &scale_by(&sub(&q1, &q0), w)), &td_position);
-                    td_velocity =
-                        select_vector(cross, &add(&v0, &scale_by(&sub(&v1, &v0), w)), &td_velocity);
-                    touched = touched | cross;
+                    let (q0, v0) = plant.coordinates(x);
+                    let (q1, v1) = plant.coordinates(next);
+                    self.td_time = R::select(cross, w * h + tj, self.td_time);
+                    self.td_position = select_vector(
+                        cross,
+                        &add(&q0, &scale_by(&sub(&q1, &q0), w)),
+                        &self.td_position,
+                    );
+                    self.td_velocity = select_vector(
+                        cross,
+                        &add(&v0, &scale_by(&sub(&v1, &v0), w)),
+                        &self.td_velocity,
+                    );
+                    self.touched = self.touched | cross;
                 }
             }
             let finite = next.all_finite();
-            let bad = live & !(finite & plant.in_domain(&next));
+            let bad = self.live & !(finite & plant.in_domain(next));
             if bad.any() {
-                stops.mark(bad & !finite, tj + h, Divergence::NonFiniteState);
-                stops.mark(bad & finite, tj + h, Divergence::OutOfDomain);
-                stats.freeze(bad);
-                live = live & !bad;
+                self.stops
+                    .mark(bad & !finite, tj + h, Divergence::NonFiniteState);
+                self.stops
+                    .mark(bad & finite, tj + h, Divergence::OutOfDomain);
+                self.stats.freeze(bad);
+                self.live = self.live & !bad;
             }
-            x.select_assign(live, &next);
-            if !live.any() {
-                break 'periods;
+            self.x.select_assign(self.live, &self.next);
+            if !self.live.any() {
+                return false;
             }
         }
-        input = law_input(plant, reference, (k + 1) as f64 * cfg.dt, cfg.dt, &x);
+        self.input = law_input(
+            plant,
+            set.reference,
+            (k + 1) as f64 * cfg.dt,
+            cfg.dt,
+            &self.x,
+        );
+        true
     }
 
-    // The command at t_final is recorded (it is what would be held next) but not applied.
-    let mut finished = live;
-    if live.any() {
-        let u = plant.actuate(&x, &K::command(law, &memory, &input));
-        let bad = bad_command(live, &u, cfg.t_final(), &mut stops);
-        finished = live & !bad;
-        if recording {
-            record::<D, R, _, K>(
-                out, used, n_records, slot, finished, &x, &u, law, &memory, &input,
-            );
-        }
-    }
-    let inside = dot(&input.e, &input.e).simd_le(tolerance_sq);
-    if let (Some(sm), Some(m)) = (settle_mass.as_mut(), plant.mass(&x)) {
-        *sm = R::select(inside & was_outside, m, *sm);
-    }
-    let mass = plant.mass(&x);
-    let nx = P::State::DIM;
-    for i in 0..used {
-        let m = &mut out.metrics[i];
-        *m = CaseMetrics::new();
-        stats.finish_lane(i, m);
-        if touched.lane(i) {
-            m.touchdown = Some(Touchdown {
-                time: td_time.lane(i),
-                position: SVector::from_fn(|c, _| td_position[c].lane(i)),
-                velocity: SVector::from_fn(|c, _| td_velocity[c].lane(i)),
-            });
-        }
-        if finished.lane(i) && !m.accumulations_finite() {
-            // the safety net behind MAX_COMMAND: no non-finite statistic goes unflagged
-            m.diverged = Some(Diverged {
-                time: cfg.t_final(),
-                reason: Divergence::NonFiniteMetric,
-            });
-            continue;
-        }
-        if !finished.lane(i) {
-            m.diverged = stops.lane(i);
-            continue;
-        }
-        for c in 0..nx {
-            out.final_state[i * nx + c] = x.component(c).lane(i);
-        }
-        if inside.lane(i) {
-            let last = last_outside.lane(i);
-            m.settle_time = if last < 0.0 {
-                0.0
-            } else {
-                (last + 1.0) * cfg.dt
-            };
-            if let (Some(m0), Some(ms)) = (m0, settle_mass) {
-                m.fuel_to_settle = m0.lane(i) - ms.lane(i);
+    /// Writes the block's final states and metrics. `last` is the law's command (and
+    /// diagnostics) at t_final, given when a lane still runs: it is recorded, being what would
+    /// be held next, and checked, but not applied.
+    #[inline(always)]
+    pub(crate) fn finish(
+        &mut self,
+        set: &Setting<'_, D, R, P>,
+        last: Option<(&SVector<R, D>, &[R])>,
+        out: &mut BlockBuffers<'_, D>,
+    ) {
+        let (plant, cfg) = (set.plant, set.cfg);
+        let mut finished = self.live;
+        if let Some((a, diag)) = last.filter(|_| self.live.any()) {
+            let u = plant.actuate(&self.x, a);
+            let bad = bad_command(self.live, &u, cfg.t_final(), &mut self.stops);
+            finished = self.live & !bad;
+            if cfg.record_every > 0 {
+                record(
+                    out,
+                    self.used,
+                    cfg.n_records(),
+                    self.slot,
+                    finished,
+                    &self.x,
+                    &u,
+                    diag,
+                );
             }
         }
-        m.final_error = SVector::from_fn(|c, _| input.e[c].lane(i));
-        m.final_rate_error = SVector::from_fn(|c, _| input.de[c].lane(i));
-        if let (Some(m0), Some(mf)) = (m0, mass) {
-            m.fuel_used = m0.lane(i) - mf.lane(i);
+        let input = &self.input;
+        let inside = dot(&input.e, &input.e).simd_le(self.tolerance_sq);
+        if let (Some(sm), Some(m)) = (self.settle_mass.as_mut(), plant.mass(&self.x)) {
+            *sm = R::select(inside & self.was_outside, m, *sm);
+        }
+        let mass = plant.mass(&self.x);
+        let nx = P::State::DIM;
+        for i in 0..self.used {
+            let m = &mut out.metrics[i];
+            *m = CaseMetrics::new();
+            self.stats.finish_lane(i, m);
+            if self.touched.lane(i) {
+                m.touchdown = Some(Touchdown {
+                    time: self.td_time.lane(i),
+                    position: SVector::from_fn(|c, _| self.td_position[c].lane(i)),
+                    velocity: SVector::from_fn(|c, _| self.td_velocity[c].lane(i)),
+                });
+            }
+            if finished.lane(i) && !m.accumulations_finite() {
+                // the safety net behind MAX_COMMAND: no non-finite statistic goes unflagged
+                m.diverged = Some(Diverged {
+                    time: cfg.t_final(),
+                    reason: Divergence::NonFiniteMetric,
+                });
+                continue;
+            }
+            if !finished.lane(i) {
+                m.diverged = self.stops.lane(i);
+                continue;
+            }
+            for c in 0..nx {
+                out.final_state[i * nx + c] = self.x.component(c).lane(i);
+            }
+            if inside.lane(i) {
+                let last = self.last_outside.lane(i);
+                m.settle_time = if last < 0.0 {
+                    0.0
+                } else {
+                    (last + 1.0) * cfg.dt
+                };
+                if let (Some(m0), Some(ms)) = (self.m0, self.settle_mass) {
+                    m.fuel_to_settle = m0.lane(i) - ms.lane(i);
+                }
+            }
+            m.final_error = SVector::from_fn(|c, _| input.e[c].lane(i));
+            m.final_rate_error = SVector::from_fn(|c, _| input.de[c].lane(i));
+            if let (Some(m0), Some(mf)) = (self.m0, mass) {
+                m.fuel_used = m0.lane(i) - mf.lane(i);
+            }
         }
     }
+}
+
+/// Simulates the cases of one block under a built-in law. Lane i is case `cases[i]`; the
+/// first `used` lanes are real cases, the others padding whose results are dropped. Stops
+/// early, with nothing written that matters, when `cancel` is raised.
+#[inline(always)]
+pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls<D, R>>(
+    set: &Setting<'_, D, R, P>,
+    law: &AnyLaw<D, R>,
+    x0: &P::State,
+    cases: &[u64],
+    used: usize,
+    cancel: &AtomicBool,
+    out: &mut BlockBuffers<'_, D>,
+) -> Result<(), Cancelled> {
+    let cfg = set.cfg;
+    let mut block = Block::start(set, x0, cases, used);
+    let mut memory = K::start(law, block.input());
+    let advances = law.has_memory();
+    let nd = law.diagnostic_width();
+    let mut diag = [R::zero(); MAX_DIAGNOSTIC_WIDTH];
+    let poll_every = (CANCEL_POLL_STEPS / u64::from(cfg.substeps)).max(1);
+    for k in 0..cfg.steps {
+        if k % poll_every == 0 && cancel.load(Ordering::Relaxed) {
+            return Err(Cancelled);
+        }
+        let a = K::command(law, &memory, block.input());
+        // the diagnostics read the memory the command read; the memory is then advanced over
+        // the period (it plays no part in the plant's step)
+        if block.records(cfg, k) {
+            K::diagnostics(law, &memory, block.input(), &mut diag[..nd]);
+        }
+        if advances {
+            K::advance(law, &mut memory, block.input());
+        }
+        if !block.period::<K>(set, k, &a, &diag[..nd], out) {
+            break;
+        }
+    }
+    let last = if block.any_live() {
+        let a = K::command(law, &memory, block.input());
+        if cfg.record_every > 0 {
+            K::diagnostics(law, &memory, block.input(), &mut diag[..nd]);
+        }
+        Some(a)
+    } else {
+        None
+    };
+    block.finish(set, last.as_ref().map(|a| (a, &diag[..nd])), out);
     Ok(())
 }

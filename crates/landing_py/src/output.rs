@@ -36,7 +36,7 @@ pub struct Parts<const D: usize> {
     pub out: BatchOutput<D>,
     pub state_names: &'static [&'static str],
     pub control_names: &'static [&'static str],
-    pub layout: Vec<(&'static str, usize)>,
+    pub layout: Vec<(String, usize)>,
 }
 
 /// The metric columns of `out`, one array per column of [`CaseMetrics::COLUMNS`]: (N,) or

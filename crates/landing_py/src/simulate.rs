@@ -5,18 +5,20 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple};
 
 use landing_core::batch::{Batch, RunOptions, run};
 use landing_core::disturbance::Disturbance as CoreDisturbance;
+use landing_core::external::{ExternalError, ExternalLaw, Inputs, run_external};
 use landing_core::integrator::IntegratorKind;
 use landing_core::limits::{MAX_CASES, MAX_SUBSTEPS, MAX_THREADS};
 use landing_core::params::{AxisCount, Dim, Named};
 use landing_core::plant::PlantModel;
 use landing_core::reference::Reference as CoreReference;
 use landing_core::registry::{PlantVisitor, initial_states};
+use landing_core::rollout::MAX_DIAGNOSTIC_WIDTH;
 use landing_core::{Level, PerCase, SimConfig, Tolerance};
 
 use crate::errors::{InputError, batch_error, guard, internal_error, within_cap};
@@ -67,16 +69,117 @@ fn interruptible<T: Send>(cancel: &AtomicBool, job: impl FnOnce() -> T + Send) -
     })
 }
 
+/// What computes the commands: a compiled law, or a Python callable called once per control
+/// instant on every case ([`PyLaw`]).
+enum Control<'a, 'py> {
+    Builtin(&'a Law),
+    Python {
+        step: &'a Bound<'py, PyAny>,
+        layout: Vec<(String, usize)>,
+    },
+}
+
+/// A Python callable as the core's [`ExternalLaw`]: `step(t, k, e, de, position, velocity,
+/// acceleration, drift, inertia)`, each an (N, D) float64 array but the instant `t` and its
+/// index `k`, returns `(command, diagnostics)`, float64 arrays of shapes (N, D) and (N,
+/// width), C-contiguous. The Python layer (`landing.controllers.PythonLaw`) checks what the
+/// user's function returns and makes it so; the shapes are checked again here, because a wrong
+/// one would be read out of bounds.
+struct PyLaw {
+    step: Py<PyAny>,
+    width: usize,
+    n: usize,
+}
+
+impl<const D: usize> ExternalLaw<D> for PyLaw {
+    type Error = PyErr;
+
+    fn diagnostic_width(&self) -> usize {
+        self.width
+    }
+
+    fn command(
+        &mut self,
+        inputs: &Inputs<D>,
+        command: &mut [f64],
+        diagnostics: &mut [f64],
+    ) -> PyResult<()> {
+        let n = self.n;
+        Python::attach(|py| {
+            let rows = |v: &[f64]| -> PyResult<Bound<'_, PyAny>> {
+                Ok(PyArray1::from_slice(py, v).reshape([n, D])?.into_any())
+            };
+            let args = PyTuple::new(
+                py,
+                [
+                    inputs.t.into_pyobject(py)?.into_any(),
+                    inputs.k.into_pyobject(py)?.into_any(),
+                    rows(&inputs.e)?,
+                    rows(&inputs.de)?,
+                    rows(&inputs.position)?,
+                    rows(&inputs.velocity)?,
+                    rows(&inputs.acceleration)?,
+                    rows(&inputs.drift)?,
+                    rows(&inputs.inertia)?,
+                ],
+            )?;
+            let out = self.step.bind(py).call1(args)?;
+            let (u, diag): (PyReadonlyArray2<'_, f64>, PyReadonlyArray2<'_, f64>) =
+                out.extract()?;
+            copy_rows("command", &u, n, D, command)?;
+            copy_rows("diagnostics", &diag, n, self.width, diagnostics)
+        })
+    }
+}
+
+/// Copies a C-contiguous (n, width) array into `into`, or an error naming it.
+fn copy_rows(
+    what: &str,
+    a: &PyReadonlyArray2<'_, f64>,
+    n: usize,
+    width: usize,
+    into: &mut [f64],
+) -> PyResult<()> {
+    if a.shape() != [n, width] {
+        return Err(InputError::value(format!(
+            "the Python law's step returned {what} of shape {:?}; expected ({n}, {width})",
+            a.shape()
+        ))
+        .into());
+    }
+    into.copy_from_slice(a.as_slice()?);
+    Ok(())
+}
+
 /// Builds the batch for the plant's type and runs it without the GIL.
 struct Simulate<'a, 'py> {
     py: Python<'py>,
-    law: &'a Law,
+    control: Control<'a, 'py>,
     reference: Option<&'a Reference>,
     disturbance: Option<&'a Disturbance>,
     x0: &'a [f64],
     n: usize,
     cfg: SimConfig,
     options: RunOptions<'static>,
+}
+
+/// Runs `job` without the GIL, interruptibly when it is large (see [`interruptible`]),
+/// catching its panics.
+fn detached<T: Send>(
+    py: Python<'_>,
+    work: u128,
+    cancel: &AtomicBool,
+    job: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
+    let result = py.detach(|| {
+        let job = || catch_unwind(AssertUnwindSafe(job));
+        if work < INTERRUPTIBLE_WORK {
+            Ok(job())
+        } else {
+            interruptible(cancel, job)
+        }
+    });
+    result?.map_err(internal_error)
 }
 
 impl<'py> PlantVisitor for Simulate<'_, 'py> {
@@ -87,9 +190,6 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
         Dim<D>: AxisCount<D>,
     {
         let n = self.n;
-        let (laws, law_cases) = self.law.compiled.get::<D>().map_err(InputError::from)?;
-        let owner = format!("controller ({})", self.law.kind);
-        law_cases.check(&owner, n).map_err(InputError::from)?;
         let references = match self.reference {
             None => PerCase::shared(CoreReference::default()),
             Some(r) => {
@@ -107,14 +207,6 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
             }
         };
         let x0 = initial_states(plants, self.x0).map_err(InputError::from)?;
-        let batch = Batch {
-            plants: plants.clone(),
-            laws: laws.clone(),
-            references,
-            disturbances,
-            x0,
-        };
-        let layout = laws.get(0).diagnostic_layout();
         let cfg = self.cfg;
         let cancel = AtomicBool::new(false);
         let options = RunOptions {
@@ -122,18 +214,61 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
             ..self.options
         };
         let work = (n as u128) * u128::from(cfg.steps) * u128::from(cfg.substeps);
-        let result = self.py.detach(|| {
-            let job = || catch_unwind(AssertUnwindSafe(|| run(&batch, &cfg, &options)));
-            if work < INTERRUPTIBLE_WORK {
-                Ok(job())
-            } else {
-                interruptible(&cancel, job)
+        let (out, layout) = match self.control {
+            Control::Builtin(law) => {
+                let (laws, law_cases) = law.compiled.get::<D>().map_err(InputError::from)?;
+                law_cases
+                    .check(&format!("controller ({})", law.kind), n)
+                    .map_err(InputError::from)?;
+                let layout = laws
+                    .get(0)
+                    .diagnostic_layout()
+                    .into_iter()
+                    .map(|(name, width)| (name.to_string(), width))
+                    .collect();
+                let batch = Batch {
+                    plants: plants.clone(),
+                    laws: laws.clone(),
+                    references,
+                    disturbances,
+                    x0,
+                };
+                let out = detached(self.py, work, &cancel, || run(&batch, &cfg, &options))?
+                    .map_err(batch_error)?;
+                (out, layout)
             }
-        });
-        let out = match result? {
-            Ok(Ok(out)) => out,
-            Ok(Err(e)) => return Err(batch_error(e)),
-            Err(panic) => return Err(internal_error(panic)),
+            Control::Python { step, layout } => {
+                let width = layout.iter().map(|(_, w)| w).sum();
+                if width > MAX_DIAGNOSTIC_WIDTH {
+                    return Err(InputError::value(format!(
+                        "diagnostics take {width} values per case; at most {MAX_DIAGNOSTIC_WIDTH}"
+                    ))
+                    .into());
+                }
+                let batch = Batch {
+                    plants: plants.clone(),
+                    laws: (),
+                    references,
+                    disturbances,
+                    x0,
+                };
+                let mut law = PyLaw {
+                    step: step.clone().unbind(),
+                    width,
+                    n,
+                };
+                // always interruptible: every call of the law takes the GIL, so even a short
+                // horizon may run long
+                let result = detached(self.py, u128::MAX, &cancel, || {
+                    run_external(&batch, &cfg, &options, &mut law)
+                })?;
+                let out = match result {
+                    Ok(out) => out,
+                    Err(ExternalError::Batch(e)) => return Err(batch_error(e)),
+                    Err(ExternalError::Law(e)) => return Err(e),
+                };
+                (out, layout)
+            }
         };
         output::to_dict(
             self.py,
@@ -147,15 +282,17 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
     }
 }
 
-/// See `landing.simulate_batch` for the documentation. A panic anywhere below arrives as a
-/// `SimulationError` (see [`guard`]).
+/// See `landing.simulate_batch` for the documentation: `controller` is a compiled law, or a
+/// Python callable `step` (see [`PyLaw`]) with `diagnostic_layout`, the names and widths of its
+/// diagnostic signals. A panic anywhere below arrives as a `SimulationError` (see [`guard`]);
+/// an exception `step` raises stops the batch and is raised as it is.
 #[pyfunction]
-#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None))]
+#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None, diagnostic_layout=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_batch<'py>(
     py: Python<'py>,
     plant: &Plant,
-    controller: &Law,
+    controller: &Bound<'py, PyAny>,
     x0: PyReadonlyArray2<'py, f64>,
     t_final: f64,
     dt: f64,
@@ -171,8 +308,24 @@ pub fn simulate_batch<'py>(
     chatter_cutoff: Option<f64>,
     threads: Option<i64>,
     kernel: Option<&str>,
+    diagnostic_layout: Option<Vec<(String, usize)>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     guard(move || {
+        let law = controller.cast::<Law>().ok().map(|l| l.borrow());
+        let control = match (&law, diagnostic_layout) {
+            (Some(law), None) => Control::Builtin(law),
+            (None, Some(layout)) if controller.is_callable() => Control::Python {
+                step: controller,
+                layout,
+            },
+            _ => {
+                return Err(InputError::value(
+                    "controller must be a compiled law, or a callable with its diagnostic_layout"
+                        .to_string(),
+                )
+                .into());
+            }
+        };
         let integ = IntegratorKind::from_name(integrator).ok_or_else(|| {
             InputError::value(format!(
                 "integrator = {integrator:?} is not one of {:?}",
@@ -240,7 +393,7 @@ pub fn simulate_batch<'py>(
             .map_err(InputError::from)?;
         plant.plants.visit(Simulate {
             py,
-            law: controller,
+            control,
             reference: reference.as_deref(),
             disturbance: disturbance.as_deref(),
             x0: x0.as_slice()?,

@@ -80,6 +80,8 @@ class Table:
     family: ClassVar[str]
     parameters: ClassVar[Mapping[str, Parameter]]
     _compiler: ClassVar[Callable[..., Any]]
+    #: Whether the kind is one the core declares (a law written in Python is not).
+    _in_core: ClassVar[bool] = True
     #: Fields whose table key is spelt otherwise (a Python keyword cannot be a field name).
     _renamed: ClassVar[Mapping[str, str]] = MappingProxyType({})
     #: The compiled handle (a ``landing._core`` type), made once by :meth:`_compile`.
@@ -90,7 +92,7 @@ class Table:
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         kind = cls.__dict__.get("kind")
-        if isinstance(kind, str) and hasattr(cls, "family"):
+        if isinstance(kind, str) and hasattr(cls, "family") and cls.__dict__.get("_in_core", True):
             # a kind the core does not declare fails here, at import
             cls.parameters = schema(cls.family, kind)
 
@@ -130,6 +132,18 @@ class Table:
         object.__setattr__(self, "_core", type(self)._compiler(type(self).__name__, self._table()))
 
     def __post_init__(self) -> None:
+        self._compile()
+
+    # Pickling (a campaign's scenario sent to Dask workers) carries the parameters and compiles
+    # them again on arrival: the core's handles are not picklable, and need not be.
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        state.pop("_core", None)
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        for key, value in state.items():
+            object.__setattr__(self, key, value)
         self._compile()
 
     def replace(self, **changes: Any) -> Any:

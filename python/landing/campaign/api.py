@@ -40,7 +40,7 @@ def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int)
     else:
         instants = steps // record_every + 1 + (steps % record_every != 0)
     axes = scenario.plant.axes
-    widths = sum(w for _, w in scenario.controller._core.diagnostic_layout(axes))
+    widths = sum(w for _, w in scenario.controller.diagnostic_layout(axes))
     per_instant = scenario.plant.state_dim + axes + widths
     # final state plus about 40 metric columns, some per axis
     per_case = instants * per_instant + scenario.plant.state_dim + 40 * (axes + 1)

@@ -93,15 +93,19 @@ def check_client(client: Any) -> Any:
 
 def scenario_payload(scenario: Scenario) -> tuple[str, Any]:
     """What a task carries of the scenario: ``("toml", text)`` when the text reads back to the
-    same scenario, else ``("pickle", bytes)``."""
+    same scenario, else ``("pickle", bytes)`` (cloudpickle's, which plain pickle reads)."""
     text = scenario.to_toml()
     try:
         if files.scenario_from_dict(files.tomllib.loads(text)).to_toml() == text:
             return ("toml", text)
     except (files.tomllib.TOMLDecodeError, LandingError):
         pass
+    # cloudpickle (distributed's own dependency) carries what pickle cannot: a law written in
+    # Python as a function of the user's script, a lambda, a closure
+    import cloudpickle  # type: ignore[import-untyped]  # no stubs
+
     try:
-        return ("pickle", pickle.dumps(scenario, protocol=pickle.HIGHEST_PROTOCOL))
+        return ("pickle", cloudpickle.dumps(scenario, protocol=pickle.HIGHEST_PROTOCOL))
     except Exception as e:  # noqa: BLE001 - any pickling failure means the same thing here
         raise ParameterError(
             f"scenario = {scenario.name!r} cannot be sent to the cluster's workers: its TOML text does "

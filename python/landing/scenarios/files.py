@@ -33,6 +33,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import os
 import re
 import sys
 from collections.abc import Mapping
@@ -43,6 +44,7 @@ import numpy as np
 
 from landing import controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
 from landing._internal.table import Table
+from landing._internal.user_law import load_function, qualified_name
 from landing.errors import LandingError, ParameterError
 from landing.scenarios._scenario import Scenario
 from landing.simulation import RunOptions
@@ -114,7 +116,27 @@ def _encode_mamdani(m: fuzzy.Mamdani) -> dict[str, Any]:
     }
 
 
+def _encode_python_law(law: controllers.PythonLaw) -> dict[str, Any]:
+    """A law written in Python: its function by ``module:name`` and the hash of its source (so
+    that a store's provenance tells a changed function), and its settings."""
+    out: dict[str, Any] = {"kind": "PythonLaw", "function": qualified_name(law.function),
+                           "source_sha256": law.source_hash}
+    if law.name != qualified_name(law.function):
+        out["name"] = law.name
+    if law.params:
+        out["params"] = {k: _plain(v) for k, v in law.params.items()}
+    if callable(law.memory):
+        out["memory"] = qualified_name(law.memory)
+    elif law.memory is not None:
+        out["memory"] = {k: _plain(v) for k, v in law.memory.items()}
+    if law.diagnostics:
+        out["diagnostics"] = dict(law.diagnostic_kinds)
+    return out
+
+
 def _encode_table(obj: Table) -> dict[str, Any]:
+    if isinstance(obj, controllers.PythonLaw):
+        return _encode_python_law(obj)
     out: dict[str, Any] = {"kind": type(obj).__name__}
     for f in dataclasses.fields(obj):
         if not f.init:
@@ -278,9 +300,51 @@ def _decode_value(value: Any, source: str, path: str) -> Any:
     return value
 
 
+#: Other spellings of a kind: ``kind = "python"`` is :class:`~landing.controllers.PythonLaw`.
+ALIASES = {"python": "PythonLaw"}
+
+
+def _function(spec: Any, source: str, path: str) -> Any:
+    if not isinstance(spec, str):
+        raise FileError(f"{_where(source, path)} = {spec!r} must be a string 'package.module:name'")
+    folders = [os.getcwd()]
+    if os.path.isfile(source):
+        folders.insert(0, os.path.dirname(os.path.abspath(source)))
+    try:
+        return load_function(spec, folders)
+    except (ValueError, ImportError, AttributeError) as exc:
+        raise FileError(f"{_where(source, path)} = {spec!r}: {type(exc).__name__}: {exc}") from None
+
+
+def _decode_python_law(table: Mapping[str, Any], source: str, path: str) -> Table:
+    allowed = {"kind", "function", "source_sha256", "name", "params", "memory", "diagnostics"}
+    for key in table:
+        if key not in allowed:
+            raise FileError(f"{_where(source, path + '.' + key)}: unknown key (PythonLaw takes {sorted(allowed)})")
+    if "function" not in table:
+        raise FileError(f"{_where(source, path)}: missing key 'function' ('package.module:name')")
+    function = _function(table["function"], source, f"{path}.function")
+    memory = table.get("memory")
+    if isinstance(memory, str):
+        memory = _function(memory, source, f"{path}.memory")
+    try:
+        law = controllers.PythonLaw(function, params=dict(table.get("params", {})), memory=memory,
+                                    diagnostics=table.get("diagnostics", ()), name=table.get("name"))
+    except LandingError as exc:
+        raise FileError(f"{_where(source, path)}: {exc}") from None
+    expected = table.get("source_sha256")
+    if expected is not None and expected != law.source_hash:
+        raise FileError(f"{_where(source, path + '.source_sha256')}: the source of {table['function']} has changed "
+                        f"since the file was written (sha256 {law.source_hash}, the file records {expected})")
+    return law
+
+
 def _decode_table(table: Any, module: ModuleType, source: str, path: str) -> Table:
     if not isinstance(table, Mapping):
         raise FileError(f"{_where(source, path)} = {table!r} must be a table with a 'kind'")
+    kind = table.get("kind")
+    if module is controllers and isinstance(kind, str) and ALIASES.get(kind, kind) == "PythonLaw":
+        return _decode_python_law(table, source, path)
     cls = _kind(table, module, source, path)
     fields = {f.name for f in dataclasses.fields(cls) if f.init}
     kwargs = {}

@@ -31,7 +31,8 @@ __all__ = ["tune"]
 def _parse_gains(gains: Mapping[str, Any], law: controllers.Controller) -> tuple[GainSpec, ...]:
     if not isinstance(gains, Mapping) or not gains:
         raise ParameterError(f"gains = {gains!r} must be a non-empty dict {{name: (low, high)}}")
-    names = {f.name for f in dataclasses.fields(law)}
+    # a law written in Python has its parameters in `params`; a built-in law's are its fields
+    names = set(law.params) if isinstance(law, controllers.PythonLaw) else {f.name for f in dataclasses.fields(law)}
     out = []
     for name, spec in gains.items():
         if name not in names:

@@ -98,7 +98,7 @@ pub trait PlantModel<const D: usize>:
     Plant<f64, D> + Validate + Clone + Send + Sync + 'static
 {
     /// The plant over lanes of cases.
-    type At<R: Real>: Plant<R, D> + Gather<R, Case = Self>;
+    type At<R: Real>: Plant<R, D> + Gather<R, Case = Self> + 'static;
 
     /// How wide its blocks are at each instruction-set level ([`crate::kernel::Wide`] or
     /// [`crate::kernel::Narrow`]): a performance choice, measured; the bits do not depend on

@@ -1,0 +1,139 @@
+"""A law written in Python against the same law built in (BENCHMARKS.md, "Python laws").
+
+The law: seed 001's fixed-time multiple-sliding-surface guidance, eq. 25 as printed, with the
+gains of W1 (beta1 0.8, beta2 0.4, q1 0.95, q2 1.05, alpha1 0.9, alpha2 0.5, gamma1 0.9, gamma2
+1.1), written in numpy over the cases as ``landing.controllers.PythonLaw``, on the Mars lander
+with W1's plant (drag, mass depletion, 50 kN per axis, RK4), no disturbance, 2 s at dt = 1 ms,
+final states only. Before any time is taken the Python law's final states must agree with the
+built-in law's to a relative 1e-9.
+
+Two tables:
+
+1. The same campaign, built-in against Python, on ``--cases`` cases (10^4 by default) at each
+   ``--threads``: the ratio is the cost of writing the law in Python.
+2. The per-call overhead of a Python law: a law that returns zeros (``np.zeros_like(e)``), so
+   that what is timed is the engine's round trip (gathering the inputs of every case, the call
+   into Python, the checks of the return, handing the commands back), per control instant,
+   from 10^2 to 10^5 cases, against the built-in open-loop law on the same cases.
+
+The timed runs go round-robin over the rows; the tables give the median of ``--repeat`` runs.
+
+    python benches/python_law.py [--cases 10000] [--repeat 5] [--threads 1 2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import platform
+import statistics
+import time
+
+import numpy as np
+
+import landing
+from landing import controllers as C
+from landing import plants as P
+
+GAINS = dict(beta1=0.8, beta2=0.4, q1=0.95, q2=1.05, alpha1=0.9, alpha2=0.5, gamma1=0.9, gamma2=1.1)
+NOMINAL = np.array([-2000.0, 1000.0, 1500.0, 100.0, -15.0, -75.0, 1905.0])
+
+
+def mss_printed(t, e, de, ref, drift, inertia, params, memory):
+    """Eq. 21-25 as printed, over the cases, the powers of |s1| shared as the core shares them."""
+    b1, b2, q1, q2 = params["beta1"], params["beta2"], params["q1"], params["q2"]
+    a1, a2, g1, g2 = params["alpha1"], params["alpha2"], params["gamma1"], params["gamma2"]
+    abs1 = np.abs(e)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log1 = np.log(abs1)
+        p1, p2 = np.exp(q1 * log1), np.exp(q2 * log1)
+        sign1 = np.sign(e)
+        s2 = de + sign1 * (b1 * p1 + b2 * p2)
+        inv = 1.0 / abs1
+        # 2 q1 - 1 = 0.9 >= 0: no singularity guard is needed at these gains
+        cancel = np.where(abs1 > 0, sign1 * ((b1 * b1 * q1) * (p1 * p1 * inv)
+                                             + (p2 * inv) * ((b2 * b2 * q2) * p2 + (b1 * b2 * (q1 + q2)) * p1)), 0.0)
+        log2 = np.log(np.abs(s2))
+        reach = -np.sign(s2) * (a1 * np.exp(g1 * log2) + a2 * np.exp(g2 * log2))
+    return ref.acceleration - drift + (cancel + reach)
+
+
+def zeros(t, e, de, ref, drift, inertia, params, memory):
+    return np.zeros_like(e)
+
+
+def dispersed(n: int) -> np.ndarray:
+    rng = np.random.default_rng(42)
+    x = np.tile(NOMINAL, (n, 1))
+    x[:, :3] += rng.normal(0.0, 50.0, (n, 3))
+    x[:, 3:6] += rng.normal(0.0, 2.0, (n, 3))
+    return x
+
+
+def timed(run) -> float:
+    start = time.perf_counter()
+    run()
+    return time.perf_counter() - start
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", type=int, default=10_000)
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--t-final", type=float, default=2.0)
+    args = ap.parse_args()
+    plant = P.MarsLander(thrust_limit=50_000.0)
+    dt, t_final = 1e-3, args.t_final
+    steps = round(t_final / dt)
+    builtin = C.FixedTimeMSS(**GAINS)
+    python = C.PythonLaw(mss_printed, params=GAINS)
+    x0 = dispersed(args.cases)
+    kw = dict(t_final=t_final, dt=dt, record_every=0)
+
+    # accuracy first
+    a = landing.simulate_batch(plant, builtin, x0, **kw)
+    b = landing.simulate_batch(plant, python, x0, **kw)
+    err = np.max(np.abs(b.final_state - a.final_state) / np.maximum(np.abs(a.final_state), 1e-300))
+    assert err < 1e-9, f"the Python law's final states differ from the built-in law's by {err:.3g}"
+
+    print(f"# {datetime.date.today()}  {platform.processor() or platform.machine()}  "
+          f"{os.cpu_count()} cores  landing {landing.__version__}  numpy {np.__version__}")
+    print(f"# accuracy: max relative difference of the final states {err:.2g}")
+    print(f"\n1. fixed-time MSS, {args.cases} Mars cases, {t_final} s at dt = {dt} s ({steps} control instants); "
+          f"median of {args.repeat}, ns per case-step")
+    rows = {}
+    for threads in args.threads:
+        rows[f"built-in, {threads} thread(s)"] = lambda t=threads: landing.simulate_batch(plant, builtin, x0,
+                                                                                           threads=t, **kw)
+        rows[f"PythonLaw, {threads} thread(s)"] = lambda t=threads: landing.simulate_batch(plant, python, x0,
+                                                                                            threads=t, **kw)
+    times = {name: [] for name in rows}
+    for r in range(args.repeat):
+        names = list(rows)
+        for name in names[r % len(names):] + names[:r % len(names)]:
+            times[name].append(timed(rows[name]))
+    per = {name: statistics.median(v) / (args.cases * steps) * 1e9 for name, v in times.items()}
+    for threads in args.threads:
+        bi, py = per[f"built-in, {threads} thread(s)"], per[f"PythonLaw, {threads} thread(s)"]
+        print(f"   {threads} thread(s): built-in {bi:8.1f}   PythonLaw {py:8.1f}   ratio {py / bi:5.2f}")
+
+    print(f"\n2. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
+          f"{dt} s, {max(args.threads)} thread(s); median of {args.repeat}, microseconds per control instant")
+    zero = C.PythonLaw(zeros)
+    for n in (100, 1_000, 10_000, 100_000):
+        x = dispersed(n)
+        rows = {"open": lambda x=x: landing.simulate_batch(plant, C.OpenLoop(), x, threads=max(args.threads), **kw),
+                "python": lambda x=x: landing.simulate_batch(plant, zero, x, threads=max(args.threads), **kw)}
+        t = {k: [] for k in rows}
+        for r in range(args.repeat):
+            for k in (["open", "python"] if r % 2 == 0 else ["python", "open"]):
+                t[k].append(timed(rows[k]))
+        o, p = (statistics.median(t[k]) / (steps + 1) * 1e6 for k in ("open", "python"))
+        print(f"   {n:>7} cases: OpenLoop {o:9.1f}   PythonLaw {p:9.1f}   overhead {p - o:9.1f} "
+              f"({(p - o) / n * 1e3:6.1f} ns per case)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,407 @@
+//! A batch under a law computed outside the core, for every case at once.
+//!
+//! A built-in law runs inside each block's lanes, and a block runs through all its periods
+//! ([`crate::rollout::rollout_block`]). A law written in Python needs the other order: it is
+//! called once per control instant on the law inputs of every case of the batch, holding the
+//! interpreter, while the plant's periods between two calls run in parallel without it. So
+//! every block is started and kept ([`crate::rollout::Block`]: the plant's state, its
+//! integrator, the metric accumulators and the recording cursor), and each control instant is
+//! one call of the law on the gathered inputs, then one period of every block, in parallel,
+//! with the commands the call returned. The blocks' periods and metrics are the same code as a
+//! built-in law's, so a law computed outside gives the bits that law built in would.
+//!
+//! The law's memory (integrators, adaptive terms) is the law's own business, kept outside
+//! between calls; the core sees commands and diagnostics only.
+
+use std::any::Any;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use nalgebra::SVector;
+use rayon::prelude::*;
+
+use crate::batch::{
+    Batch, BatchError, BatchOutput, BlockCases, Outputs, RunOptions, check_cases, shared_table,
+};
+use crate::control::LawInput;
+use crate::disturbance::Disturbance;
+use crate::kernel::{self, LawCalls, Level, LevelJob};
+use crate::lanes::Real;
+use crate::plant::{Plant, PlantModel};
+use crate::reference::Reference;
+use crate::rollout::{Block, BlockBuffers, MAX_DIAGNOSTIC_WIDTH, Setting, SimConfig, StageTable};
+
+/// The law inputs of every case of a batch at one control instant: `n x D` row-major arrays,
+/// case after case (the quantities of [`LawInput`]). A case that has stopped keeps its last
+/// inputs; its commands are ignored.
+#[derive(Clone, Debug)]
+pub struct Inputs<const D: usize> {
+    /// The control instant, s.
+    pub t: f64,
+    /// Index of the control instant, `t = k dt` (`k = steps` at t_final, whose command is
+    /// recorded and checked but not applied).
+    pub k: u64,
+    pub e: Vec<f64>,
+    pub de: Vec<f64>,
+    /// The reference's position, velocity and acceleration.
+    pub position: Vec<f64>,
+    pub velocity: Vec<f64>,
+    pub acceleration: Vec<f64>,
+    pub drift: Vec<f64>,
+    pub inertia: Vec<f64>,
+}
+
+impl<const D: usize> Inputs<D> {
+    fn new(n: usize) -> Self {
+        let z = || vec![0.0; n * D];
+        Self {
+            t: 0.0,
+            k: 0,
+            e: z(),
+            de: z(),
+            position: z(),
+            velocity: z(),
+            acceleration: z(),
+            drift: z(),
+            inertia: z(),
+        }
+    }
+
+    /// Disjoint views of `w` cases each, one per block.
+    fn rows(&mut self, w: usize) -> Vec<InputRows<'_>> {
+        fn split(v: &mut [f64], len: usize) -> std::slice::ChunksMut<'_, f64> {
+            v.chunks_mut(len)
+        }
+        let len = w * D;
+        let mut de = split(&mut self.de, len);
+        let mut position = split(&mut self.position, len);
+        let mut velocity = split(&mut self.velocity, len);
+        let mut acceleration = split(&mut self.acceleration, len);
+        let mut drift = split(&mut self.drift, len);
+        let mut inertia = split(&mut self.inertia, len);
+        // every field has as many chunks as `e`
+        let missing = "the input fields have one length";
+        split(&mut self.e, len)
+            .map(|e| InputRows {
+                e,
+                de: de.next().expect(missing),
+                position: position.next().expect(missing),
+                velocity: velocity.next().expect(missing),
+                acceleration: acceleration.next().expect(missing),
+                drift: drift.next().expect(missing),
+                inertia: inertia.next().expect(missing),
+            })
+            .collect()
+    }
+}
+
+/// One block's rows of [`Inputs`].
+struct InputRows<'a> {
+    e: &'a mut [f64],
+    de: &'a mut [f64],
+    position: &'a mut [f64],
+    velocity: &'a mut [f64],
+    acceleration: &'a mut [f64],
+    drift: &'a mut [f64],
+    inertia: &'a mut [f64],
+}
+
+impl InputRows<'_> {
+    /// Writes the first `used` lanes of `input`.
+    fn write<const D: usize, R: Real>(&mut self, input: &LawInput<D, R>, used: usize) {
+        for i in 0..used {
+            for c in 0..D {
+                let at = i * D + c;
+                self.e[at] = input.e[c].lane(i);
+                self.de[at] = input.de[c].lane(i);
+                self.position[at] = input.reference.position[c].lane(i);
+                self.velocity[at] = input.reference.velocity[c].lane(i);
+                self.acceleration[at] = input.reference.acceleration[c].lane(i);
+                self.drift[at] = input.drift[c].lane(i);
+                self.inertia[at] = input.inertia[c].lane(i);
+            }
+        }
+    }
+}
+
+/// A law computed outside the core: once per control instant, for every case of the batch.
+pub trait ExternalLaw<const D: usize> {
+    /// What the law's failure carries (the bindings: the Python exception).
+    type Error;
+
+    /// Diagnostic values per case and instant (at most [`MAX_DIAGNOSTIC_WIDTH`]).
+    fn diagnostic_width(&self) -> usize;
+
+    /// Writes the commanded generalized accelerations of every case at `inputs.t` into
+    /// `command` (`n x D`) and its diagnostics into `diagnostics` (`n x width`).
+    fn command(
+        &mut self,
+        inputs: &Inputs<D>,
+        command: &mut [f64],
+        diagnostics: &mut [f64],
+    ) -> Result<(), Self::Error>;
+}
+
+/// Why a batch under an external law stopped.
+#[derive(Debug)]
+pub enum ExternalError<E> {
+    Batch(BatchError),
+    /// The law failed; the batch's output is dropped.
+    Law(E),
+}
+
+impl<E> From<BatchError> for ExternalError<E> {
+    fn from(e: BatchError) -> Self {
+        Self::Batch(e)
+    }
+}
+
+/// A block kept between control periods, with its gathered plant, reference and disturbance,
+/// typed by the level's lane type (held as `dyn Any` by the driver, which knows only the
+/// level).
+struct Kept<const D: usize, R: Real, P: Plant<R, D>> {
+    plant: P,
+    reference: Reference<D, R>,
+    disturbance: Disturbance<D, R>,
+    block: Block<D, R, P>,
+}
+
+type Held = Box<dyn Any + Send>;
+
+/// What every block job reads.
+struct Common<'a, const D: usize, P: PlantModel<D>> {
+    batch: &'a Batch<D, P, ()>,
+    cfg: &'a SimConfig,
+    table: Option<&'a StageTable<D>>,
+    nd: usize,
+}
+
+/// Starts the block of cases `first .. first + used` and writes its inputs at t = 0.
+struct Start<'a, 'b, const D: usize, P: PlantModel<D>> {
+    common: &'a Common<'a, D, P>,
+    first: usize,
+    used: usize,
+    rows: InputRows<'b>,
+}
+
+impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Start<'_, '_, D, P> {
+    type Blocks = P::Blocks;
+    type Output = Held;
+
+    #[inline(always)]
+    fn run<R: Real, K: LawCalls<D, R>>(mut self) -> Held {
+        let co = self.common;
+        let BlockCases {
+            plant,
+            reference,
+            disturbance,
+            x0,
+            cases,
+            ..
+        } = BlockCases::<D, R, P>::gather(co.batch, co.cfg, self.first, self.used);
+        let set = Setting {
+            plant: &plant,
+            reference: &reference,
+            disturbance: &disturbance,
+            table: co.table,
+            cfg: co.cfg,
+        };
+        let block = Block::start(&set, &x0, &cases, self.used);
+        self.rows.write(block.input(), self.used);
+        Box::new(Kept {
+            plant,
+            reference,
+            disturbance,
+            block,
+        })
+    }
+}
+
+/// One block's control period `k` under the commands the law returned; at `k = steps`, or once
+/// every lane has stopped, the block's finish.
+struct Step<'a, 'b, 'c, const D: usize, P: PlantModel<D>> {
+    common: &'a Common<'a, D, P>,
+    k: u64,
+    held: &'b mut Held,
+    used: usize,
+    command: &'b [f64],
+    diagnostics: &'b [f64],
+    rows: InputRows<'b>,
+    out: &'b mut BlockBuffers<'c, D>,
+}
+
+/// Lanes of the block's rows `values` (`used x width`; the padding lanes repeat the last case).
+#[inline(always)]
+fn lanes<R: Real>(values: &[f64], used: usize, width: usize, c: usize) -> R {
+    R::from_fn(|i| values[i.min(used - 1) * width + c])
+}
+
+impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
+    type Blocks = P::Blocks;
+    /// Whether the block goes on (false once it is finished).
+    type Output = bool;
+
+    #[inline(always)]
+    fn run<R: Real, K: LawCalls<D, R>>(mut self) -> bool {
+        let co = self.common;
+        let kept = self
+            .held
+            .downcast_mut::<Kept<D, R, P::At<R>>>()
+            .expect("a block is stepped at the level it was started at");
+        let set = Setting {
+            plant: &kept.plant,
+            reference: &kept.reference,
+            disturbance: &kept.disturbance,
+            table: co.table,
+            cfg: co.cfg,
+        };
+        let (used, nd) = (self.used, co.nd);
+        let a: SVector<R, D> = SVector::from_fn(|c, _| lanes(self.command, used, D, c));
+        let mut diag = [R::zero(); MAX_DIAGNOSTIC_WIDTH];
+        for (c, d) in diag[..nd].iter_mut().enumerate() {
+            *d = lanes(self.diagnostics, used, nd, c);
+        }
+        if self.k == co.cfg.steps {
+            kept.block.finish(&set, Some((&a, &diag[..nd])), self.out);
+            return false;
+        }
+        if !kept
+            .block
+            .period::<K>(&set, self.k, &a, &diag[..nd], self.out)
+        {
+            kept.block.finish(&set, None, self.out);
+            return false;
+        }
+        self.rows.write(kept.block.input(), used);
+        true
+    }
+}
+
+/// Runs `f` on `pool`, or on the current one.
+fn on_pool<T: Send>(pool: Option<&rayon::ThreadPool>, f: impl FnOnce() -> T + Send) -> T {
+    match pool {
+        Some(p) => p.install(f),
+        None => f(),
+    }
+}
+
+/// Runs every case of the batch under `law`, which is called on the calling thread once per
+/// control instant (`steps + 1` times, the last at t_final, while a case still runs) with
+/// the inputs of every case; between two calls every block's period runs on the rayon pool.
+/// Cancelled, at the next instant, when `options.cancel` is raised; stopped when the law
+/// fails. The output and its bits are those [`crate::batch::run`] gives for the same law
+/// built in.
+pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
+    batch: &Batch<D, P, ()>,
+    cfg: &SimConfig,
+    options: &RunOptions<'_>,
+    law: &mut X,
+) -> Result<BatchOutput<D>, ExternalError<X::Error>> {
+    check_cases(batch, &[])?;
+    let level = Level::resolve(options.level).map_err(BatchError::from)?;
+    let pool = match options.threads {
+        None => None,
+        Some(k) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(k)
+                .build()
+                .map_err(|e| BatchError::ThreadPool(e.to_string()))?,
+        ),
+    };
+    let pool = pool.as_ref();
+    let never = AtomicBool::new(false);
+    let cancel = options.cancel.unwrap_or(&never);
+
+    let n = batch.x0.len();
+    let nx = P::STATE_DIM;
+    let nd = law.diagnostic_width();
+    assert!(
+        nd <= MAX_DIAGNOSTIC_WIDTH,
+        "a law records {nd} diagnostics, more than {MAX_DIAGNOSTIC_WIDTH}"
+    );
+    let nr = cfg.n_records();
+    let mut outputs = Outputs::<D>::allocate(n, nr, nx, nd)?;
+    if n == 0 {
+        return Ok(outputs.finish(cfg, nx, nd, level));
+    }
+    let table = shared_table(batch, cfg);
+    let common = Common {
+        batch,
+        cfg,
+        table: table.as_ref(),
+        nd,
+    };
+    let w = level.lanes::<P::Blocks>();
+    let used = |b: usize| w.min(n - b * w);
+    let mut inputs = Inputs::<D>::new(n);
+    let mut command = vec![0.0; n * D];
+    let mut diagnostics = vec![0.0; n * nd];
+
+    let jobs: Vec<_> = inputs.rows(w).into_iter().enumerate().collect();
+    let common_ref = &common;
+    let mut held: Vec<Held> = on_pool(pool, || {
+        jobs.into_par_iter()
+            .with_max_len(1)
+            .map(|(b, rows)| {
+                let job = Start {
+                    common: common_ref,
+                    first: b * w,
+                    used: used(b),
+                    rows,
+                };
+                kernel::dispatch(level, job)
+            })
+            .collect()
+    });
+    let mut buffers = outputs.blocks(w, nr, nx, nd);
+    let mut running = vec![true; held.len()];
+    let mut k = 0;
+    while k <= cfg.steps && running.contains(&true) {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(BatchError::Cancelled.into());
+        }
+        inputs.t = k as f64 * cfg.dt;
+        inputs.k = k;
+        law.command(&inputs, &mut command, &mut diagnostics)
+            .map_err(ExternalError::Law)?;
+        let blocks = held.len();
+        let jobs: Vec<_> = held
+            .iter_mut()
+            .zip(buffers.iter_mut())
+            .zip(command.chunks(w * D))
+            .zip(chunks_or_empty(&diagnostics, w * nd, blocks))
+            .zip(inputs.rows(w))
+            .zip(running.iter_mut())
+            .enumerate()
+            .filter(|(_, (_, running))| **running)
+            .collect();
+        on_pool(pool, || {
+            jobs.into_par_iter().with_max_len(1).for_each(
+                |(b, (((((held, out), command), diagnostics), rows), running))| {
+                    let job = Step {
+                        common: common_ref,
+                        k,
+                        held,
+                        used: used(b),
+                        command,
+                        diagnostics,
+                        rows,
+                        out,
+                    };
+                    *running = kernel::dispatch(level, job);
+                },
+            )
+        });
+        k += 1;
+    }
+    drop(buffers);
+    Ok(outputs.finish(cfg, nx, nd, level))
+}
+
+/// `len`-sized chunks of `values`, or `n` empty slices when `len` is 0.
+fn chunks_or_empty(values: &[f64], len: usize, n: usize) -> Vec<&[f64]> {
+    if len == 0 {
+        vec![&[][..]; n]
+    } else {
+        values.chunks(len).collect()
+    }
+}

@@ -1,0 +1,245 @@
+//! A law computed outside the core ([`run_external`]) against the same law built in: a second
+//! driver of the same blocks must give the same bits, whatever the threads or the level.
+
+mod common;
+
+use common::*;
+use landing_core::batch::{Batch, BatchOutput, PerCase, RunOptions, run};
+use landing_core::control::{
+    AnyLaw, AnyMemory, FixedTimeMss, LawInput, MssVariant, SuperTwisting, SuperTwistingVariant,
+};
+use landing_core::disturbance::Disturbance;
+use landing_core::external::{ExternalError, ExternalLaw, Inputs, run_external};
+use landing_core::metrics::Divergence;
+use landing_core::plant::MarsLander;
+use landing_core::reference::{RefPoint, Reference};
+use landing_core::workloads::{mars_dispersed, mars_storm};
+use landing_core::{Level, SimConfig};
+use nalgebra::{SVector, Vector3};
+
+/// The built-in laws evaluated case by case with `f64` numbers, as an external law: what a
+/// user's Python function does for a block of cases, written with the core's own laws.
+struct CaseByCase {
+    laws: Vec<AnyLaw<3>>,
+    memory: Vec<AnyMemory<3, f64>>,
+    dt: f64,
+    calls: Vec<f64>,
+    fail_at: Option<u64>,
+}
+
+impl CaseByCase {
+    fn new(laws: Vec<AnyLaw<3>>, dt: f64) -> Self {
+        Self {
+            laws,
+            memory: Vec::new(),
+            dt,
+            calls: Vec::new(),
+            fail_at: None,
+        }
+    }
+}
+
+fn row(v: &[f64], i: usize) -> SVector<f64, 3> {
+    SVector::from_column_slice(&v[3 * i..3 * i + 3])
+}
+
+impl ExternalLaw<3> for CaseByCase {
+    type Error = String;
+
+    fn diagnostic_width(&self) -> usize {
+        self.laws[0].diagnostic_width()
+    }
+
+    fn command(
+        &mut self,
+        inputs: &Inputs<3>,
+        command: &mut [f64],
+        diagnostics: &mut [f64],
+    ) -> Result<(), String> {
+        if self.fail_at == Some(inputs.k) {
+            return Err(format!("failed at t = {}", inputs.t));
+        }
+        self.calls.push(inputs.t);
+        let n = self.laws.len();
+        let nd = self.diagnostic_width();
+        for i in 0..n {
+            let input = LawInput {
+                t: inputs.t,
+                dt: self.dt,
+                e: row(&inputs.e, i),
+                de: row(&inputs.de, i),
+                reference: RefPoint {
+                    position: row(&inputs.position, i),
+                    velocity: row(&inputs.velocity, i),
+                    acceleration: row(&inputs.acceleration, i),
+                },
+                drift: row(&inputs.drift, i),
+                inertia: row(&inputs.inertia, i),
+            };
+            if inputs.k == 0 {
+                self.memory.push(self.laws[i].start(&input));
+            }
+            let law = &self.laws[i];
+            let a = law.command(&self.memory[i], &input);
+            command[3 * i..3 * i + 3].copy_from_slice(a.as_slice());
+            law.diagnostics(
+                &self.memory[i],
+                &input,
+                &mut diagnostics[i * nd..(i + 1) * nd],
+            );
+            law.advance(&mut self.memory[i], &input);
+        }
+        Ok(())
+    }
+}
+
+fn fingerprint(out: &BatchOutput<3>) -> (Vec<u64>, Vec<u64>, Vec<u64>, Vec<u64>, String) {
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    (
+        bits(&out.final_state),
+        bits(&out.states),
+        bits(&out.controls),
+        bits(&out.diagnostics),
+        format!("{:?}", out.metrics),
+    )
+}
+
+fn plant() -> MarsLander {
+    MarsLander {
+        thrust_limit: Vector3::repeat(50_000.0),
+        ..Default::default()
+    }
+}
+
+fn builtin(
+    laws: &[AnyLaw<3>],
+    x0: &[MarsState],
+    disturbance: &Disturbance<3>,
+) -> Batch<3, MarsLander> {
+    Batch {
+        plants: PerCase::shared(plant()),
+        laws: PerCase::from_vec(laws.to_vec()),
+        references: PerCase::shared(Reference::default()),
+        disturbances: PerCase::shared(*disturbance),
+        x0: x0.to_vec(),
+    }
+}
+
+fn outside(x0: &[MarsState], disturbance: &Disturbance<3>) -> Batch<3, MarsLander, ()> {
+    Batch {
+        plants: PerCase::shared(plant()),
+        laws: (),
+        references: PerCase::shared(Reference::default()),
+        disturbances: PerCase::shared(*disturbance),
+        x0: x0.to_vec(),
+    }
+}
+
+fn at(threads: usize, level: Level) -> RunOptions<'static> {
+    RunOptions {
+        threads: Some(threads),
+        level: Some(level),
+        cancel: None,
+    }
+}
+
+/// 21 dispersed cases (one with an absurd speed, which diverges), per-case gains.
+fn cases<F: Fn(usize) -> AnyLaw<3>>(law: F) -> (Vec<AnyLaw<3>>, Vec<MarsState>) {
+    let mut x0 = mars_dispersed(21, 42);
+    x0[3][3] = 1e200;
+    ((0..21).map(law).collect(), x0)
+}
+
+#[test]
+fn an_external_law_gives_the_bits_of_the_same_law_built_in() {
+    let noisy = mars_storm().with_noise(Vector3::repeat(0.5));
+    let mss = |i: usize| -> AnyLaw<3> {
+        FixedTimeMss {
+            alpha1: Vector3::repeat(0.5 + 0.05 * i as f64),
+            ..reconstructed_gains(MssVariant::Printed)
+        }
+        .into()
+    };
+    // a law with memory: the integrator of the super-twisting law
+    let twisting = |i: usize| -> AnyLaw<3> {
+        SuperTwisting {
+            b1: Vector3::repeat(2.0 + 0.1 * i as f64),
+            b2: Vector3::repeat(1.0),
+            c: Vector3::repeat(0.4),
+            variant: SuperTwistingVariant::Standard,
+            s_floor: 1e-6,
+        }
+        .into()
+    };
+    let cfg = SimConfig::new(0.5, 0.001, 2, 37, 7).unwrap();
+    for (name, make) in [
+        ("fixed-time MSS", &mss as &dyn Fn(usize) -> AnyLaw<3>),
+        ("super-twisting", &twisting),
+    ] {
+        let (laws, x0) = cases(make);
+        let reference = run(&builtin(&laws, &x0, &noisy), &cfg, &at(2, Level::Baseline)).unwrap();
+        assert!(
+            reference.metrics[3].diverged.is_some(),
+            "the absurd case diverges"
+        );
+        for level in Level::supported() {
+            for threads in [1, 2] {
+                let mut law = CaseByCase::new(laws.clone(), cfg.dt);
+                let out = run_external(&outside(&x0, &noisy), &cfg, &at(threads, level), &mut law)
+                    .unwrap_or_else(|_| panic!("{name} runs"));
+                assert_eq!(out.level, level);
+                assert_eq!(
+                    fingerprint(&out),
+                    fingerprint(&reference),
+                    "{name} at {level:?} on {threads} threads"
+                );
+                // once per control instant, the last at t_final
+                assert_eq!(law.calls.len() as u64, cfg.steps + 1);
+                assert_eq!(law.calls.last(), Some(&cfg.t_final()));
+            }
+        }
+    }
+}
+
+#[test]
+fn a_batch_whose_cases_all_stop_ends_the_calls() {
+    let (laws, mut x0) = cases(|_| reconstructed_gains(MssVariant::Printed).into());
+    for x in &mut x0 {
+        x[3] = 1e200;
+    }
+    let cfg = SimConfig::new(0.5, 0.001, 1, 1, 0).unwrap();
+    let none = Disturbance::none();
+    let reference = run(&builtin(&laws, &x0, &none), &cfg, &at(2, Level::best())).unwrap();
+    let mut law = CaseByCase::new(laws, cfg.dt);
+    let out = run_external(&outside(&x0, &none), &cfg, &at(2, Level::best()), &mut law).unwrap();
+    assert_eq!(fingerprint(&out), fingerprint(&reference));
+    assert!(out.metrics.iter().all(|m| m.diverged.map(|d| d.reason)
+        == Some(Divergence::NonFiniteState)
+        || m.diverged.map(|d| d.reason) == Some(Divergence::OutOfDomain)));
+    assert!(
+        law.calls.len() < 10,
+        "no call after every case stopped: {}",
+        law.calls.len()
+    );
+}
+
+#[test]
+fn a_failing_law_stops_the_batch_with_its_error() {
+    let (laws, x0) = cases(|_| reconstructed_gains(MssVariant::Printed).into());
+    let cfg = SimConfig::new(0.5, 0.001, 1, 1, 0).unwrap();
+    let mut law = CaseByCase::new(laws, cfg.dt);
+    law.fail_at = Some(17);
+    match run_external(
+        &outside(&x0, &Disturbance::none()),
+        &cfg,
+        &RunOptions::default(),
+        &mut law,
+    ) {
+        Err(ExternalError::Law(e)) => assert_eq!(e, "failed at t = 0.017"),
+        other => panic!(
+            "expected the law's error, got {:?}",
+            other.map(|o| o.n_cases)
+        ),
+    }
+    assert_eq!(law.calls.len(), 17);
+}

@@ -1,0 +1,218 @@
+"""A control law written in Python, run by the core once per control instant.
+
+The core calls :class:`LawStep` with the law inputs of every case of the batch at one instant
+(numpy arrays); it calls the user's function with them, its parameters and its memory, checks
+what the function returns and hands the core the commands and diagnostics as float64 arrays.
+Everything the user can get wrong is caught here, with the function's name, the instant and the
+cases in the message; the core checks only that the shapes it is given are the ones it asked
+for.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import inspect
+import sys
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, NamedTuple, Optional
+
+import numpy as np
+
+from landing.errors import UserFunctionError
+
+__all__ = ["ReferencePoint", "LawStep", "qualified_name", "source_hash", "per_axis", "load_function"]
+
+
+class ReferencePoint(NamedTuple):
+    """The reference at a control instant, each (n, D): what a law tracks."""
+
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+
+def qualified_name(function: Callable[..., Any]) -> str:
+    """``module:qualname`` of a function (of the function a jitted wrapper holds), the way
+    scenario files name one."""
+    inner = getattr(function, "py_func", None) or getattr(function, "__wrapped__", None) or function
+    module = getattr(inner, "__module__", None) or type(inner).__module__
+    name = getattr(inner, "__qualname__", None) or type(inner).__qualname__
+    return f"{module}:{name}"
+
+
+def source_hash(function: Callable[..., Any]) -> str:
+    """SHA-256 of the function's source (of its byte code when the source cannot be read): a
+    changed function gives another hash."""
+    inner = getattr(function, "py_func", None) or getattr(function, "__wrapped__", None) or function
+    try:
+        text = inspect.getsource(inner).encode()
+    except (OSError, TypeError):
+        code = getattr(inner, "__code__", None)
+        text = code.co_code + repr(code.co_consts).encode() if code is not None else repr(inner).encode()
+    return hashlib.sha256(text).hexdigest()
+
+
+def load_function(spec: str, search: Sequence[str] = ()) -> Callable[..., Any]:
+    """The function ``"package.module:name"`` names (``name`` may be dotted: a class's method).
+    The module is imported as usual, else from the folders ``search`` (a scenario file's own
+    folder, the working directory). ValueError, ImportError or AttributeError say why not."""
+    module_name, sep, name = spec.partition(":")
+    if not sep or not module_name or not name or "<" in name:
+        raise ValueError(f"{spec!r} does not name an importable function; write 'package.module:name' "
+                         "(a function at module level, not a lambda or a nested function)")
+    try:
+        module = importlib.import_module(module_name)
+    except ModuleNotFoundError:
+        extra = [p for p in search if p not in sys.path]
+        sys.path[:0] = extra
+        try:
+            module = importlib.import_module(module_name)
+        finally:
+            for p in extra:
+                sys.path.remove(p)
+    out: Any = module
+    for part in name.split("."):
+        out = getattr(out, part)
+    if not callable(out):
+        raise ValueError(f"{spec!r} names a {type(out).__name__}, not a function")
+    return out
+
+
+def per_axis(owner: str, name: str, given: Any, n: int, axes: int) -> np.ndarray:
+    """A parameter given as a scalar, ``(D,)``, or per case ``(N,)``, ``(N, 1)``, ``(N, D)``, as
+    the (n, D) array the function sees (a 1-d value of length D is per axis; give (N, 1) for a
+    value per case when N equals D)."""
+    value = np.asarray(given, dtype=np.float64)
+    shape = value.shape
+    if value.ndim == 0 or shape == (axes,):
+        out = np.broadcast_to(value, (n, axes))
+    elif value.ndim == 1 and shape[0] == n:
+        out = np.broadcast_to(value[:, None], (n, axes))
+    elif value.ndim == 2 and shape[0] == n and shape[1] in (1, axes):
+        out = np.broadcast_to(value, (n, axes))
+    else:
+        raise UserFunctionError(
+            f"{owner}: params[{name!r}] has shape {shape}; with {n} cases and {axes} axes it takes a scalar, "
+            f"({axes},), ({n},), ({n}, 1) or ({n}, {axes})"
+        )
+    out = np.array(out, dtype=np.float64)
+    out.setflags(write=False)
+    return out
+
+
+def _floats(what: str, value: Any, shape: tuple[int, ...], where: str) -> np.ndarray:
+    """``value`` as a float64 array of ``shape``, or an error saying what was expected."""
+    if not hasattr(value, "__array__") and not isinstance(value, np.ndarray):
+        raise UserFunctionError(
+            f"{where} returned {what} of type {type(value).__name__}; expected an array of shape {shape}")
+    arr = np.asarray(value)
+    if arr.dtype.kind != "f":
+        raise UserFunctionError(
+            f"{where} returned {what} of dtype {arr.dtype}; expected floating-point values of shape {shape}")
+    if arr.shape != shape:
+        raise UserFunctionError(f"{where} returned {what} of shape {arr.shape}; expected {shape}")
+    return np.ascontiguousarray(arr, dtype=np.float64)
+
+
+class LawStep:
+    """What the core calls at each control instant of one batch (``n`` cases of a plant with
+    ``axes`` axes, numbered from ``first_case``): calls ``function(t, e, de, ref, drift,
+    inertia, params, memory)`` and returns ``(command, diagnostics)``, float64 (n, D) and
+    (n, width)."""
+
+    def __init__(self, function: Callable[..., Any], *, name: str, params: Mapping[str, np.ndarray],
+                 memory: Any, layout: Sequence[tuple[str, int]], n: int, axes: int, first_case: int) -> None:
+        self.function = function
+        self.name = name
+        self.params = dict(params)
+        self.initial = memory
+        self.memory: Optional[dict[str, np.ndarray]] = None
+        self.layout = list(layout)
+        self.n, self.axes, self.first_case = n, axes, first_case
+        self.width = sum(w for _, w in self.layout)
+
+    def _where(self, t: float) -> str:
+        last = self.first_case + self.n - 1
+        return f"PythonLaw {self.name} at t = {t:.9g} s on cases {self.first_case}..{last}"
+
+    def _memory(self, value: Any, where: str, what: str) -> Optional[dict[str, np.ndarray]]:
+        """A memory the function returned (or the initial one): a mapping of arrays, one row per
+        case, with the names and shapes of the one before."""
+        if value is None:
+            return None
+        if not isinstance(value, Mapping):
+            raise UserFunctionError(
+                f"{where} returned {what} of type {type(value).__name__}; expected a dict of arrays")
+        before = self.memory
+        if before is not None and set(value) != set(before):
+            raise UserFunctionError(f"{where} returned {what} with keys {sorted(value)}; expected {sorted(before)}")
+        out = {}
+        for key, v in value.items():
+            arr = np.asarray(v)
+            shape = before[key].shape if before is not None else arr.shape
+            if before is None and (arr.ndim == 0 or arr.shape[0] != self.n):
+                raise UserFunctionError(f"{where} returned {what}[{key!r}] of shape {arr.shape}; "
+                                        f"expected one row per case, ({self.n}, ...)")
+            out[key] = _floats(f"{what}[{key!r}]", v, shape, where)
+        return out
+
+    def _start(self, t: float, args: tuple[Any, ...]) -> None:
+        where = self._where(t)
+        init = self.initial
+        if init is None:
+            self.memory = None
+        elif callable(init):
+            try:
+                value = init(*args, self.params)
+            except Exception as exc:
+                raise UserFunctionError(
+                    f"the memory initialiser of {where} raised {type(exc).__name__}: {exc}") from exc
+            self.memory = self._memory(value, where, "memory (initial)")
+        else:
+            # values shared by every case, broadcast to one row per case
+            self.memory = {k: np.array(np.broadcast_to(np.asarray(v, dtype=np.float64), (self.n, *np.shape(v))))
+                           for k, v in init.items()}
+
+    def __call__(self, t: float, k: int, e: np.ndarray, de: np.ndarray, position: np.ndarray,
+                 velocity: np.ndarray, acceleration: np.ndarray, drift: np.ndarray,
+                 inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        for a in (e, de, position, velocity, acceleration, drift, inertia):
+            a.setflags(write=False)
+        args = (t, e, de, ReferencePoint(position, velocity, acceleration), drift, inertia)
+        if k == 0:
+            self._start(t, args)
+        where = self._where(t)
+        try:
+            out = self.function(*args, self.params, self.memory)
+        except Exception as exc:
+            raise UserFunctionError(f"{where} raised {type(exc).__name__}: {exc}") from exc
+        diagnostics: Any = None
+        if isinstance(out, tuple):
+            if len(out) not in (2, 3):
+                raise UserFunctionError(f"{where} returned a tuple of {len(out)} values; expected the command, "
+                                        "(command, memory) or (command, memory, diagnostics)")
+            command, memory = out[0], out[1]
+            diagnostics = out[2] if len(out) == 3 else None
+            self.memory = self._memory(memory, where, "memory")
+        else:
+            command = out
+        u = _floats("a command", command, (self.n, self.axes), where)
+        return u, self._diagnostics(diagnostics, where)
+
+    def _diagnostics(self, value: Any, where: str) -> np.ndarray:
+        out = np.empty((self.n, self.width))
+        if not self.layout:
+            return out
+        if not isinstance(value, Mapping):
+            names = [name for name, _ in self.layout]
+            raise UserFunctionError(f"{where} returned no diagnostics dict; it declares {names}")
+        col = 0
+        for name, width in self.layout:
+            if name not in value:
+                raise UserFunctionError(f"{where} returned diagnostics without {name!r}")
+            shape = (self.n, width) if width == self.axes else (self.n,)
+            arr = _floats(f"diagnostics[{name!r}]", value[name], shape, where)
+            out[:, col:col + width] = arr.reshape(self.n, width)
+            col += width
+        return out

@@ -1,0 +1,329 @@
+"""Laws written in Python (``landing.controllers.PythonLaw``) against the same laws built in.
+
+The built-in laws are re-written here from their equations in numpy (a second implementation,
+not the core's code): where they use only IEEE arithmetic and square roots the runs agree bit
+for bit, where the core's own powers are involved to 1e-12.
+"""
+
+from __future__ import annotations
+
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import landing
+from _cases import NOMINAL, RECONSTRUCTED_GAINS
+from landing import controllers as C
+from landing import plants as P
+from landing.errors import DivergenceWarning, UserFunctionError
+
+
+def mars_x0(n: int, seed: int = 1) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    x = np.tile(NOMINAL, (n, 1))
+    x[:, :3] += rng.normal(0.0, 20.0, (n, 3))
+    x[:, 3:6] += rng.normal(0.0, 1.0, (n, 3))
+    return x
+
+
+def sig(x: np.ndarray, p: np.ndarray) -> np.ndarray:
+    return np.sign(x) * np.abs(x) ** p
+
+
+def mss_printed(t, e, de, ref, drift, inertia, params, memory):
+    """FixedTimeMSS, printed variant (seed 001 eq. 21-25): s1 = e, s2 = de + beta1 sig^q1 + beta2
+    sig^q2, the cancellation of the printed eq. 25 and the two-power reaching law on s2."""
+    b1, b2, q1, q2 = params["beta1"], params["beta2"], params["q1"], params["q2"]
+    a1, a2, g1, g2 = params["alpha1"], params["alpha2"], params["gamma1"], params["gamma2"]
+    floor = params["s1_floor"]
+    abs1 = np.abs(e)
+    p1, p2 = abs1**q1, abs1**q2
+    s2 = de + np.sign(e) * (b1 * p1 + b2 * p2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e1 = 2 * q1 - 1
+        t1 = np.where((e1 >= 0) | (abs1 >= floor), p1 * p1 / abs1, floor**e1)
+        rest = (p2 / abs1) * (b2 * b2 * q2 * p2 + b1 * b2 * (q1 + q2) * p1)
+        cancel = np.where(abs1 > 0, np.sign(e) * (b1 * b1 * q1 * t1 + rest), 0.0)
+    reach = -np.sign(s2) * (a1 * np.abs(s2) ** g1 + a2 * np.abs(s2) ** g2)
+    return ref.acceleration - drift + (cancel + reach), memory, {"s1": e, "s2": s2}
+
+
+def super_twisting_standard(t, e, de, ref, drift, inertia, params, memory):
+    """Super-twisting, standard variant: sigma = de + c e, a = -c de + (-b1 sig^(1/2)(sigma) + w)/m,
+    w' = -b2 sgn(sigma), advanced by forward Euler over the period after the command."""
+    b1, b2, c, dt = params["b1"], params["b2"], params["c"], params["dt"]
+    sigma = de + c * e
+    w = memory["w"]
+    a = ref.acceleration - drift + (-c * de + (-b1 * np.sign(sigma) * np.sqrt(np.abs(sigma)) + w) / inertia)
+    return a, {"w": w - dt * b2 * np.sign(sigma)}, {"sigma": sigma, "w": w}
+
+
+def pd_sat(t, e, de, ref, drift, inertia, params, memory):
+    """PD sliding mode with the saturation switch: s = de + lambda e, a = q_ref'' - drift -
+    lambda de - k sat(s / phi)."""
+    lam, k, phi = params["lambda"], params["k"], params["phi"]
+    s = de + lam * e
+    return ref.acceleration - drift - lam * de - k * np.clip(s / phi, -1.0, 1.0), None, {"s": s}
+
+
+def run_both(plant, builtin, python, x0, **kw):
+    a = landing.simulate_batch(plant, builtin, x0, **kw)
+    b = landing.simulate_batch(plant, python, x0, **kw)
+    return a, b
+
+
+def assert_same_run(a: landing.SimulationResult, b: landing.SimulationResult, rtol: float) -> None:
+    if rtol == 0:
+        np.testing.assert_array_equal(b.states, a.states)
+        np.testing.assert_array_equal(b.controls, a.controls)
+    else:
+        # relative to each signal's scale: a command crossing zero has no relative accuracy
+        def close(x: np.ndarray, y: np.ndarray) -> None:
+            np.testing.assert_allclose(x, y, rtol=0, atol=rtol * np.nanmax(np.abs(y)))
+
+        close(b.states, a.states)
+        close(b.controls, a.controls)
+    for name in a.diagnostics:
+        if rtol == 0:
+            np.testing.assert_array_equal(b.diagnostics[name], a.diagnostics[name])
+        else:
+            close(b.diagnostics[name], a.diagnostics[name])
+    for name in ("final_position_error", "fuel_used", "control_effort", "iae", "settle_time"):
+        np.testing.assert_allclose(b.metrics[name], a.metrics[name], rtol=max(rtol, 1e-15), atol=0)
+
+
+def test_the_fixed_time_mss_law_in_numpy_agrees_with_the_built_in_one():
+    gains = dict(RECONSTRUCTED_GAINS, s1_floor=1e-3)
+    builtin = C.FixedTimeMSS(**RECONSTRUCTED_GAINS)
+    python = C.PythonLaw(mss_printed, params=gains, diagnostics=("s1", "s2"))
+    a, b = run_both(P.MarsLander(), builtin, python, mars_x0(20), t_final=20.0, dt=1e-3, record_every=100)
+    assert_same_run(a, b, rtol=1e-12)
+    assert a.metrics["final_position_error"].max() < 50.0  # the law does its work
+
+
+def test_the_super_twisting_law_with_memory_agrees_bit_for_bit():
+    builtin = C.SuperTwisting(b1=(1200.0, 1000.0, 1000.0), b2=(5500.0, 5000.0, 5000.0), variant="standard", c=0.5)
+    dt = 1e-3
+    python = C.PythonLaw(super_twisting_standard,
+                         params={"b1": (1200.0, 1000.0, 1000.0), "b2": (5500.0, 5000.0, 5000.0), "c": 0.5, "dt": dt},
+                         memory={"w": np.zeros(3)}, diagnostics=("sigma", "w"))
+    a, b = run_both(P.MarsLander(), builtin, python, mars_x0(13), t_final=10.0, dt=dt, record_every=10)
+    assert_same_run(a, b, rtol=0)
+    assert np.abs(a.diagnostics["w"]).max() > 0  # the memory moved
+
+
+@pytest.mark.parametrize("plant", [P.DoubleIntegrator(), P.SmallBody()], ids=["double_integrator", "small_body"])
+def test_the_pd_sliding_law_agrees_bit_for_bit_on_other_plants(plant):
+    builtin = C.PDSlidingMode(lambda_=0.3, k=0.02, switch="sat", boundary_layer=0.5)
+    python = C.PythonLaw(pd_sat, params={"lambda": 0.3, "k": 0.02, "phi": 0.5}, diagnostics=("s",))
+    n_state = len(landing.simulate(plant, builtin, np.zeros(6) + 0.0 if plant.kind == "double_integrator"
+                                   else np.r_[500.0, 300.0, 200.0, 0, 0, 0], t_final=0.1, dt=0.1).state_names)
+    rng = np.random.default_rng(4)
+    x0 = np.zeros((11, n_state))
+    x0[:, :3] = rng.normal(0, 1, (11, 3)) * (1.0 if plant.kind == "double_integrator" else 50.0) + (
+        0.0 if plant.kind == "double_integrator" else np.array([500.0, 300.0, 200.0]))
+    a, b = run_both(plant, builtin, python, x0, t_final=30.0, dt=0.05, record_every=1)
+    assert_same_run(a, b, rtol=0)
+
+
+def test_per_case_parameters_reach_the_function_and_match_a_per_case_built_in_law():
+    k = np.linspace(0.01, 0.05, 9)
+    builtin = C.PDSlidingMode(lambda_=0.3, k=k, switch="sat", boundary_layer=0.5)
+    python = C.PythonLaw(pd_sat, params={"lambda": 0.3, "k": k, "phi": 0.5}, diagnostics=("s",))
+    x0 = np.tile([1.0, -2.0, 0.5, 0.0, 0.0, 0.0], (9, 1))
+    a, b = run_both(P.DoubleIntegrator(), builtin, python, x0, t_final=5.0, dt=0.05)
+    assert_same_run(a, b, rtol=0)
+    assert len({tuple(r) for r in a.final_state.round(12)}) == 9  # the gains differ per case
+
+
+def test_the_python_law_is_bit_identical_across_threads_and_levels():
+    gains = dict(RECONSTRUCTED_GAINS, s1_floor=1e-3)
+    law = C.PythonLaw(mss_printed, params=gains, diagnostics=("s1", "s2"))
+    x0 = mars_x0(37)
+    storm = landing.disturbances.UniformNoise(bound=0.3) + landing.disturbances.Sinusoid(amplitude=0.1, omega=1.0)
+    runs = [landing.simulate_batch(P.MarsLander(), law, x0, t_final=2.0, dt=1e-3, threads=t, kernel=lv,
+                                   disturbance=storm, seed=5)
+            for t in (1, 2) for lv in landing.kernel_levels()]
+    for r in runs[1:]:
+        np.testing.assert_array_equal(r.states, runs[0].states)
+        np.testing.assert_array_equal(r.final_state, runs[0].final_state)
+
+
+def test_one_call_per_control_instant_with_all_cases():
+    calls = []
+
+    def law(t, e, de, ref, drift, inertia, params, memory):
+        calls.append((t, e.shape))
+        return -e - de
+
+    landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(law), np.ones((21, 6)), t_final=1.0, dt=0.1)
+    assert [c[1] for c in calls] == [(21, 3)] * 11
+    np.testing.assert_allclose([c[0] for c in calls], np.arange(11) * 0.1, rtol=0, atol=1e-15)
+
+
+def test_a_time_dependent_disturbance_sees_the_true_time():
+    # OpenLoop stepped one period at a time restarts every call at t = 0; a PythonLaw does not
+    dist = landing.disturbances.Sinusoid(amplitude=(1.0, 0.0, 0.0), omega=3.0)
+    zero = C.PythonLaw(lambda t, e, de, ref, drift, inertia, params, memory: np.zeros_like(e))
+    a = landing.simulate_batch(P.DoubleIntegrator(), C.OpenLoop(), np.zeros((2, 6)), t_final=3.0, dt=0.01,
+                               disturbance=dist)
+    b = landing.simulate_batch(P.DoubleIntegrator(), zero, np.zeros((2, 6)), t_final=3.0, dt=0.01,
+                               disturbance=dist)
+    np.testing.assert_array_equal(b.states, a.states)
+
+
+def test_a_numba_jitted_law_runs():
+    numba = pytest.importorskip("numba")
+
+    @numba.njit(cache=False)
+    def pd(t, e, de, ref, drift, inertia, params, memory):
+        return -drift - 2.0 * e - 3.0 * de
+
+    def law(t, e, de, ref, drift, inertia, params, memory):
+        return pd(t, e, de, ref.acceleration, drift, inertia, None, None)
+
+    plain = C.PythonLaw(lambda t, e, de, ref, drift, inertia, params, memory: -drift - 2.0 * e - 3.0 * de)
+    x0 = np.tile([1.0, 2.0, -1.0, 0.0, 0.0, 0.0], (5, 1))
+    a = landing.simulate_batch(P.DoubleIntegrator(), plain, x0, t_final=2.0, dt=0.01)
+    b = landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(law), x0, t_final=2.0, dt=0.01)
+    np.testing.assert_array_equal(b.states, a.states)
+
+
+def test_a_jax_jitted_law_runs():
+    jax = pytest.importorskip("jax")
+    jax.config.update("jax_enable_x64", True)
+
+    @jax.jit
+    def pd(e, de, drift):
+        return -drift - 2.0 * e - 3.0 * de
+
+    law = C.PythonLaw(lambda t, e, de, ref, drift, inertia, params, memory: pd(e, de, drift))
+    x0 = np.tile([1.0, 2.0, -1.0, 0.0, 0.0, 0.0], (5, 1))
+    res = landing.simulate_batch(P.DoubleIntegrator(), law, x0, t_final=2.0, dt=0.01)
+    assert np.isfinite(res.states).all() and np.abs(res.final_state[:, :3]).max() < 0.2
+
+
+# --- bad input and faults ---------------------------------------------------------------------
+
+def run_law(function, **kw):
+    return landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(function, **kw), np.ones((4, 6)),
+                                  t_final=1.0, dt=0.1, first_case=10)
+
+
+def test_an_exception_in_the_function_arrives_chained_with_the_instant_and_the_cases():
+    def bad(t, e, de, ref, drift, inertia, params, memory):
+        if t > 0.25:
+            raise ZeroDivisionError("boom")
+        return -e
+
+    with pytest.raises(UserFunctionError) as info:
+        run_law(bad)
+    msg = str(info.value)
+    assert "bad" in msg and "t = 0.3 s" in msg and "cases 10..13" in msg and "ZeroDivisionError: boom" in msg
+    assert isinstance(info.value.__cause__, ZeroDivisionError)
+
+
+@pytest.mark.parametrize(("returned", "expected"), [
+    (lambda e: e[:, :2], "shape (4, 2); expected (4, 3)"),
+    (lambda e: e.astype(int), "dtype int64"),
+    (lambda e: e.tolist(), "of type list"),
+    (lambda e: 3.0, "of type float"),
+    (lambda e: (e, None, None, None), "a tuple of 4 values"),
+])
+def test_a_wrong_return_is_refused_naming_the_function_and_what_was_expected(returned, expected):
+    def wrong(t, e, de, ref, drift, inertia, params, memory):
+        return returned(e)
+
+    with pytest.raises(UserFunctionError, match="wrong") as info:
+        run_law(wrong)
+    assert expected in str(info.value)
+
+
+def test_declared_diagnostics_must_be_returned():
+    with pytest.raises(UserFunctionError, match="declares"):
+        run_law(lambda t, e, de, ref, drift, inertia, params, memory: -e, diagnostics=("s",))
+
+
+def test_a_memory_that_changes_shape_is_refused():
+    def grows(t, e, de, ref, drift, inertia, params, memory):
+        return -e, {"w": np.zeros((4, 4))}
+
+    with pytest.raises(UserFunctionError, match=r"memory\['w'\] of shape \(4, 4\); expected \(4, 3\)"):
+        run_law(grows, memory={"w": np.zeros(3)})
+
+
+def test_a_non_finite_command_flags_the_case_and_spares_the_others():
+    def nan_for_case_2(t, e, de, ref, drift, inertia, params, memory):
+        u = -e - de
+        if t >= 0.5:
+            u[2] = np.nan
+        return u
+
+    with pytest.warns(DivergenceWarning):
+        res = run_law(nan_for_case_2)
+    assert res.metrics["diverged"].tolist() == [False, False, True, False]
+    assert landing.DIVERGENCE_REASONS[res.metrics["diverged_reason"][2]] == "non_finite_command"
+    assert res.metrics["diverged_time"][2] == pytest.approx(0.5)
+    assert np.isfinite(res.metrics["final_position_error"][[0, 1, 3]]).all()
+
+
+def test_bad_configuration_is_refused_at_construction():
+    with pytest.raises(landing.errors.ParameterTypeError, match="callable"):
+        C.PythonLaw(3.0)
+    with pytest.raises(landing.errors.ParameterTypeError, match=r"params\['k'\]"):
+        C.PythonLaw(lambda *a: a[1], params={"k": "fast"})
+    with pytest.raises(landing.errors.ParameterError, match="'axes' or 'scalar'"):
+        C.PythonLaw(lambda *a: a[1], diagnostics={"s": "vector"})
+    with pytest.raises(UserFunctionError, match=r"params\['k'\] has shape \(5,\)"):
+        run_law(lambda t, e, *a: -e, params={"k": np.ones(5)})
+
+
+def test_replace_changes_a_parameter():
+    law = C.PythonLaw(pd_sat, params={"lambda": 0.3, "k": 0.02, "phi": 0.5})
+    assert float(law.replace(k=0.04).params["k"]) == 0.04 and float(law.params["k"]) == 0.02
+    with pytest.raises(landing.errors.ParameterError, match="neither a field"):
+        law.replace(kd=1.0)
+
+
+def test_ctrl_c_stops_a_python_law_run_within_a_second():
+    def slow(t, e, de, ref, drift, inertia, params, memory):
+        time.sleep(0.01)
+        return -e
+
+    timer = threading.Timer(0.5, lambda: signal.raise_signal(signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(slow), np.ones((2, 6)), t_final=100.0, dt=0.1)
+    assert time.monotonic() - start < 1.5
+
+
+def test_the_readme_block_runs_as_a_file():
+    import re
+
+    from _cases import ROOT
+
+    readme = (ROOT / "README.md").read_text()
+    section = readme[readme.index("### Your own law, in Python"):]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    ns: dict = {}
+    exec(compile(code, "README.md", "exec"), ns)
+    # e'' = -e - 2 e' from e = e' = 1: critically damped, e(t) = (1 + 2 t) e^-t
+    np.testing.assert_allclose(ns["res"].final_state[:, 0], 21 * np.exp(-10.0), rtol=0.05)
+
+
+@pytest.mark.parametrize("fidelity", ["simplified", "flexible"])
+def test_the_pd_sliding_law_agrees_bit_for_bit_on_the_tethered_satellite(fidelity):
+    plant = P.TetheredSatellite(fidelity=fidelity, nodes=4) if fidelity == "flexible" else \
+        P.TetheredSatellite(fidelity=fidelity)
+    builtin = C.PDSlidingMode(lambda_=0.05, k=1e-4, switch="sat", boundary_layer=0.01)
+    python = C.PythonLaw(pd_sat, params={"lambda": 0.05, "k": 1e-4, "phi": 0.01}, diagnostics=("s",))
+    x0 = np.stack([plant.initial_state(phi=np.radians(a), theta=np.radians(-a)) for a in (0.5, 1.0, 2.0)])
+    dt = 0.05
+    kw = dict(t_final=5.0, dt=dt, substeps=plant.substeps_for(dt) if fidelity == "flexible" else 1)
+    a, b = run_both(plant, builtin, python, x0, **kw)
+    assert not a.metrics["diverged"].any()
+    assert_same_run(a, b, rtol=0)
