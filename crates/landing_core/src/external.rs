@@ -28,7 +28,9 @@ use crate::kernel::{self, LawCalls, Level, LevelJob};
 use crate::lanes::Real;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
-use crate::rollout::{Block, BlockBuffers, MAX_DIAGNOSTIC_WIDTH, Setting, SimConfig, StageTable};
+use crate::rollout::{
+    Block, BlockBuffers, MAX_DIAGNOSTIC_WIDTH, Period, Setting, SimConfig, StageTable,
+};
 
 /// The law inputs of every case of a batch at one control instant: `n x D` row-major arrays,
 /// case after case (the quantities of [`LawInput`]). A case that has stopped keeps its last
@@ -264,10 +266,15 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
             kept.block.finish(&set, Some((&a, &diag[..nd])), self.out);
             return false;
         }
-        if !kept
-            .block
-            .period::<K>(&set, self.k, &a, &diag[..nd], self.out)
-        {
+        let period = Period {
+            block: &mut kept.block,
+            set: &set,
+            k: self.k,
+            a: &a,
+            diag: &diag[..nd],
+            out: &mut *self.out,
+        };
+        if !K::out_of_line(period) {
             kept.block.finish(&set, None, self.out);
             return false;
         }

@@ -212,6 +212,18 @@ pub(crate) trait LawCalls<const D: usize, R: Real> {
     );
     /// [`CommandStats::add`], out of line like the law.
     fn add_stats(stats: &mut CommandStats<D, R>, u: &SVector<R, D>, e: &SVector<R, D>, dt: f64);
+    /// Runs `job` out of line, compiled once per level for its type. A block's control period
+    /// goes through here ([`crate::rollout::Block::period`]): the built-in and the external
+    /// drivers then share one compiled period per plant and level instead of inlining a copy
+    /// each (which doubled the release build).
+    fn out_of_line<J: OutOfLine<D, R>>(job: J) -> J::Output;
+}
+
+/// A piece of the rollout run out of line through [`LawCalls::out_of_line`], with the law
+/// calls of the level it runs at.
+pub(crate) trait OutOfLine<const D: usize, R: Real> {
+    type Output;
+    fn run<K: LawCalls<D, R>>(self) -> Self::Output;
 }
 
 /// The laws compiled for one level: out-of-line trampolines, generic over the axis count and
@@ -270,6 +282,12 @@ macro_rules! level_laws {
                 stats.add(u, e, dt)
             }
 
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn out_of_line<const D: usize, L: Real, J: OutOfLine<D, L>>(job: J) -> J::Output {
+                job.run::<$name>()
+            }
+
             // SAFETY (every call below): this type is used only by the block rollouts of its
             // own level, which run only once `Level::resolve` has checked the CPU has it.
             impl<const D: usize, L: Real> LawCalls<D, L> for $name {
@@ -306,6 +324,10 @@ macro_rules! level_laws {
                     dt: f64,
                 ) {
                     unsafe { add_stats(stats, u, e, dt) }
+                }
+                #[inline(always)]
+                fn out_of_line<J: OutOfLine<D, L>>(job: J) -> J::Output {
+                    unsafe { out_of_line(job) }
                 }
             }
         };

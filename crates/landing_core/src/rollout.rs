@@ -19,7 +19,7 @@ use crate::control::{AnyLaw, LawInput};
 use crate::disturbance::{Disturbance, NoiseStreams, disturbance_stream};
 use crate::error::ParamError;
 use crate::integrator::{IntegratorKind, Stage, StageDerivative};
-use crate::kernel::LawCalls;
+use crate::kernel::{LawCalls, OutOfLine};
 use crate::lanes::{
     Mask, Real, add, all_finite, div, dot, filled, norm, scale_by, select_vector, sub, zeros,
 };
@@ -728,6 +728,27 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
     }
 }
 
+/// One control period of a block ([`Block::period`]), run out of line through
+/// [`LawCalls::out_of_line`]: compiled once per plant and level, whichever driver calls it.
+pub(crate) struct Period<'a, 'b, 'c, const D: usize, R: Real, P: Plant<R, D>> {
+    pub block: &'a mut Block<D, R, P>,
+    pub set: &'a Setting<'b, D, R, P>,
+    pub k: u64,
+    pub a: &'a SVector<R, D>,
+    pub diag: &'a [R],
+    pub out: &'a mut BlockBuffers<'c, D>,
+}
+
+impl<const D: usize, R: Real, P: Plant<R, D>> OutOfLine<D, R> for Period<'_, '_, '_, D, R, P> {
+    /// Whether any lane still runs.
+    type Output = bool;
+
+    #[inline(always)]
+    fn run<K: LawCalls<D, R>>(self) -> bool {
+        self.block.period::<K>(self.set, self.k, self.a, self.diag, self.out)
+    }
+}
+
 /// Simulates the cases of one block under a built-in law. Lane i is case `cases[i]`; the
 /// first `used` lanes are real cases, the others padding whose results are dropped. Stops
 /// early, with nothing written that matters, when `cancel` is raised.
@@ -761,7 +782,15 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
         if advances {
             K::advance(law, &mut memory, block.input());
         }
-        if !block.period::<K>(set, k, &a, &diag[..nd], out) {
+        let period = Period {
+            block: &mut block,
+            set,
+            k,
+            a: &a,
+            diag: &diag[..nd],
+            out: &mut *out,
+        };
+        if !K::out_of_line(period) {
             break;
         }
     }
