@@ -745,7 +745,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> OutOfLine<D, R> for Period<'_, '_,
 
     #[inline(always)]
     fn run<K: LawCalls<D, R>>(self) -> bool {
-        self.block.period::<K>(self.set, self.k, self.a, self.diag, self.out)
+        self.block
+            .period::<K>(self.set, self.k, self.a, self.diag, self.out)
     }
 }
 
