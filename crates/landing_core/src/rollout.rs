@@ -10,6 +10,11 @@
 //! algorithm is a mask (divergence, touchdown, settling), and a stopped case keeps its last
 //! admissible state while the others go on. Nothing a lane computes depends on the other
 //! lanes, so a case gives the same bits in any block, at any position, alone or padded.
+//!
+//! A block between two control instants is a [`Block`]: [`Block::start`], one
+//! [`Block::period`] per control period with the law's command, [`Block::finish`]. A built-in
+//! law drives it from inside the block ([`rollout_block`]); a law computed outside the core
+//! drives every block of a batch one period at a time ([`crate::external`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
