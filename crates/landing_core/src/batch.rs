@@ -17,14 +17,19 @@ use rayon::prelude::*;
 
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
+use crate::error::ReadError;
+use crate::integrator::IntegratorKind;
 use crate::kernel::{self, LawCalls, Level, LevelError, LevelJob};
 use crate::lanes::{Gather, Real};
+use crate::limits::{MAX_SUBSTEPS, MAX_THREADS, within_cap};
 use crate::memory::{available_bytes, gib};
 use crate::metrics::CaseMetrics;
+use crate::params::Named;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
 use crate::rollout::{
-    BlockBuffers, Cancelled, MAX_DIAGNOSTIC_WIDTH, Setting, SimConfig, StageTable, rollout_block,
+    BlockBuffers, Cancelled, MAX_DIAGNOSTIC_WIDTH, Setting, SimConfig, StageTable, Tolerance,
+    rollout_block,
 };
 use crate::state::State;
 
@@ -187,6 +192,88 @@ pub struct RunOptions<'a> {
     pub level: Option<Level>,
     /// Raised by another thread to stop the batch early ([`BatchError::Cancelled`]).
     pub cancel: Option<&'a AtomicBool>,
+}
+
+/// A batch's run options as a caller outside Rust gives them (counts as signed integers,
+/// choices by name), checked in one place by [`RunRequest::compile`]: each against its rule
+/// and its cap ([`crate::limits`]), the errors naming the option.
+#[derive(Clone, Copy, Debug)]
+pub struct RunRequest<'a> {
+    pub t_final: f64,
+    pub dt: f64,
+    /// One of [`IntegratorKind::NAMES`].
+    pub integrator: &'a str,
+    pub substeps: i64,
+    pub record_every: i64,
+    pub seed: u64,
+    pub first_case: u64,
+    pub settle_tolerance: f64,
+    /// Whether the settle tolerance is relative to the initial error norm.
+    pub settle_relative: bool,
+    pub chatter_cutoff: Option<f64>,
+    pub threads: Option<i64>,
+    /// One of [`Level::NAMES`].
+    pub kernel: Option<&'a str>,
+}
+
+impl RunRequest<'_> {
+    /// The configuration and the options of the batch the request describes.
+    pub fn compile(&self) -> Result<(SimConfig, RunOptions<'static>), ReadError> {
+        let bad = |msg: String| ReadError::Value(msg);
+        let integrator = IntegratorKind::from_name(self.integrator).ok_or_else(|| {
+            let names = IntegratorKind::NAMES;
+            bad(format!(
+                "integrator = {:?} is not one of {names:?}",
+                self.integrator
+            ))
+        })?;
+        let substeps = self.substeps;
+        if substeps < 1 {
+            return Err(bad(format!("substeps = {substeps} violates substeps >= 1")));
+        }
+        within_cap("substeps", substeps as u64, "max_substeps", MAX_SUBSTEPS)?;
+        let record_every = self.record_every;
+        if record_every < 0 {
+            let rule = "record_every >= 0";
+            return Err(bad(format!(
+                "record_every = {record_every} violates {rule}"
+            )));
+        }
+        let threads = match self.threads {
+            None => None,
+            Some(k) if k >= 1 => {
+                within_cap("threads", k as u64, "max_threads", MAX_THREADS)?;
+                Some(k as usize)
+            }
+            Some(k) => return Err(bad(format!("threads = {k} violates threads >= 1"))),
+        };
+        let level = self.kernel.map(Level::from_name).transpose();
+        let level = level.map_err(|e| bad(format!("kernel: {e}")))?;
+        let settle = match self.settle_relative {
+            true => Tolerance::Relative(self.settle_tolerance),
+            false => Tolerance::Absolute(self.settle_tolerance),
+        };
+        let cfg = SimConfig::new(
+            self.t_final,
+            self.dt,
+            substeps as u32,
+            record_every as u64,
+            self.seed,
+        )?
+        .with_first_case(self.first_case)
+        .with_integrator(integrator)
+        .with_settle(settle)?;
+        let cfg = match self.chatter_cutoff {
+            None => cfg,
+            Some(hz) => cfg.with_chatter_cutoff(hz)?,
+        };
+        let options = RunOptions {
+            threads,
+            level,
+            cancel: None,
+        };
+        Ok((cfg, options))
+    }
 }
 
 /// The memory a batch's output takes, in bytes: the recording, the final states, the

@@ -311,6 +311,18 @@ pub fn disturbance_stream(seed: u64, case: u64) -> NoiseStreams {
     }
 }
 
+/// The disturbances, read and validated for each axis count ([`crate::params::ByAxes`]).
+pub struct Disturbances;
+
+impl crate::params::ReadFor for Disturbances {
+    type At<const D: usize> = Disturbance<D>;
+    fn read<const D: usize>(
+        p: &mut crate::params::Reader<'_>,
+    ) -> Result<Disturbance<D>, ReadError> {
+        crate::params::read_valid(p)
+    }
+}
+
 impl<const D: usize> FromParams for Disturbance<D> {
     /// A list `components` of tables, each with a `kind`: `constant` (value), `sinusoid`
     /// (amplitude, omega, phase), `uniform_noise` (bound) or `command_noise` (fraction); they

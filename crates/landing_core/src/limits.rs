@@ -39,3 +39,19 @@ pub const LIMITS: [(&str, u64); 5] = [
     ("max_threads", MAX_THREADS),
     ("max_fuzzy_resolution", MAX_FUZZY_RESOLUTION),
 ];
+
+/// A count (cases, substeps, threads, resolution) checked against its cap: the error names
+/// the count, its value and the cap by its name in [`LIMITS`].
+pub fn within_cap(
+    name: &str,
+    value: u64,
+    cap_name: &str,
+    cap: u64,
+) -> Result<(), crate::error::ReadError> {
+    if value > cap {
+        return Err(crate::error::ReadError::Value(format!(
+            "{name} = {value} violates {name} <= {cap_name} ({cap}); see landing._core.LIMITS"
+        )));
+    }
+    Ok(())
+}

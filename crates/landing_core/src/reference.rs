@@ -156,6 +156,30 @@ pub fn cubic_coefficients<const D: usize>(
     Ok([p0, v0, c2, c3])
 }
 
+/// [`cubic_coefficients`] for boundary states given as slices of 2 or 3 values (as a caller
+/// outside Rust holds them): c0..c3, each as long as `p0`, or what is wrong with the input.
+pub fn cubic_from_slices(
+    p0: &[f64],
+    v0: &[f64],
+    pt: &[f64],
+    vt: &[f64],
+    t_end: f64,
+) -> Result<[Vec<f64>; 4], ReadError> {
+    let all = [("p0", p0), ("v0", v0), ("pT", pt), ("vT", vt)];
+    for (name, v) in all {
+        crate::error::finite(name, v)?;
+    }
+    let d = p0.len();
+    if let Some((name, v)) = all[1..].iter().find(|(_, v)| v.len() != d) {
+        let msg = format!("{name} has {} axes, p0 has {d}", v.len());
+        return Err(ReadError::Value(msg));
+    }
+    crate::with_axes!(d, D => {
+        let [a, b, c, e] = all.map(|(_, v)| SVector::<f64, D>::from_column_slice(v));
+        Ok(cubic_coefficients(a, b, c, e, t_end)?.map(|c| c.as_slice().to_vec()))
+    }, d => Err(ReadError::Value(format!("p0 has {d} axes; 2 or 3 are supported"))))
+}
+
 impl<const D: usize, R: Real> Reference<D, R> {
     #[inline(always)]
     pub fn at(&self, t: f64) -> RefPoint<D, R> {
@@ -220,6 +244,16 @@ impl<const D: usize> Validate for Reference<D> {
             }
         }
         Ok(())
+    }
+}
+
+/// The references, read and validated for each axis count ([`crate::params::ByAxes`]).
+pub struct References;
+
+impl crate::params::ReadFor for References {
+    type At<const D: usize> = Reference<D>;
+    fn read<const D: usize>(p: &mut crate::params::Reader<'_>) -> Result<Reference<D>, ReadError> {
+        crate::params::read_valid(p)
     }
 }
 

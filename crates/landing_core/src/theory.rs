@@ -86,6 +86,20 @@ impl MssBounds {
     pub fn settle_time(&self) -> f64 {
         self.s2_time + self.s1_time
     }
+
+    /// Each bound by its field's name, with the settle time (as the bindings hand them out).
+    pub fn named(&self) -> [(&'static str, f64); 8] {
+        [
+            ("t1", self.t1),
+            ("t2", self.t2),
+            ("s2_radius", self.s2_radius),
+            ("s2_time", self.s2_time),
+            ("s1_radius", self.s1_radius),
+            ("s1_time", self.s1_time),
+            ("printed_time", self.printed_time),
+            ("settle_time", self.settle_time()),
+        ]
+    }
 }
 
 /// Seed 001's bounds for one axis of `FixedTimeMss` with gains
@@ -340,6 +354,21 @@ pub struct FntsmcBounds {
     pub t_inside: f64,
     /// ts + td + t_inside: |e1| stays within the tolerance from then on.
     pub total: f64,
+}
+
+impl FntsmcBounds {
+    /// Each bound by its field's name (as the bindings hand them out).
+    pub fn named(&self) -> [(&'static str, f64); 7] {
+        [
+            ("ts", self.ts),
+            ("s_radius", self.s_radius),
+            ("td", self.td),
+            ("e1_radius", self.e1_radius),
+            ("inside_rate", self.inside_rate),
+            ("t_inside", self.t_inside),
+            ("total", self.total),
+        ]
+    }
 }
 
 /// Seed 003 Theorem 1 made sound, for one axis of the FNTSMC on a plant where the law holds

@@ -4,13 +4,13 @@
 use landing_core::rng::philox4x64_10;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{IntoPyDict, PyDict};
 
 use landing_core::dispersion::Dispersion as CoreDispersion;
-use landing_core::limits::MAX_CASES;
+use landing_core::limits::{MAX_CASES, within_cap};
 use landing_core::{ParamError, theory};
 
-use crate::errors::{InputError, guard, within_cap};
+use crate::errors::{InputError, guard};
 use crate::table;
 
 /// Runs a theory formula under [`guard`], its `ParamError` as a `ParameterError`.
@@ -65,16 +65,7 @@ pub fn mss_bounds<'py>(
             beta1, q1, beta2, q2, alpha1, gamma1, alpha2, gamma2, ap_max, theta1, theta2,
         )
     })?;
-    let d = PyDict::new(py);
-    d.set_item("t1", b.t1)?;
-    d.set_item("t2", b.t2)?;
-    d.set_item("s2_radius", b.s2_radius)?;
-    d.set_item("s2_time", b.s2_time)?;
-    d.set_item("s1_radius", b.s1_radius)?;
-    d.set_item("s1_time", b.s1_time)?;
-    d.set_item("printed_time", b.printed_time)?;
-    d.set_item("settle_time", b.settle_time())?;
-    Ok(d)
+    b.named().into_py_dict(py)
 }
 
 /// Seed 001 Remark 1 (sign-consistent): (tf1, tf2) lower bounds on one axis.
@@ -123,15 +114,7 @@ pub fn fntsmc_bounds<'py>(
             k1, p1, k2, p2, k3, alpha_s, beta_s, sigma_phi, tol, d_max, theta,
         )
     })?;
-    let d = PyDict::new(py);
-    d.set_item("ts", b.ts)?;
-    d.set_item("s_radius", b.s_radius)?;
-    d.set_item("td", b.td)?;
-    d.set_item("e1_radius", b.e1_radius)?;
-    d.set_item("inside_rate", b.inside_rate)?;
-    d.set_item("t_inside", b.t_inside)?;
-    d.set_item("total", b.total)?;
-    Ok(d)
+    b.named().into_py_dict(py)
 }
 
 /// A compiled dispersion (`landing.dispersions.Dispersion` holds one): independent normal or
@@ -171,7 +154,7 @@ impl Dispersion {
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             // `landing.dispersions.Dispersion.sample` has checked the memory it needs
-            within_cap("n", n as u64, "max_cases", MAX_CASES)?;
+            within_cap("n", n as u64, "max_cases", MAX_CASES).map_err(InputError::from)?;
             if first_case.checked_add(n as u64).is_none() {
                 return Err(InputError::value(format!(
                     "first_case = {first_case} violates first_case + n < 2^64 (n = {n})"

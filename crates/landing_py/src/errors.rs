@@ -149,17 +149,6 @@ pub fn guard<T>(body: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
     }
 }
 
-/// A count argument (cases, substeps, threads, resolution) checked against its cap from
-/// `landing_core::limits`: the error names the argument, its value and the cap.
-pub fn within_cap(name: &str, value: u64, cap_name: &str, cap: u64) -> Result<(), InputError> {
-    if value > cap {
-        return Err(InputError::value(format!(
-            "{name} = {value} violates {name} <= {cap_name} ({cap}); see landing._core.LIMITS"
-        )));
-    }
-    Ok(())
-}
-
 /// An axis count other than the plants' (2 or 3).
 pub fn axes_error(axes: usize) -> InputError {
     InputError::value(format!("axes = {axes} violates axes in (2, 3)"))

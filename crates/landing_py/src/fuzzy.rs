@@ -8,9 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use landing_core::fuzzy::{Mamdani, Variable, variable_rate_system};
-use landing_core::limits::MAX_FUZZY_RESOLUTION;
+use landing_core::limits::{MAX_FUZZY_RESOLUTION, within_cap};
 
-use crate::errors::{InputError, guard, within_cap};
+use crate::errors::{InputError, guard};
 use crate::table;
 
 /// A compiled Mamdani system (`landing.fuzzy.Mamdani` holds one).
@@ -90,7 +90,8 @@ pub fn variable_rate_system_table(
             resolution as u64,
             "max_fuzzy_resolution",
             MAX_FUZZY_RESOLUTION,
-        )?;
+        )
+        .map_err(InputError::from)?;
         let m = variable_rate_system(resolution);
         let d = PyDict::new(py);
         let inputs = m

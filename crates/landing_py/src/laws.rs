@@ -4,21 +4,11 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::control::{AnyLaw, LawKind};
-use landing_core::error::ReadError;
-use landing_core::params::{ByAxes, ReadFor, Reader, Table};
+use landing_core::control::{LawKind, Laws};
+use landing_core::params::{ByAxes, Table};
 
 use crate::errors::{InputError, axes_error, guard};
 use crate::{output, table};
-
-pub struct Laws;
-
-impl ReadFor for Laws {
-    type At<const D: usize> = AnyLaw<D>;
-    fn read<const D: usize>(p: &mut Reader<'_>) -> Result<AnyLaw<D>, ReadError> {
-        AnyLaw::<D>::from_params(p)
-    }
-}
 
 /// A compiled law (`landing.controllers.Controller` holds one).
 #[pyclass(frozen, module = "landing._core")]

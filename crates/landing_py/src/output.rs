@@ -1,5 +1,6 @@
 //! Batch output to numpy arrays (no copies beyond handing the buffers over).
 
+use numpy::ndarray::IntoDimension;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -12,23 +13,13 @@ fn array1<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_vec(py, v)
 }
 
-pub fn array2<'py>(
+/// `v` as an array of `shape` (C order), handed over without a copy.
+pub fn shaped<'py, Sh: IntoDimension>(
     py: Python<'py>,
     v: Vec<f64>,
-    a: usize,
-    b: usize,
+    shape: Sh,
 ) -> PyResult<Bound<'py, PyAny>> {
-    Ok(array1(py, v).reshape([a, b])?.into_any())
-}
-
-fn array3<'py>(
-    py: Python<'py>,
-    v: Vec<f64>,
-    a: usize,
-    b: usize,
-    c: usize,
-) -> PyResult<Bound<'py, PyAny>> {
-    Ok(array1(py, v).reshape([a, b, c])?.into_any())
+    Ok(array1(py, v).reshape(shape)?.into_any())
 }
 
 /// A batch's output and the names that go with it.
@@ -50,7 +41,7 @@ fn metrics<'py, const D: usize>(
     for col in CaseMetrics::<D>::COLUMNS {
         let values = match col.values(&out.metrics) {
             ColumnValues::Scalar(v) => array1(py, v).into_any(),
-            ColumnValues::Axes(v) => array2(py, v, n, D)?,
+            ColumnValues::Axes(v) => shaped(py, v, [n, D])?,
             ColumnValues::Flag(v) => PyArray1::from_vec(py, v).into_any(),
             ColumnValues::Code(v) => PyArray1::from_vec(py, v).into_any(),
         };
@@ -62,7 +53,7 @@ fn metrics<'py, const D: usize>(
 /// A numeric parameter as the core reads it: (cases, axes) per axis, (cases,) for a scalar.
 pub fn values<'py>(py: Python<'py>, v: Values) -> PyResult<Bound<'py, PyAny>> {
     if v.per_axis {
-        array2(py, v.data, v.cases, v.width)
+        shaped(py, v.data, [v.cases, v.width])
     } else {
         Ok(array1(py, v.data).into_any())
     }
@@ -78,15 +69,15 @@ pub fn to_dict<'py, const D: usize>(
     let d = PyDict::new(py);
     let metrics = metrics(py, &out)?;
     d.set_item("t", array1(py, out.times))?;
-    d.set_item("states", array3(py, out.states, n, nr, out.state_dim)?)?;
-    d.set_item("controls", array3(py, out.controls, n, nr, D)?)?;
+    d.set_item("states", shaped(py, out.states, [n, nr, out.state_dim])?)?;
+    d.set_item("controls", shaped(py, out.controls, [n, nr, D])?)?;
     d.set_item(
         "diagnostics",
-        array3(py, out.diagnostics, n, nr, out.diagnostic_dim)?,
+        shaped(py, out.diagnostics, [n, nr, out.diagnostic_dim])?,
     )?;
     d.set_item(
         "final_state",
-        array2(py, out.final_state, n, out.state_dim)?,
+        shaped(py, out.final_state, [n, out.state_dim])?,
     )?;
     d.set_item("metrics", metrics)?;
     d.set_item("state_names", parts.state_names.to_vec())?;

@@ -90,8 +90,8 @@ impl Plant {
                 .map_err(InputError::from)?;
             let axes = self.plants.axes();
             Ok((
-                output::array2(py, q, rows, axes)?,
-                output::array2(py, qd, rows, axes)?,
+                output::shaped(py, q, [rows, axes])?,
+                output::shaped(py, qd, [rows, axes])?,
             ))
         })
     }
@@ -118,7 +118,7 @@ impl Plant {
                 .states_at(rows.as_slice()?)
                 .map_err(InputError::from)?;
             let nx = data.len() / n.max(1);
-            output::array2(py, data, n, nx)
+            output::shaped(py, data, [n, nx])
         })
     }
 

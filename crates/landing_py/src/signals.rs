@@ -3,39 +3,14 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::disturbance::{COMPONENTS, Disturbance as CoreDisturbance, component_values};
-use landing_core::error::{ReadError, Validate, finite};
-use landing_core::params::{ByAxes, FromParams, ReadFor, Reader, Table};
-use landing_core::reference::{Reference as CoreReference, ReferenceKind, cubic_coefficients};
+use landing_core::disturbance::{COMPONENTS, Disturbances, component_values};
+use landing_core::error::finite;
+use landing_core::params::{ByAxes, Table};
+use landing_core::reference::{ReferenceKind, References, cubic_from_slices};
 use landing_core::with_axes;
 
 use crate::errors::{InputError, axes_error, guard};
 use crate::{output, table};
-
-/// Reads a model and validates it.
-fn read_valid<T: FromParams + Validate>(p: &mut Reader<'_>) -> Result<T, ReadError> {
-    let v = T::from_params(p)?;
-    v.validate()?;
-    Ok(v)
-}
-
-pub struct References;
-
-impl ReadFor for References {
-    type At<const D: usize> = CoreReference<D>;
-    fn read<const D: usize>(p: &mut Reader<'_>) -> Result<CoreReference<D>, ReadError> {
-        read_valid(p)
-    }
-}
-
-pub struct Disturbances;
-
-impl ReadFor for Disturbances {
-    type At<const D: usize> = CoreDisturbance<D>;
-    fn read<const D: usize>(p: &mut Reader<'_>) -> Result<CoreDisturbance<D>, ReadError> {
-        read_valid(p)
-    }
-}
 
 /// A compiled reference (`landing.reference.Reference` holds one).
 #[pyclass(frozen, module = "landing._core")]
@@ -79,7 +54,7 @@ impl Reference {
                 .into_iter()
                 .zip(values)
             {
-                d.set_item(name, output::array2(py, v, t.len(), axes)?)?;
+                d.set_item(name, output::shaped(py, v, [t.len(), axes])?)?;
             }
             Ok(d)
         })
@@ -191,25 +166,6 @@ pub fn cubic_from_boundary(
     pt: Vec<f64>,
     vt: Vec<f64>,
     t_end: f64,
-) -> PyResult<Vec<Vec<f64>>> {
-    guard(|| {
-        let all = [("p0", &p0), ("v0", &v0), ("pT", &pt), ("vT", &vt)];
-        for (name, v) in all {
-            finite(name, v).map_err(InputError::from)?;
-        }
-        let d = p0.len();
-        for (name, v) in &all[1..] {
-            if v.len() != d {
-                return Err(
-                    InputError::value(format!("{name} has {} axes, p0 has {d}", v.len())).into(),
-                );
-            }
-        }
-        let s = all.map(|(_, v)| v.as_slice());
-        with_axes!(d, D => {
-            let [a, b, c, e] = s.map(nalgebra::SVector::<f64, D>::from_column_slice);
-            let coefficients = cubic_coefficients(a, b, c, e, t_end).map_err(InputError::from)?;
-            Ok(coefficients.iter().map(|c| c.as_slice().to_vec()).collect())
-        }, d => Err(InputError::value(format!("p0 has {d} axes; 2 or 3 are supported")).into()))
-    })
+) -> PyResult<[Vec<f64>; 4]> {
+    guard(|| Ok(cubic_from_slices(&p0, &v0, &pt, &vt, t_end).map_err(InputError::from)?))
 }

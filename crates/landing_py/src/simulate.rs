@@ -9,19 +9,18 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
-use landing_core::batch::{Batch, RunOptions, run};
+use landing_core::batch::{Batch, RunOptions, RunRequest, run};
 use landing_core::disturbance::Disturbance as CoreDisturbance;
 use landing_core::external::{ExternalError, ExternalLaw, Inputs, run_external};
-use landing_core::integrator::IntegratorKind;
-use landing_core::limits::{MAX_CASES, MAX_SUBSTEPS, MAX_THREADS};
-use landing_core::params::{AxisCount, Dim, Named};
+use landing_core::limits::{MAX_CASES, within_cap};
+use landing_core::params::{AxisCount, ByAxes, Dim, ReadFor};
 use landing_core::plant::PlantModel;
 use landing_core::reference::Reference as CoreReference;
 use landing_core::registry::{PlantVisitor, initial_states};
 use landing_core::rollout::MAX_DIAGNOSTIC_WIDTH;
-use landing_core::{Level, PerCase, SimConfig, Tolerance};
+use landing_core::{PerCase, SimConfig};
 
-use crate::errors::{InputError, batch_error, guard, internal_error, within_cap};
+use crate::errors::{InputError, batch_error, guard, internal_error};
 use crate::laws::Law;
 use crate::output;
 use crate::plants::Plant;
@@ -182,6 +181,20 @@ fn detached<T: Send>(
     result?.map_err(internal_error)
 }
 
+/// The reading of a law, a reference or a disturbance for D axes, if it fits `n` cases.
+fn for_cases<M: ReadFor, const D: usize>(
+    compiled: &ByAxes<M>,
+    owner: &str,
+    n: usize,
+) -> Result<PerCase<M::At<D>>, InputError>
+where
+    Dim<D>: AxisCount<D>,
+{
+    let (models, cases) = compiled.get::<D>()?;
+    cases.check(owner, n)?;
+    Ok(models.clone())
+}
+
 impl<'py> PlantVisitor for Simulate<'_, 'py> {
     type Output = PyResult<Bound<'py, PyDict>>;
 
@@ -192,19 +205,11 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
         let n = self.n;
         let references = match self.reference {
             None => PerCase::shared(CoreReference::default()),
-            Some(r) => {
-                let (refs, cases) = r.compiled.get::<D>().map_err(InputError::from)?;
-                cases.check("reference", n).map_err(InputError::from)?;
-                refs.clone()
-            }
+            Some(r) => for_cases(&r.compiled, "reference", n)?,
         };
         let disturbances = match self.disturbance {
             None => PerCase::shared(CoreDisturbance::none()),
-            Some(d) => {
-                let (ds, cases) = d.compiled.get::<D>().map_err(InputError::from)?;
-                cases.check("disturbance", n).map_err(InputError::from)?;
-                ds.clone()
-            }
+            Some(d) => for_cases(&d.compiled, "disturbance", n)?,
         };
         let x0 = initial_states(plants, self.x0).map_err(InputError::from)?;
         let cfg = self.cfg;
@@ -216,10 +221,7 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
         let work = (n as u128) * u128::from(cfg.steps) * u128::from(cfg.substeps);
         let (out, layout) = match self.control {
             Control::Builtin(law) => {
-                let (laws, law_cases) = law.compiled.get::<D>().map_err(InputError::from)?;
-                law_cases
-                    .check(&format!("controller ({})", law.kind), n)
-                    .map_err(InputError::from)?;
+                let laws = for_cases(&law.compiled, &format!("controller ({})", law.kind), n)?;
                 let layout = laws
                     .get(0)
                     .diagnostic_layout()
@@ -228,7 +230,7 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
                     .collect();
                 let batch = Batch {
                     plants: plants.clone(),
-                    laws: laws.clone(),
+                    laws,
                     references,
                     disturbances,
                     x0,
@@ -319,61 +321,25 @@ pub fn simulate_batch<'py>(
                 layout,
             },
             _ => {
-                return Err(InputError::value(
-                    "controller must be a compiled law, or a callable with its diagnostic_layout"
-                        .to_string(),
-                )
-                .into());
+                let rule = "a compiled law, or a callable with its diagnostic_layout";
+                return Err(InputError::value(format!("controller must be {rule}")).into());
             }
         };
-        let integ = IntegratorKind::from_name(integrator).ok_or_else(|| {
-            InputError::value(format!(
-                "integrator = {integrator:?} is not one of {:?}",
-                IntegratorKind::NAMES
-            ))
-        })?;
-        if substeps < 1 {
-            return Err(
-                InputError::value(format!("substeps = {substeps} violates substeps >= 1")).into(),
-            );
-        }
-        within_cap("substeps", substeps as u64, "max_substeps", MAX_SUBSTEPS)?;
-        if record_every < 0 {
-            return Err(InputError::value(format!(
-                "record_every = {record_every} violates record_every >= 0"
-            ))
-            .into());
-        }
-        let threads = match threads {
-            None => None,
-            Some(k) if k >= 1 => {
-                within_cap("threads", k as u64, "max_threads", MAX_THREADS)?;
-                Some(k as usize)
-            }
-            Some(k) => {
-                return Err(
-                    InputError::value(format!("threads = {k} violates threads >= 1")).into(),
-                );
-            }
+        let request = RunRequest {
+            t_final,
+            dt,
+            integrator,
+            substeps,
+            record_every,
+            seed,
+            first_case,
+            settle_tolerance,
+            settle_relative,
+            chatter_cutoff,
+            threads,
+            kernel,
         };
-        let level = kernel
-            .map(Level::from_name)
-            .transpose()
-            .map_err(|e| InputError::value(format!("kernel: {e}")))?;
-        let cfg = SimConfig::new(t_final, dt, substeps as u32, record_every as u64, seed)
-            .map_err(InputError::from)?
-            .with_first_case(first_case)
-            .with_integrator(integ)
-            .with_settle(if settle_relative {
-                Tolerance::Relative(settle_tolerance)
-            } else {
-                Tolerance::Absolute(settle_tolerance)
-            })
-            .map_err(InputError::from)?;
-        let cfg = match chatter_cutoff {
-            None => cfg,
-            Some(hz) => cfg.with_chatter_cutoff(hz).map_err(InputError::from)?,
-        };
+        let (cfg, options) = request.compile().map_err(InputError::from)?;
         let shape = x0.shape();
         let n = shape[0];
         let names = plant.plants.info().state_names;
@@ -386,7 +352,7 @@ pub fn simulate_batch<'py>(
             ))
             .into());
         }
-        within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES)?;
+        within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES).map_err(InputError::from)?;
         plant
             .cases
             .check(&format!("plant ({})", plant.kind), n)
@@ -399,11 +365,7 @@ pub fn simulate_batch<'py>(
             x0: x0.as_slice()?,
             n,
             cfg,
-            options: RunOptions {
-                threads,
-                level,
-                cancel: None,
-            },
+            options,
         })
     })
 }

@@ -270,3 +270,13 @@ laws! {
     FixedTimeNtsmc => "fixed_time_ntsmc",
     Tabulated => "tabulated",
 }
+
+/// The laws, read for each axis count ([`crate::params::ByAxes`]).
+pub struct Laws;
+
+impl crate::params::ReadFor for Laws {
+    type At<const D: usize> = AnyLaw<D>;
+    fn read<const D: usize>(p: &mut crate::params::Reader<'_>) -> Result<AnyLaw<D>, ReadError> {
+        AnyLaw::<D>::from_params(p)
+    }
+}

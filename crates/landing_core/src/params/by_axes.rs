@@ -5,10 +5,21 @@ use super::{Cases, Reader, Table};
 use crate::batch::PerCase;
 use crate::error::ReadError;
 
-/// How a model is read for D axes.
+/// How a model is read for D axes (the laws: [`crate::control::Laws`], the references and
+/// the disturbances: [`crate::reference::References`], [`crate::disturbance::Disturbances`]).
 pub trait ReadFor {
-    type At<const D: usize>: Send + Sync + 'static;
+    type At<const D: usize>: Clone + Send + Sync + 'static;
     fn read<const D: usize>(p: &mut Reader<'_>) -> Result<Self::At<D>, ReadError>;
+}
+
+/// Reads a model and validates it (the [`ReadFor`] of the families whose `from_params` does
+/// not validate on its own).
+pub fn read_valid<T: super::FromParams + crate::error::Validate>(
+    p: &mut Reader<'_>,
+) -> Result<T, ReadError> {
+    let v = T::from_params(p)?;
+    v.validate()?;
+    Ok(v)
 }
 
 /// A table's reading for D axes (with its cases), or why the table does not fit D axes.

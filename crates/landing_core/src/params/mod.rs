@@ -18,7 +18,7 @@ mod names;
 pub mod schema;
 mod table;
 
-pub use by_axes::{AxisCount, ByAxes, Dim, ReadFor};
+pub use by_axes::{AxisCount, ByAxes, Dim, ReadFor, read_valid};
 pub use names::{Counted, Kinds, Named};
 pub use schema::{Declared, Layout, Param, Schema, Shape};
 pub use table::{Array, Cases, Reader, Table, Value, Values, shape_str};
