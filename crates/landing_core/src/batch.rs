@@ -13,8 +13,6 @@
 
 use std::sync::atomic::AtomicBool;
 
-use rayon::prelude::*;
-
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
 use crate::error::ReadError;
@@ -24,6 +22,7 @@ use crate::lanes::{Gather, Real};
 use crate::limits::{MAX_SUBSTEPS, MAX_THREADS, within_cap};
 use crate::memory::{available_bytes, gib};
 use crate::metrics::CaseMetrics;
+use crate::parallel::{self, Job};
 use crate::params::Named;
 use crate::plant::{Plant, PlantModel};
 use crate::reference::Reference;
@@ -492,24 +491,25 @@ fn run_here<const D: usize, P: PlantModel<D>>(
         Kernel::Lanes(level) => (level.lanes::<P::Blocks>(), level),
         Kernel::Scalar => (1, Level::Baseline),
     };
-    let jobs: Vec<_> = o
+    let shared = &shared;
+    let jobs = o
         .blocks(w, nr, nx, nd)
         .into_iter()
         .enumerate()
-        .map(|(b, out)| BlockJob {
-            shared: &shared,
-            first: b * w,
-            used: w.min(n - b * w),
-            out,
+        .map(|(b, out)| -> Job<'_, Result<(), Cancelled>> {
+            let job = BlockJob {
+                shared,
+                first: b * w,
+                used: w.min(n - b * w),
+                out,
+            };
+            Box::new(move || match kernel {
+                Kernel::Lanes(level) => kernel::dispatch(level, job),
+                Kernel::Scalar => kernel::run_scalar(job),
+            })
         })
         .collect();
-    jobs.into_par_iter()
-        .with_max_len(1)
-        .try_for_each(|job| match kernel {
-            Kernel::Lanes(level) => kernel::dispatch(level, job),
-            Kernel::Scalar => kernel::run_scalar(job),
-        })
-        .map_err(|Cancelled| BatchError::Cancelled)?;
+    parallel::try_each(jobs).map_err(|Cancelled| BatchError::Cancelled)?;
     Ok(o.finish(cfg, nx, nd, level))
 }
 
@@ -639,14 +639,11 @@ fn run_on<const D: usize, P: PlantModel<D>>(
     if batch.x0.is_empty() {
         return run_here(batch, cfg, kernel, cancel);
     }
-    match threads {
-        None => run_here(batch, cfg, kernel, cancel),
-        Some(k) => rayon::ThreadPoolBuilder::new()
-            .num_threads(k)
-            .build()
-            .map_err(|e| BatchError::ThreadPool(e.to_string()))?
-            .install(|| run_here(batch, cfg, kernel, cancel)),
-    }
+    let pool = parallel::pool(threads).map_err(BatchError::ThreadPool)?;
+    parallel::on_pool(
+        pool.as_ref(),
+        Box::new(|| run_here(batch, cfg, kernel, cancel)),
+    )
 }
 
 /// Runs every case alone with `f64` numbers: the width-1 instance of the same generic

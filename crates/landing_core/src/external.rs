@@ -16,8 +16,8 @@
 use std::any::Any;
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use crate::parallel::{self, Job};
 use nalgebra::SVector;
-use rayon::prelude::*;
 
 use crate::batch::{
     Batch, BatchError, BatchOutput, BlockCases, Outputs, RunOptions, check_cases, shared_table,
@@ -283,14 +283,6 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
     }
 }
 
-/// Runs `f` on `pool`, or on the current one.
-fn on_pool<T: Send>(pool: Option<&rayon::ThreadPool>, f: impl FnOnce() -> T + Send) -> T {
-    match pool {
-        Some(p) => p.install(f),
-        None => f(),
-    }
-}
-
 /// Runs every case of the batch under `law`, which is called on the calling thread once per
 /// control instant (`steps + 1` times, the last at t_final, while a case still runs) with
 /// the inputs of every case; between two calls every block's period runs on the rayon pool.
@@ -305,15 +297,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
 ) -> Result<BatchOutput<D>, ExternalError<X::Error>> {
     check_cases(batch, &[])?;
     let level = Level::resolve(options.level).map_err(BatchError::from)?;
-    let pool = match options.threads {
-        None => None,
-        Some(k) => Some(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(k)
-                .build()
-                .map_err(|e| BatchError::ThreadPool(e.to_string()))?,
-        ),
-    };
+    let pool = parallel::pool(options.threads).map_err(BatchError::ThreadPool)?;
     let pool = pool.as_ref();
     let never = AtomicBool::new(false);
     let cancel = options.cancel.unwrap_or(&never);
@@ -343,22 +327,22 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
     let mut command = vec![0.0; n * D];
     let mut diagnostics = vec![0.0; n * nd];
 
-    let jobs: Vec<_> = inputs.rows(w).into_iter().enumerate().collect();
-    let common_ref = &common;
-    let mut held: Vec<Held> = on_pool(pool, || {
-        jobs.into_par_iter()
-            .with_max_len(1)
-            .map(|(b, rows)| {
-                let job = Start {
-                    common: common_ref,
-                    first: b * w,
-                    used: used(b),
-                    rows,
-                };
-                kernel::dispatch(level, job)
-            })
-            .collect()
-    });
+    let common = &common;
+    let jobs = inputs
+        .rows(w)
+        .into_iter()
+        .enumerate()
+        .map(|(b, rows)| -> Job<'_, Held> {
+            let job = Start {
+                common,
+                first: b * w,
+                used: used(b),
+                rows,
+            };
+            Box::new(move || kernel::dispatch(level, job))
+        })
+        .collect();
+    let mut held = parallel::on_pool(pool, Box::new(|| parallel::each(jobs)));
     let mut buffers = outputs.blocks(w, nr, nx, nd);
     let mut running = vec![true; held.len()];
     let mut k = 0;
@@ -371,7 +355,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         law.command(&inputs, &mut command, &mut diagnostics)
             .map_err(ExternalError::Law)?;
         let blocks = held.len();
-        let jobs: Vec<_> = held
+        let jobs = held
             .iter_mut()
             .zip(buffers.iter_mut())
             .zip(command.chunks(w * D))
@@ -380,12 +364,10 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
             .zip(running.iter_mut())
             .enumerate()
             .filter(|(_, (_, running))| **running)
-            .collect();
-        on_pool(pool, || {
-            jobs.into_par_iter().with_max_len(1).for_each(
-                |(b, (((((held, out), command), diagnostics), rows), running))| {
+            .map(
+                |(b, (((((held, out), command), diagnostics), rows), running))| -> Job<'_, ()> {
                     let job = Step {
-                        common: common_ref,
+                        common,
                         k,
                         held,
                         used: used(b),
@@ -394,10 +376,11 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
                         rows,
                         out,
                     };
-                    *running = kernel::dispatch(level, job);
+                    Box::new(move || *running = kernel::dispatch(level, job))
                 },
             )
-        });
+            .collect();
+        parallel::on_pool(pool, Box::new(|| parallel::each(jobs)));
         k += 1;
     }
     drop(buffers);

@@ -23,6 +23,7 @@ pub mod limits;
 pub mod math;
 pub mod memory;
 pub mod metrics;
+mod parallel;
 pub mod params;
 pub mod plant;
 pub mod reference;

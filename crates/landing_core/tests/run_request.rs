@@ -36,9 +36,12 @@ fn a_valid_request_keeps_every_option() {
     assert!(options.cancel.is_none());
 }
 
+/// One option set to a bad value.
+type Change = fn(&mut RunRequest<'static>);
+
 #[test]
 fn each_bad_option_is_named_with_its_rule() {
-    let cases: [(fn(&mut RunRequest<'static>), &str); 9] = [
+    let cases: [(Change, &str); 9] = [
         (
             |r| r.integrator = "rk45",
             r#"integrator = "rk45" is not one of ["rk4", "euler"]"#,

@@ -162,13 +162,13 @@ struct Simulate<'a, 'py> {
     options: RunOptions<'static>,
 }
 
-/// Runs `job` without the GIL, interruptibly when it is large (see [`interruptible`]),
-/// catching its panics.
+/// Runs `job` without the GIL, interruptibly when it is large (see [`interruptible`]), catching
+/// its panics; boxed, so that this machinery is compiled once per output type, not per plant.
 fn detached<T: Send>(
     py: Python<'_>,
     work: u128,
     cancel: &AtomicBool,
-    job: impl FnOnce() -> T + Send,
+    job: Box<dyn FnOnce() -> T + Send + '_>,
 ) -> PyResult<T> {
     let result = py.detach(|| {
         let job = || catch_unwind(AssertUnwindSafe(job));
@@ -235,8 +235,8 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
                     disturbances,
                     x0,
                 };
-                let out = detached(self.py, work, &cancel, || run(&batch, &cfg, &options))?
-                    .map_err(batch_error)?;
+                let job = Box::new(|| run(&batch, &cfg, &options));
+                let out = detached(self.py, work, &cancel, job)?.map_err(batch_error)?;
                 (out, layout)
             }
             Control::Python { step, layout } => {
@@ -261,9 +261,8 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
                 };
                 // always interruptible: every call of the law takes the GIL, so even a short
                 // horizon may run long
-                let result = detached(self.py, u128::MAX, &cancel, || {
-                    run_external(&batch, &cfg, &options, &mut law)
-                })?;
+                let job = Box::new(|| run_external(&batch, &cfg, &options, &mut law));
+                let result = detached(self.py, u128::MAX, &cancel, job)?;
                 let out = match result {
                     Ok(out) => out,
                     Err(ExternalError::Batch(e)) => return Err(batch_error(e)),
