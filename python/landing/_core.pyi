@@ -2,7 +2,7 @@
 # Python package; its configuration classes compile their parameter tables into these handles
 # once, and batches take the handles.
 from collections.abc import Callable, Sequence
-from typing import Any, Optional, final
+from typing import Any, Optional, Protocol, final
 
 import numpy as np
 import numpy.typing as npt
@@ -146,8 +146,16 @@ class Dispersion:
 #: The former name of :class:`Dispersion`.
 DispersionHandle = Dispersion
 
+class _PlantHooks(Protocol):
+    """A plant written in Python (``landing._internal.user_plant.PlantStep``): its hooks
+    ``(derivative, model, actuate, in_domain)``, None where absent, and its layout
+    ``(n_state, positions, velocities, mass, altitude)``."""
+
+    _hooks: tuple[Optional[Callable[..., _Array]], ...]
+    _layout: tuple[int, list[int], list[int], Optional[int], Optional[int]]
+
 def simulate_batch(
-    plant: Plant,
+    plant: Plant | _PlantHooks,
     controller: Law | Callable[..., tuple[_Array, _Array]],
     x0: _Array,
     *,

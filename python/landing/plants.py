@@ -6,8 +6,11 @@ with one entry per case of the batch, or ``(N, 3)`` for per-axis ones).
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any, ClassVar, Literal, Optional
 
 import numpy as np
@@ -15,11 +18,13 @@ import numpy as np
 from landing import _core
 from landing._internal.args import real, real_array
 from landing._internal.limits import require_memory
-from landing._internal.table import ArrayLike, Table
+from landing._internal.table import ArrayLike, Parameter, Table, as_float_array
+from landing._internal.user_law import qualified_name, source_hash
+from landing._internal.user_plant import PlantStep, per_case
 from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
 
-__all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSatellite"]
+__all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSatellite", "PythonPlant"]
 
 
 class Plant(Table):
@@ -272,3 +277,180 @@ class TetheredSatellite(Plant):
         if d.shape[-1] == 4:
             return self.initial_state(d[..., 0], d[..., 1], d[..., 2], d[..., 3])
         return d
+
+
+#: Most state components a plant written in Python may have.
+MAX_PYTHON_STATE: int = 32
+
+
+@dataclass(frozen=True, eq=False)
+class PythonPlant(Plant):
+    """A plant written in Python: the core integrates ``derivative`` with its RK4 or Euler
+    step, calling it once per integrator stage for every case of the batch at once, and runs
+    every law on it, built in or written in Python, with the metrics, events and stops of a
+    built-in plant.
+
+    ``derivative(t, x, u, params)`` returns ``x'`` (n, n_state) for the states ``x`` (n,
+    n_state) and the applied commands ``u`` (n, D), without the disturbance: the core adds a
+    disturbance (a generalized acceleration, see :mod:`landing.disturbances`) to the
+    derivative of each velocity component. The arrays are read-only; ``params`` is a dict of
+    the plant's parameters, one row per case (see ``params`` below).
+
+    The law reads ``q = x[:, positions]`` and ``q' = x[:, velocities]``, and from ``model(t, x,
+    params) -> (drift, inertia)`` (each (n, D)) the modelled acceleration it may cancel and the
+    inertia its command is scaled by; without a model, drift 0 and inertia 1. The applied
+    command is ``actuate(t, x, a, params)`` (n, D) for the law's commanded acceleration ``a``
+    (saturation goes here); without one, ``inertia * a``. ``in_domain(t, x, params)`` returns
+    booleans (n,): a case whose state leaves the domain is stopped and flagged
+    ``out_of_domain``, as a non-finite state is ``non_finite_state``. Each hook is one call per
+    control period for every case (the domain: per integrator step).
+
+    Parameters
+    ----------
+    derivative, n_state, positions, velocities : the dynamics, the number of state components
+        (at most 32) and the components holding q and q' (one per axis, 2 or 3 axes, 2 D
+        distinct components).
+    model, actuate, in_domain : the optional hooks above.
+    params : the plant's parameters by name: a scalar (the functions see (n,)), a vector (k,)
+        shared by every case (seen as (n, k)), or a value per case (N,) or (N, k).
+    state_names, control_names : names for tables and plots (default x0, x1, ... and u0, ...).
+    mass, altitude : the components holding the mass (fuel metrics) and the height above the
+        ground (touchdown metrics), if any.
+    name : how the plant is named in messages (default: the derivative's ``module:qualname``).
+
+    The cases run one after the other between the calls, on the calling thread, with the
+    baseline kernel (``threads`` and ``kernel`` do not apply): the functions' time dominates.
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> def falling(t, x, u, params):  # a point mass in 1 g, commanded in force
+    ...     m = params["mass"][:, None]
+    ...     return np.concatenate([x[:, 3:], u / m - [0.0, 0.0, 9.81]], axis=1)
+    >>> plant = landing.plants.PythonPlant(falling, 6, positions=(0, 1, 2), velocities=(3, 4, 5),
+    ...     model=lambda t, x, p: (np.tile([0.0, 0.0, -9.81], (len(x), 1)), np.repeat(p["mass"][:, None], 3, 1)),
+    ...     params={"mass": 2.0})
+    """
+
+    derivative: Callable[..., Any]
+    n_state: int
+    positions: Sequence[int]
+    velocities: Sequence[int]
+    model: Optional[Callable[..., Any]] = None
+    actuate: Optional[Callable[..., Any]] = None
+    in_domain: Optional[Callable[..., Any]] = None
+    params: Mapping[str, ArrayLike] = field(default_factory=dict)
+    state_names: tuple[str, ...] = ()
+    control_names: tuple[str, ...] = ()
+    mass: Optional[int] = None
+    altitude: Optional[int] = None
+    name: Optional[str] = None
+
+    kind: ClassVar[str] = "python"
+    _in_core: ClassVar[bool] = False
+
+    def __post_init__(self) -> None:
+        owner = "PythonPlant"
+        for key in ("derivative", "model", "actuate", "in_domain"):
+            f = getattr(self, key)
+            if (f is not None or key == "derivative") and not callable(f):
+                raise ParameterTypeError(f"{owner}: {key} must be callable, got {type(f).__name__}")
+        n_state = self.n_state
+        whole = isinstance(n_state, (int, np.integer)) and not isinstance(n_state, bool)
+        if not whole or not 1 <= n_state <= MAX_PYTHON_STATE:
+            raise ParameterError(f"{owner}: n_state = {n_state!r} violates 1 <= n_state <= {MAX_PYTHON_STATE}")
+        indices = {}
+        for key in ("positions", "velocities"):
+            v = getattr(self, key)
+            if isinstance(v, (str, bytes)) or not isinstance(v, Sequence) and not isinstance(v, np.ndarray):
+                raise ParameterTypeError(f"{owner}: {key} must be a sequence of component indices")
+            indices[key] = tuple(int(i) for i in v)
+        axes = len(indices["positions"])
+        if axes not in (2, 3) or len(indices["velocities"]) != axes:
+            raise ParameterError(f"{owner}: positions {indices['positions']} and velocities {indices['velocities']} "
+                                 "violate one index per axis, 2 or 3 axes")
+        every = indices["positions"] + indices["velocities"]
+        if len(set(every)) != 2 * axes or not all(0 <= i < n_state for i in every):
+            raise ParameterError(f"{owner}: positions and velocities {every} violate {2 * axes} distinct components "
+                                 f"of 0..{n_state - 1}")
+        for key in ("mass", "altitude"):
+            i = getattr(self, key)
+            if i is not None and not (isinstance(i, (int, np.integer)) and 0 <= i < n_state):
+                raise ParameterError(f"{owner}: {key} = {i!r} violates a component of 0..{n_state - 1} or None")
+        object.__setattr__(self, "n_state", int(n_state))
+        object.__setattr__(self, "positions", indices["positions"])
+        object.__setattr__(self, "velocities", indices["velocities"])
+        if not isinstance(self.params, Mapping):
+            raise ParameterTypeError(f"{owner}: params must be a dict of numbers, got {type(self.params).__name__}")
+        params = {}
+        for key, value in self.params.items():
+            if not isinstance(key, str) or not key.isidentifier():
+                raise ParameterError(f"{owner}: params key {key!r} must be a name (an identifier)")
+            arr = as_float_array(owner, f"params[{key!r}]", value).copy()
+            if arr.ndim > 2:
+                raise ParameterError(f"{owner}: params[{key!r}] has shape {arr.shape}; it takes a scalar, (k,), "
+                                     "(N,) or (N, k)")
+            arr.setflags(write=False)
+            params[key] = arr
+        object.__setattr__(self, "params", MappingProxyType(params))
+        for key, count, prefix in (("state_names", n_state, "x"), ("control_names", axes, "u")):
+            names = tuple(str(s) for s in getattr(self, key)) or tuple(f"{prefix}{i}" for i in range(count))
+            if len(names) != count:
+                raise ParameterError(f"{owner}: {key} has {len(names)} names; the plant has {count}")
+            object.__setattr__(self, key, names)
+        if self.name is None:
+            object.__setattr__(self, "name", qualified_name(self.derivative))
+        self._compile()
+
+    def _compile(self) -> None:
+        """Nothing for the core to compile: the dynamics run in Python."""
+        object.__setattr__(self, "_core", None)
+
+    def _info(self) -> dict[str, Any]:
+        return {"state_names": self.state_names, "control_names": self.control_names, "axes": self.axes}
+
+    @property
+    def axes(self) -> int:
+        return len(self.positions)
+
+    @property
+    def parameters(self) -> Mapping[str, Parameter]:  # type: ignore[override]
+        """The plant's parameters (scalars, shared vectors or values per case)."""
+        return MappingProxyType({
+            k: Parameter(name=k, shape="scalar", unit="", rule="", required=True, doc="a parameter of the plant")
+            for k in self.params
+        })
+
+    @property
+    def source_hash(self) -> str:
+        """SHA-256 of the derivative's source (what a campaign's provenance records)."""
+        return source_hash(self.derivative)
+
+    def coordinates(self, states: Any) -> tuple[np.ndarray, np.ndarray]:
+        """q and q' from states ``(..., n_state)``: the components ``positions`` and ``velocities``."""
+        x = real_array("states", states, owner="PythonPlant")
+        if x.ndim == 0 or x.shape[-1] != self.n_state:
+            raise ParameterError(f"states have shape {x.shape}; this plant's have {self.n_state} components")
+        return x[..., list(self.positions)], x[..., list(self.velocities)]
+
+    def replace(self, **changes: Any) -> PythonPlant:
+        """A copy with some fields or parameters changed: ``plant.replace(mass=2.0)`` changes
+        ``params["mass"]``; ``plant.replace(params={...})`` replaces them all."""
+        fields = {f.name for f in dataclasses.fields(self)}
+        unknown = [k for k in changes if k not in fields and k not in self.params]
+        if unknown:
+            raise ParameterError(f"PythonPlant: {unknown[0]!r} is neither a field ({sorted(fields)}) nor one of "
+                                 f"its params ({sorted(self.params)})")
+        params = dict(changes.pop("params", self.params))
+        for k in [k for k in changes if k not in fields]:
+            params[k] = changes.pop(k)
+        return dataclasses.replace(self, params=params, **changes)
+
+    def _step(self, n: int, first_case: int) -> PlantStep:
+        """The hooks the core calls for a batch of n cases numbered from ``first_case``."""
+        name = self.name or ""
+        params = {k: per_case(f"PythonPlant {name}", k, v, n) for k, v in self.params.items()}
+        layout = (self.n_state, list(self.positions), list(self.velocities), self.mass, self.altitude)
+        return PlantStep(name=name, derivative=self.derivative, model=self.model, actuate=self.actuate,
+                         in_domain=self.in_domain, params=params, n_state=self.n_state, axes=self.axes,
+                         layout=layout, n=n, first_case=first_case)

@@ -17,7 +17,7 @@ from landing._internal.user_law import LawStep, per_axis
 from landing.controllers import Controller, PythonLaw
 from landing.disturbances import DisturbanceLike, compiled
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
-from landing.plants import Plant
+from landing.plants import Plant, PythonPlant
 from landing.reference import Reference
 from landing.results import Metrics, SimulationResult, describe_diverged
 
@@ -194,11 +194,15 @@ def simulate_batch(
         first_case=first,
         **options._core_arguments(),
     )
+    # a plant written in Python is handed over as its hooks for this batch
+    core_plant = plant._step(x.shape[0], first) if isinstance(plant, PythonPlant) else plant._core
     if isinstance(controller, PythonLaw):
         step, layout = _python_step(controller, plant, x.shape[0], first)
-        out = _core.simulate_batch(plant._core, step, x, diagnostic_layout=layout, **arguments)
+        out = _core.simulate_batch(core_plant, step, x, diagnostic_layout=layout, **arguments)
     else:
-        out = _core.simulate_batch(plant._core, controller._core, x, **arguments)
+        out = _core.simulate_batch(core_plant, controller._core, x, **arguments)
+    if isinstance(plant, PythonPlant):
+        out["state_names"], out["control_names"] = plant.state_names, plant.control_names
     diag = out["diagnostics"]
     diagnostics = {}
     offset = 0
@@ -231,7 +235,7 @@ def simulate_batch(
 def _python_step(law: PythonLaw, plant: Plant, n: int, first_case: int) -> tuple[LawStep, list[tuple[str, int]]]:
     """What the core calls for a law written in Python, for n cases of ``plant``, and the
     layout of its diagnostics."""
-    axes = plant._core.axes
+    axes = plant.axes
     name = law.name or ""
     params = {k: per_axis(f"PythonLaw {name}", k, v, n, axes) for k, v in law.params.items()}
     layout = law.diagnostic_layout(axes)

@@ -100,7 +100,10 @@ impl IntegratorKind {
     /// Both methods run through one loop over their tableau's stages, so the derivative (the
     /// bulk of the code) is inlined once, whatever the method: the choice of method is a
     /// number of stages and a few coefficients read at run time, not a second copy. The
-    /// stage point and the weighted sum are updated in place (see [`State`]).
+    /// stage point and the weighted sum are updated in place (see [`State`]). A caller that
+    /// computes the derivatives elsewhere (a plant written in Python, one call per stage for
+    /// every case) runs the same step stage by stage: [`Self::accumulate`] for each stage, then
+    /// [`Self::combine`].
     #[inline(always)]
     pub fn step_into<R: Real, S: State<R>>(
         self,
@@ -109,25 +112,57 @@ impl IntegratorKind {
         h: f64,
         next: &mut S,
     ) {
-        let tab = self.tableau();
         // `next` holds the weighted sum of the stage derivatives until the last line
-        let sum = next;
         let mut y = *x;
-        for i in 0..tab.stages {
-            let k = f.at(tab.at[i], if i == 0 { x } else { &y });
-            // a weight of 1 multiplies nothing: `k * 1` is `k`, bit for bit
-            let w = tab.weight[i];
-            match (i == 0, w == 1.0) {
-                (true, true) => *sum = k,
-                (true, false) => sum.set_scaled(&k, R::splat(w)),
-                (false, true) => sum.add_assign_state(&k),
-                (false, false) => sum.add_scaled_assign(&k, R::splat(w)),
-            }
-            if i + 1 < tab.stages {
-                y.set_add_scaled(x, &k, R::splat(tab.next[i] * h));
-            }
+        for i in 0..self.tableau().stages {
+            let k = f.at(self.stage(i), if i == 0 { x } else { &y });
+            self.accumulate(i, x, &k, h, next, &mut y);
         }
-        let c = R::splat(h / tab.divisor);
+        self.combine(x, h, next);
+    }
+
+    /// Number of derivative evaluations per step (RK4: 4, two of them at the middle).
+    pub fn evaluations(self) -> usize {
+        self.tableau().stages
+    }
+
+    /// Where evaluation `i` of a step lies.
+    #[inline(always)]
+    pub fn stage(self, i: usize) -> Stage {
+        self.tableau().at[i]
+    }
+
+    /// Adds evaluation `i`'s derivative `k` (at `x` for the first, at `y` for the others) to
+    /// the weighted sum `sum` and, unless it is the last, moves `y` to the next evaluation's
+    /// point.
+    #[inline(always)]
+    pub fn accumulate<R: Real, S: State<R>>(
+        self,
+        i: usize,
+        x: &S,
+        k: &S,
+        h: f64,
+        sum: &mut S,
+        y: &mut S,
+    ) {
+        let tab = self.tableau();
+        // a weight of 1 multiplies nothing: `k * 1` is `k`, bit for bit
+        let w = tab.weight[i];
+        match (i == 0, w == 1.0) {
+            (true, true) => *sum = *k,
+            (true, false) => sum.set_scaled(k, R::splat(w)),
+            (false, true) => sum.add_assign_state(k),
+            (false, false) => sum.add_scaled_assign(k, R::splat(w)),
+        }
+        if i + 1 < tab.stages {
+            y.set_add_scaled(x, k, R::splat(tab.next[i] * h));
+        }
+    }
+
+    /// The step's end: the weighted sum `sum` becomes the new state, `x + sum h / divisor`.
+    #[inline(always)]
+    pub fn combine<R: Real, S: State<R>>(self, x: &S, h: f64, sum: &mut S) {
+        let c = R::splat(h / self.tableau().divisor);
         for i in 0..S::DIM {
             // x + sum c, written over the sum
             let v = x.component(i) + sum.component(i) * c;

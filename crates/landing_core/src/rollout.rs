@@ -323,6 +323,31 @@ impl<const D: usize> StageTable<D> {
     }
 }
 
+/// The disturbance at a stage (control period k, substep j, the stage) at `time`: the
+/// deterministic part, from the batch's table or per lane (the same bits), plus the random
+/// part `held` drawn for the period.
+#[inline(always)]
+pub(crate) fn stage_disturbance<const D: usize, R: Real>(
+    disturbance: &Disturbance<D, R>,
+    table: Option<&StageTable<D>>,
+    (k, j, stage): (u64, usize, Stage),
+    time: f64,
+    held: &SVector<R, D>,
+) -> SVector<R, D> {
+    let det = match table {
+        Some(tab) => {
+            let v = tab.get(k, j, stage.index());
+            let mut splat = zeros();
+            for i in 0..D {
+                splat[i] = R::splat(v[i]);
+            }
+            splat
+        }
+        None => disturbance.deterministic(time),
+    };
+    add(&det, held)
+}
+
 /// The plant's derivative over one step with the command held: what the integrator steps.
 struct Held<'a, const D: usize, R: Real, P> {
     plant: &'a P,
@@ -344,19 +369,13 @@ impl<const D: usize, R: Real, P: Plant<R, D>> StageDerivative<R, P::State> for H
     #[inline(always)]
     fn at(&self, stage: Stage, y: &P::State) -> P::State {
         let time = stage.time(self.tj, self.h);
-        // the deterministic disturbance: from the batch's table, or per lane (same bits)
-        let det = match self.table {
-            Some(tab) => {
-                let v = tab.get(self.k, self.j, stage.index());
-                let mut splat = zeros();
-                for i in 0..D {
-                    splat[i] = R::splat(v[i]);
-                }
-                splat
-            }
-            None => self.disturbance.deterministic(time),
-        };
-        let d = add(&det, self.held);
+        let d = stage_disturbance(
+            self.disturbance,
+            self.table,
+            (self.k, self.j, stage),
+            time,
+            self.held,
+        );
         // One call, the drift chosen before it: two calls returning the state from the
         // branches of an `if` made the compiler copy the (kilobyte) result out of each.
         // `derivative_with_drift` at the modelled acceleration is `derivative` by contract,
@@ -407,11 +426,11 @@ fn record<const D: usize, R: Real, S: State<R>>(
     n_records: usize,
     slot: usize,
     live: R::Mask,
+    nx: usize,
     x: &S,
     u: &SVector<R, D>,
     diag: &[R],
 ) {
-    let nx = S::DIM;
     let nd = diag.len();
     for i in 0..used {
         if !live.lane(i) {
@@ -428,6 +447,15 @@ fn record<const D: usize, R: Real, S: State<R>>(
             out.diagnostics[row * nd + c] = d.lane(i);
         }
     }
+}
+
+/// What a control period holds over its substeps: the applied command, the random
+/// disturbance drawn for the period, its start time and the substep's length.
+pub(crate) struct PeriodHold<const D: usize, R: Real> {
+    pub u: SVector<R, D>,
+    pub disturbance: SVector<R, D>,
+    pub t: f64,
+    pub h: f64,
 }
 
 /// What the periods of a block read and never change.
@@ -539,6 +567,11 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
     /// and counted in the statistics; the random disturbance is drawn; the plant is advanced by
     /// the period's substeps, each crossing of the ground located and each stop flagged; the
     /// law's input at t_(k+1) is made. Returns whether any lane still runs.
+    ///
+    /// The period is [`Block::begin_period`], per substep one integrator step from
+    /// [`Block::state`] into [`Block::next_mut`] and [`Block::end_substep`], then
+    /// [`Block::end_period`]: a driver whose plant computes its derivatives elsewhere
+    /// ([`crate::external`]) calls the pieces itself.
     #[inline(always)]
     pub(crate) fn period<K: LawCalls<D, R>>(
         &mut self,
@@ -548,9 +581,46 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         diag: &[R],
         out: &mut BlockBuffers<'_, D>,
     ) -> bool {
+        let Some(hold) = self.begin_period::<K>(set, k, a, diag, out) else {
+            return false;
+        };
+        let cfg = set.cfg;
+        for j in 0..cfg.substeps as usize {
+            let tj = hold.t + j as f64 * hold.h;
+            let f = Held {
+                plant: set.plant,
+                disturbance: set.disturbance,
+                table: set.table,
+                k,
+                j,
+                tj,
+                h: hold.h,
+                u: &hold.u,
+                held: &hold.disturbance,
+                drift: &self.input.drift,
+            };
+            cfg.integrator
+                .step_into(&f, &self.x, hold.h, &mut self.next);
+            if !self.end_substep(set, tj, hold.h) {
+                return false;
+            }
+        }
+        self.end_period(set, k);
+        true
+    }
+
+    /// The start of control period k: the command is actuated, checked, recorded and counted;
+    /// the random disturbance is drawn. None when no lane runs on.
+    #[inline(always)]
+    pub(crate) fn begin_period<K: LawCalls<D, R>>(
+        &mut self,
+        set: &Setting<'_, D, R, P>,
+        k: u64,
+        a: &SVector<R, D>,
+        diag: &[R],
+        out: &mut BlockBuffers<'_, D>,
+    ) -> Option<PeriodHold<D, R>> {
         let (plant, cfg) = (set.plant, set.cfg);
-        let h = cfg.dt / f64::from(cfg.substeps);
-        let zero = R::zero();
         let t = k as f64 * cfg.dt;
         let u = plant.actuate(&self.x, a);
         let bad = bad_command(self.live, &u, t, &mut self.stops);
@@ -558,7 +628,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             self.stats.freeze(bad);
             self.live = self.live & !bad;
             if !self.live.any() {
-                return false;
+                return None;
             }
         }
         if self.records(cfg, k) {
@@ -568,6 +638,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 cfg.n_records(),
                 self.slot,
                 self.live,
+                plant.state_dim(),
                 &self.x,
                 &u,
                 diag,
@@ -585,70 +656,79 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         }
         self.was_outside = (live & outside) | (!live & self.was_outside);
 
-        let held = if set.disturbance.is_random() {
+        let disturbance = if set.disturbance.is_random() {
             set.disturbance.draw(&self.rng, k, &div(&u, &input.inertia))
         } else {
             zeros()
         };
-        for j in 0..cfg.substeps as usize {
-            let tj = t + j as f64 * h;
-            let f = Held {
-                plant,
-                disturbance: set.disturbance,
-                table: set.table,
-                k,
-                j,
-                tj,
-                h,
-                u: &u,
-                held: &held,
-                drift: &self.input.drift,
-            };
-            cfg.integrator.step_into(&f, &self.x, h, &mut self.next);
-            let (x, next) = (&self.x, &self.next);
-            if let (Some(z0), Some(z1)) = (plant.altitude(x), plant.altitude(next)) {
-                let cross = self.live & !self.touched & z0.simd_gt(zero) & z1.simd_le(zero);
-                if cross.any() {
-                    let w = z0 / (z0 - z1);
-                    let (q0, v0) = plant.coordinates(x);
-                    let (q1, v1) = plant.coordinates(next);
-                    self.td_time = R::select(cross, w * h + tj, self.td_time);
-                    self.td_position = select_vector(
-                        cross,
-                        &add(&q0, &scale_by(&sub(&q1, &q0), w)),
-                        &self.td_position,
-                    );
-                    self.td_velocity = select_vector(
-                        cross,
-                        &add(&v0, &scale_by(&sub(&v1, &v0), w)),
-                        &self.td_velocity,
-                    );
-                    self.touched = self.touched | cross;
-                }
-            }
-            let finite = next.all_finite();
-            let bad = self.live & !(finite & plant.in_domain(next));
-            if bad.any() {
-                self.stops
-                    .mark(bad & !finite, tj + h, Divergence::NonFiniteState);
-                self.stops
-                    .mark(bad & finite, tj + h, Divergence::OutOfDomain);
-                self.stats.freeze(bad);
-                self.live = self.live & !bad;
-            }
-            self.x.select_assign(self.live, &self.next);
-            if !self.live.any() {
-                return false;
+        Some(PeriodHold {
+            u,
+            disturbance,
+            t,
+            h: cfg.dt / f64::from(cfg.substeps),
+        })
+    }
+
+    /// The plant's state at the start of the substep.
+    #[inline(always)]
+    pub(crate) fn state(&self) -> &P::State {
+        &self.x
+    }
+
+    /// The state at the substep's start, and where the integrator writes the state at its end.
+    #[inline(always)]
+    pub(crate) fn next_mut(&mut self) -> (&P::State, &mut P::State) {
+        (&self.x, &mut self.next)
+    }
+
+    /// The end of the substep `[tj, tj + h]` whose end state the integrator wrote: a crossing
+    /// of the ground is located, the lanes whose state is non-finite or out of the domain are
+    /// stopped, the others take the new state. Returns whether any lane still runs.
+    #[inline(always)]
+    pub(crate) fn end_substep(&mut self, set: &Setting<'_, D, R, P>, tj: f64, h: f64) -> bool {
+        let plant = set.plant;
+        let zero = R::zero();
+        let (x, next) = (&self.x, &self.next);
+        if let (Some(z0), Some(z1)) = (plant.altitude(x), plant.altitude(next)) {
+            let cross = self.live & !self.touched & z0.simd_gt(zero) & z1.simd_le(zero);
+            if cross.any() {
+                let w = z0 / (z0 - z1);
+                let (q0, v0) = plant.coordinates(x);
+                let (q1, v1) = plant.coordinates(next);
+                self.td_time = R::select(cross, w * h + tj, self.td_time);
+                self.td_position = select_vector(
+                    cross,
+                    &add(&q0, &scale_by(&sub(&q1, &q0), w)),
+                    &self.td_position,
+                );
+                self.td_velocity = select_vector(
+                    cross,
+                    &add(&v0, &scale_by(&sub(&v1, &v0), w)),
+                    &self.td_velocity,
+                );
+                self.touched = self.touched | cross;
             }
         }
-        self.input = law_input(
-            plant,
-            set.reference,
-            (k + 1) as f64 * cfg.dt,
-            cfg.dt,
-            &self.x,
-        );
-        true
+        let finite = next.all_finite();
+        let bad = self.live & !(finite & plant.in_domain(next));
+        if bad.any() {
+            self.stops
+                .mark(bad & !finite, tj + h, Divergence::NonFiniteState);
+            self.stops
+                .mark(bad & finite, tj + h, Divergence::OutOfDomain);
+            self.stats.freeze(bad);
+            self.live = self.live & !bad;
+        }
+        self.x.select_assign(self.live, &self.next);
+        self.live.any()
+    }
+
+    /// The end of control period k: the law's input at t_(k+1).
+    #[inline(always)]
+    pub(crate) fn end_period(&mut self, set: &Setting<'_, D, R, P>, k: u64) {
+        let cfg = set.cfg;
+        let t = (k + 1) as f64 * cfg.dt;
+        self.input = law_input(set.plant, set.reference, t, cfg.dt, &self.x);
     }
 
     /// Writes the block's final states and metrics. `last` is the law's command (and
@@ -674,6 +754,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                     cfg.n_records(),
                     self.slot,
                     finished,
+                    plant.state_dim(),
                     &self.x,
                     &u,
                     diag,
@@ -686,7 +767,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             *sm = R::select(inside & self.was_outside, m, *sm);
         }
         let mass = plant.mass(&self.x);
-        let nx = P::State::DIM;
+        let nx = plant.state_dim();
         for i in 0..self.used {
             let m = &mut out.metrics[i];
             *m = CaseMetrics::new();

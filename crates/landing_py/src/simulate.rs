@@ -11,16 +11,19 @@ use pyo3::types::{PyDict, PyTuple};
 
 use landing_core::batch::{Batch, RunOptions, RunRequest, run};
 use landing_core::disturbance::Disturbance as CoreDisturbance;
-use landing_core::external::{ExternalError, ExternalLaw, Inputs, run_external};
+use landing_core::external::{
+    ExternalError, ExternalLaw, ExternalPlant, Inputs, Laws, StateLayout, run_external,
+    run_external_plant,
+};
 use landing_core::limits::{MAX_CASES, within_cap};
 use landing_core::params::{AxisCount, ByAxes, Dim, ReadFor};
 use landing_core::plant::PlantModel;
 use landing_core::reference::Reference as CoreReference;
 use landing_core::registry::{PlantVisitor, initial_states};
 use landing_core::rollout::MAX_DIAGNOSTIC_WIDTH;
-use landing_core::{PerCase, SimConfig};
+use landing_core::{BatchOutput, PerCase, SimConfig, with_axes};
 
-use crate::errors::{InputError, batch_error, guard, internal_error};
+use crate::errors::{InputError, axes_error, batch_error, guard, internal_error};
 use crate::laws::Law;
 use crate::output;
 use crate::plants::Plant;
@@ -195,10 +198,28 @@ where
     Ok(models.clone())
 }
 
-impl<'py> PlantVisitor for Simulate<'_, 'py> {
-    type Output = PyResult<Bound<'py, PyDict>>;
+/// A batch's outcome under a law or on a plant computed in Python: their exceptions as raised.
+fn outcome<const D: usize>(
+    r: Result<BatchOutput<D>, ExternalError<PyErr>>,
+) -> PyResult<BatchOutput<D>> {
+    match r {
+        Ok(out) => Ok(out),
+        Err(ExternalError::Batch(e)) => Err(batch_error(e)),
+        Err(ExternalError::Law(e) | ExternalError::Plant(e)) => Err(e),
+    }
+}
 
-    fn visit<const D: usize, P: PlantModel<D>>(self, plants: &PerCase<P>) -> Self::Output
+impl<'py> Simulate<'_, 'py> {
+    /// The reference and the disturbance for D axes, the cancellation flag's options, the
+    /// law's diagnostic layout and, for a Python law, its adapter.
+    #[allow(clippy::type_complexity)]
+    fn parts<const D: usize>(
+        &self,
+    ) -> PyResult<(
+        PerCase<CoreReference<D>>,
+        PerCase<CoreDisturbance<D>>,
+        Vec<(String, usize)>,
+    )>
     where
         Dim<D>: AxisCount<D>,
     {
@@ -211,6 +232,97 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
             None => PerCase::shared(CoreDisturbance::none()),
             Some(d) => for_cases(&d.compiled, "disturbance", n)?,
         };
+        let layout = match &self.control {
+            Control::Builtin(law) => {
+                let laws =
+                    for_cases::<_, D>(&law.compiled, &format!("controller ({})", law.kind), n)?;
+                let named = laws.get(0).diagnostic_layout();
+                named
+                    .into_iter()
+                    .map(|(name, w)| (name.to_string(), w))
+                    .collect()
+            }
+            Control::Python { layout, .. } => {
+                let width: usize = layout.iter().map(|(_, w)| w).sum();
+                if width > MAX_DIAGNOSTIC_WIDTH {
+                    let most = MAX_DIAGNOSTIC_WIDTH;
+                    let msg = format!("diagnostics take {width} values per case; at most {most}");
+                    return Err(InputError::value(msg).into());
+                }
+                layout.clone()
+            }
+        };
+        Ok((references, disturbances, layout))
+    }
+
+    /// The Python law's adapter, for a diagnostic layout of `width` values.
+    fn py_law(&self, width: usize) -> Option<PyLaw> {
+        match &self.control {
+            Control::Builtin(_) => None,
+            Control::Python { step, .. } => Some(PyLaw {
+                step: (*step).clone().unbind(),
+                width,
+                n: self.n,
+            }),
+        }
+    }
+
+    /// Runs the batch on a plant written in Python (`landing.plants.PythonPlant`: its `_hooks`
+    /// and `_layout`, see [`PyPlant`]) with D axes.
+    fn python_plant<const D: usize>(self, plant: PyPlant<D>) -> PyResult<Bound<'py, PyDict>>
+    where
+        Dim<D>: AxisCount<D>,
+    {
+        let (references, disturbances, layout) = self.parts::<D>()?;
+        let width = layout.iter().map(|(_, w)| w).sum();
+        let cancel = AtomicBool::new(false);
+        let options = RunOptions {
+            cancel: Some(&cancel),
+            ..self.options
+        };
+        let (cfg, x0) = (self.cfg, self.x0);
+        let mut plant = plant;
+        let builtin = match &self.control {
+            Control::Builtin(law) => Some(for_cases::<_, D>(&law.compiled, "controller", self.n)?),
+            Control::Python { .. } => None,
+        };
+        let mut py_law = self.py_law(width);
+        let laws = match (&builtin, &mut py_law) {
+            (Some(l), _) => Laws::Builtin(l),
+            (None, Some(l)) => Laws::External(l),
+            (None, None) => unreachable!("a control is a built-in or a Python law"),
+        };
+        let job = Box::new(|| {
+            run_external_plant(
+                &mut plant,
+                laws,
+                x0,
+                &references,
+                &disturbances,
+                &cfg,
+                &options,
+            )
+        });
+        let out = outcome(detached(self.py, u128::MAX, &cancel, job)?)?;
+        let parts = output::Parts {
+            out,
+            state_names: &[],
+            control_names: &[],
+            layout,
+        };
+        output::to_dict(self.py, parts)
+    }
+}
+
+impl<'py> PlantVisitor for Simulate<'_, 'py> {
+    type Output = PyResult<Bound<'py, PyDict>>;
+
+    fn visit<const D: usize, P: PlantModel<D>>(self, plants: &PerCase<P>) -> Self::Output
+    where
+        Dim<D>: AxisCount<D>,
+    {
+        let n = self.n;
+        let (references, disturbances, layout) = self.parts::<D>()?;
         let x0 = initial_states(plants, self.x0).map_err(InputError::from)?;
         let cfg = self.cfg;
         let cancel = AtomicBool::new(false);
@@ -219,15 +331,10 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
             ..self.options
         };
         let work = (n as u128) * u128::from(cfg.steps) * u128::from(cfg.substeps);
-        let (out, layout) = match self.control {
-            Control::Builtin(law) => {
-                let laws = for_cases(&law.compiled, &format!("controller ({})", law.kind), n)?;
-                let layout = laws
-                    .get(0)
-                    .diagnostic_layout()
-                    .into_iter()
-                    .map(|(name, width)| (name.to_string(), width))
-                    .collect();
+        let width = layout.iter().map(|(_, w)| w).sum();
+        let out = match (&self.control, self.py_law(width)) {
+            (Control::Builtin(law), _) => {
+                let laws = for_cases(&law.compiled, "controller", n)?;
                 let batch = Batch {
                     plants: plants.clone(),
                     laws,
@@ -236,17 +343,10 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
                     x0,
                 };
                 let job = Box::new(|| run(&batch, &cfg, &options));
-                let out = detached(self.py, work, &cancel, job)?.map_err(batch_error)?;
-                (out, layout)
+                detached(self.py, work, &cancel, job)?.map_err(batch_error)?
             }
-            Control::Python { step, layout } => {
-                let width = layout.iter().map(|(_, w)| w).sum();
-                if width > MAX_DIAGNOSTIC_WIDTH {
-                    return Err(InputError::value(format!(
-                        "diagnostics take {width} values per case; at most {MAX_DIAGNOSTIC_WIDTH}"
-                    ))
-                    .into());
-                }
+            (Control::Python { .. }, mut law) => {
+                let law = law.as_mut().expect("a Python control has its adapter");
                 let batch = Batch {
                     plants: plants.clone(),
                     laws: (),
@@ -254,34 +354,93 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
                     disturbances,
                     x0,
                 };
-                let mut law = PyLaw {
-                    step: step.clone().unbind(),
-                    width,
-                    n,
-                };
                 // always interruptible: every call of the law takes the GIL, so even a short
                 // horizon may run long
-                let job = Box::new(|| run_external(&batch, &cfg, &options, &mut law));
-                let result = detached(self.py, u128::MAX, &cancel, job)?;
-                let out = match result {
-                    Ok(out) => out,
-                    Err(ExternalError::Batch(e)) => return Err(batch_error(e)),
-                    Err(ExternalError::Law(e)) => return Err(e),
-                };
-                (out, layout)
+                let job = Box::new(|| run_external(&batch, &cfg, &options, law));
+                outcome(detached(self.py, u128::MAX, &cancel, job)?)?
             }
         };
-        output::to_dict(
-            self.py,
-            output::Parts {
-                out,
-                state_names: P::STATE_NAMES,
-                control_names: P::CONTROL_NAMES,
-                layout,
-            },
-        )
+        let parts = output::Parts {
+            out,
+            state_names: P::STATE_NAMES,
+            control_names: P::CONTROL_NAMES,
+            layout,
+        };
+        output::to_dict(self.py, parts)
     }
 }
+
+/// A plant written in Python, as the core's [`ExternalPlant`]: `landing.plants.PythonPlant`
+/// hands over its hooks `(derivative, model, actuate, in_domain)`, each None but the first when
+/// absent, and each called as `f(t, *arrays)` on (N, width) float64 arrays (`derivative(t, x,
+/// u)`, `model(t, x)`, `actuate(t, x, a)`, `in_domain(t, x)`) to return one C-contiguous
+/// float64 array (N, n_state), (N, 2 D): drifts then inertias, (N, D), (N, 1): 1 inside.
+struct PyPlant<const D: usize> {
+    layout: StateLayout<D>,
+    hooks: [Option<Py<PyAny>>; 4],
+    n: usize,
+}
+
+impl<const D: usize> PyPlant<D> {
+    /// Hook `i` on `args`, its result into `out` (`n x width`); false when the plant has none.
+    fn call(&self, i: usize, t: f64, args: &[&[f64]], out: &mut [f64]) -> PyResult<bool> {
+        let Some(f) = &self.hooks[i] else {
+            return Ok(false);
+        };
+        let n = self.n;
+        let width = out.len() / n;
+        Python::attach(|py| {
+            let mut items = vec![t.into_pyobject(py)?.into_any()];
+            for a in args {
+                items.push(
+                    PyArray1::from_slice(py, a)
+                        .reshape([n, a.len() / n])?
+                        .into_any(),
+                );
+            }
+            let r: PyReadonlyArray2<'_, f64> =
+                f.bind(py).call1(PyTuple::new(py, items)?)?.extract()?;
+            copy_rows(
+                ["derivative", "model", "actuate", "in_domain"][i],
+                &r,
+                n,
+                width,
+                out,
+            )?;
+            Ok(true)
+        })
+    }
+}
+
+impl<const D: usize> ExternalPlant<D> for PyPlant<D> {
+    type Error = PyErr;
+
+    fn layout(&self) -> &StateLayout<D> {
+        &self.layout
+    }
+
+    fn derivative(&mut self, t: f64, x: &[f64], u: &[f64], xdot: &mut [f64]) -> PyResult<()> {
+        self.call(0, t, &[x, u], xdot).map(|_| ())
+    }
+
+    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> PyResult<bool> {
+        self.call(1, t, &[x], model)
+    }
+
+    fn actuate(&mut self, t: f64, x: &[f64], a: &[f64], u: &mut [f64]) -> PyResult<bool> {
+        self.call(2, t, &[x, a], u)
+    }
+
+    fn in_domain(&mut self, t: f64, x: &[f64], inside: &mut [f64]) -> PyResult<bool> {
+        self.call(3, t, &[x], inside)
+    }
+}
+
+/// A Python plant's hooks and layout, `(n_state, positions, velocities, mass, altitude)`.
+type PlantSpec = (
+    [Option<Py<PyAny>>; 4],
+    (usize, Vec<usize>, Vec<usize>, Option<usize>, Option<usize>),
+);
 
 /// See `landing.simulate_batch` for the documentation: `controller` is a compiled law, or a
 /// Python callable `step` (see [`PyLaw`]) with `diagnostic_layout`, the names and widths of its
@@ -292,7 +451,7 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_batch<'py>(
     py: Python<'py>,
-    plant: &Plant,
+    plant: &Bound<'py, PyAny>,
     controller: &Bound<'py, PyAny>,
     x0: PyReadonlyArray2<'py, f64>,
     t_final: f64,
@@ -339,24 +498,27 @@ pub fn simulate_batch<'py>(
             kernel,
         };
         let (cfg, options) = request.compile().map_err(InputError::from)?;
-        let shape = x0.shape();
-        let n = shape[0];
-        let names = plant.plants.info().state_names;
-        if shape[1] != names.len() || n == 0 {
-            return Err(InputError::value(format!(
-                "x0 has shape ({}, {}); this plant takes (N, {}) with N >= 1 (state {names:?})",
-                shape[0],
-                shape[1],
-                names.len()
-            ))
-            .into());
+        let compiled = plant.cast::<Plant>().ok().map(|p| p.borrow());
+        let spec: Option<PlantSpec> = match &compiled {
+            Some(_) => None,
+            None => Some((
+                plant.getattr("_hooks")?.extract()?,
+                plant.getattr("_layout")?.extract()?,
+            )),
+        };
+        let width = match (&compiled, &spec) {
+            (Some(p), _) => p.plants.info().state_names.len(),
+            (None, Some((_, layout))) => layout.0,
+            (None, None) => unreachable!("a plant is compiled or has a spec"),
+        };
+        let [n, columns] = [x0.shape()[0], x0.shape()[1]];
+        if columns != width || n == 0 {
+            let msg =
+                format!("x0 has shape ({n}, {columns}); this plant takes (N, {width}), N >= 1");
+            return Err(InputError::value(msg).into());
         }
         within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES).map_err(InputError::from)?;
-        plant
-            .cases
-            .check(&format!("plant ({})", plant.kind), n)
-            .map_err(InputError::from)?;
-        plant.plants.visit(Simulate {
+        let simulate = Simulate {
             py,
             control,
             reference: reference.as_deref(),
@@ -365,6 +527,21 @@ pub fn simulate_batch<'py>(
             n,
             cfg,
             options,
-        })
+        };
+        match (compiled, spec) {
+            (Some(p), _) => {
+                let owner = format!("plant ({})", p.kind);
+                p.cases.check(&owner, n).map_err(InputError::from)?;
+                p.plants.visit(simulate)
+            }
+            (None, Some((hooks, (dim, positions, velocities, mass, altitude)))) => {
+                with_axes!(positions.len(), D => {
+                    let layout = StateLayout::<D>::new(dim, &positions, &velocities, mass, altitude)
+                        .map_err(InputError::from)?;
+                    simulate.python_plant(PyPlant { layout, hooks, n })
+                }, a => Err(axes_error(a).into()))
+            }
+            (None, None) => unreachable!("a plant is compiled or has a spec"),
+        }
     })
 }

@@ -85,6 +85,13 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
         None
     }
 
+    /// Number of state components recorded: the state's, unless the state type has room for
+    /// more than the plant uses (a plant written in Python).
+    #[inline(always)]
+    fn state_dim(&self) -> usize {
+        <Self::State as State<R>>::DIM
+    }
+
     /// Height above the landing surface, for plants that can touch down.
     #[inline(always)]
     fn altitude(&self, _x: &Self::State) -> Option<R> {

@@ -13,6 +13,10 @@
 //! The law's memory (integrators, adaptive terms) is the law's own business, kept outside
 //! between calls; the core sees commands and diagnostics only.
 
+mod plant;
+
+pub use plant::{ExternalPlant, Laws, MAX_EXTERNAL_STATE, StateLayout, run_external_plant};
+
 use std::any::Any;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -66,6 +70,19 @@ impl<const D: usize> Inputs<D> {
             drift: z(),
             inertia: z(),
         }
+    }
+
+    /// Writes case `i`'s row of every field.
+    fn write(&mut self, i: usize, input: &LawInput<D, f64>) {
+        let rows = i * D..(i + 1) * D;
+        self.e[rows.clone()].copy_from_slice(input.e.as_slice());
+        self.de[rows.clone()].copy_from_slice(input.de.as_slice());
+        let r = &input.reference;
+        self.position[rows.clone()].copy_from_slice(r.position.as_slice());
+        self.velocity[rows.clone()].copy_from_slice(r.velocity.as_slice());
+        self.acceleration[rows.clone()].copy_from_slice(r.acceleration.as_slice());
+        self.drift[rows.clone()].copy_from_slice(input.drift.as_slice());
+        self.inertia[rows].copy_from_slice(input.inertia.as_slice());
     }
 
     /// Disjoint views of `w` cases each, one per block.
@@ -149,6 +166,9 @@ pub enum ExternalError<E> {
     Batch(BatchError),
     /// The law failed; the batch's output is dropped.
     Law(E),
+    /// The plant failed (a plant computed outside, [`run_external_plant`]); the batch's output
+    /// is dropped.
+    Plant(E),
 }
 
 impl<E> From<BatchError> for ExternalError<E> {
