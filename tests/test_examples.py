@@ -1,5 +1,6 @@
 """The documented commands keep working: every example script runs to completion."""
 
+import re
 import subprocess
 import sys
 
@@ -8,12 +9,14 @@ import pytest
 from _cases import ROOT
 
 SCRIPTS = ["mars_nominal.py", "mars_monte_carlo.py", "mars_reproduction.py", "asteroid_seed000.py",
-           "asteroid_seed002.py", "tether_comparison.py", "tether_monte_carlo.py", "mars_optimal.py"]
+           "asteroid_seed002.py", "tether_comparison.py", "tether_monte_carlo.py", "mars_optimal.py", "own_law.py",
+           "own_plant.py"]
 # scripts that write figures, and how many at least
 FIGURES = {"mars_monte_carlo.py": 5, "asteroid_seed000.py": 5, "asteroid_seed002.py": 5, "tether_comparison.py": 3,
            "tether_monte_carlo.py": 1, "mars_optimal.py": 2}
 # arguments that keep a campaign short; the documented command runs it in full
-SHORT = {"tether_monte_carlo.py": ["--cases", "2"], "mars_optimal.py": ["--nodes", "40"]}
+SHORT = {"tether_monte_carlo.py": ["--cases", "2"], "mars_optimal.py": ["--nodes", "40"],
+         "own_law.py": ["--cases", "4", "--budget", "6"], "own_plant.py": ["--cases", "4", "--budget", "6"]}
 
 
 # more than about 5 s each on two cores; mars_optimal needs CasADi
@@ -34,3 +37,16 @@ def test_example_runs(script, tmp_path):
     assert done.stdout.strip()
     if script in FIGURES:
         assert len(list((tmp_path / "figures").glob("*.png"))) >= FIGURES[script]
+
+
+@pytest.mark.slow
+def test_the_guide_prints_what_the_lunar_lander_script_prints(tmp_path):
+    """docs/own-law.md quotes examples/own_plant.py's output: its campaign lines must be what
+    the script prints now (the tuner's lines depend on its search, and are left out)."""
+    page = (ROOT / "docs" / "own-law.md").read_text()
+    quoted = re.search(r"`python examples/own_plant.py`.*?```\n(.*?)```", page, re.S).group(1).splitlines()
+    done = subprocess.run([sys.executable, str(ROOT / "examples" / "own_plant.py"), "--budget", "2"],
+                          capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr[-2000:]
+    printed = done.stdout.splitlines()
+    assert printed[:2] == quoted[:2]

@@ -7,6 +7,10 @@ only, so the runs agree bit for bit; the Mars lander's drag and rocket equation 
 
 from __future__ import annotations
 
+import signal
+import threading
+import time
+
 import numpy as np
 import pytest
 
@@ -202,3 +206,25 @@ def test_one_case_and_a_scenario_run_on_a_python_plant():
     built = landing.monte_carlo(scenario.replace(plant=P.MarsLander(thrust_limit=50_000.0)), 8, seed=2)
     np.testing.assert_allclose(mc.result.final_state, built.result.final_state, rtol=1e-12)
     np.testing.assert_array_equal(mc.x0, built.x0)
+
+
+def test_a_python_plant_is_refused_by_scenario_files_naming_why(tmp_path):
+    scenario = landing.scenarios.mars_monte_carlo(plant=MARS, t_final=0.1, dt=0.01, record_every=0)
+    with pytest.raises(ParameterError, match="a PythonPlant cannot be written to a scenario file yet"):
+        scenario.to_toml()
+    with pytest.raises(ParameterError, match="a PythonPlant cannot be written"):
+        landing.monte_carlo(scenario, 2, seed=0, store=tmp_path / "s", progress=False, check_bounds=False)
+
+
+def test_ctrl_c_stops_a_python_plant_run_within_a_second():
+    def slow(t, x, u, params):
+        time.sleep(0.01)
+        return double_integrator(t, x, u, params)
+
+    plant = P.PythonPlant(slow, 6, positions=(0, 1, 2), velocities=(3, 4, 5))
+    timer = threading.Timer(0.5, lambda: signal.raise_signal(signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        landing.simulate_batch(plant, C.OpenLoop(), np.ones((2, 6)), t_final=100.0, dt=0.1)
+    assert time.monotonic() - start < 1.5

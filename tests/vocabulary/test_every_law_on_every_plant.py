@@ -22,11 +22,19 @@ from landing import plants
 
 TARGET_SB = np.array([2000.0, 500.0, 8000.0])
 
+
+def double_integrator(t, x, u, params):
+    """The double integrator written in Python: the engine integrates it stage by stage."""
+    return np.concatenate([x[:, 3:], u], axis=1)
+
+
 PLANTS = {
     "double_integrator": (plants.DoubleIntegrator(), np.zeros(3), np.zeros(0), 1.0, 0.5),
     "small_body": (plants.SmallBody(gravity=landing.gravity.Harmonic2(), omega=1.65e-4), TARGET_SB, np.zeros(0), 1.0,
                    0.5),
     "mars_lander": (plants.MarsLander(), np.zeros(3), np.array([1905.0]), 1905.0, 5.0),
+    "python_plant": (plants.PythonPlant(double_integrator, 6, positions=(0, 1, 2), velocities=(3, 4, 5)),
+                     np.zeros(3), np.zeros(0), 1.0, 0.5),
 }
 
 

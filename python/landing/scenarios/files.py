@@ -166,6 +166,11 @@ def scenario_to_dict(scenario: Scenario) -> dict[str, Any]:
             out[key] = int(value)
         else:
             out[key] = _plain(value)
+    if isinstance(scenario.plant, plants.PythonPlant):
+        raise ParameterError(
+            f"{scenario.name}: a PythonPlant cannot be written to a scenario file yet (nor, so, kept in a "
+            "campaign store); run the campaign without store=, or use a built-in plant"
+        )
     out["plant"] = _encode_table(scenario.plant)
     out["controller"] = _encode_table(scenario.controller)
     if scenario.reference is not None:
