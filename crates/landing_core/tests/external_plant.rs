@@ -56,6 +56,10 @@ impl ExternalPlant<3> for CaseByCase {
         &self.layout
     }
 
+    fn hooks(&self) -> [bool; 3] {
+        [true; 3]
+    }
+
     fn derivative(&mut self, t: f64, x: &[f64], u: &[f64], xdot: &mut [f64]) -> Result<(), String> {
         if self.fail_at == Some(t) {
             return Err(format!("failed at t = {t}"));
@@ -70,29 +74,29 @@ impl ExternalPlant<3> for CaseByCase {
         Ok(())
     }
 
-    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> Result<bool, String> {
+    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> Result<(), String> {
         for i in 0..x.len() / 7 {
             let s = state(x, i);
             model[6 * i..6 * i + 3]
                 .copy_from_slice(self.plant.modelled_acceleration(t, &s).as_slice());
             model[6 * i + 3..6 * i + 6].copy_from_slice(self.plant.inertia(&s).as_slice());
         }
-        Ok(true)
+        Ok(())
     }
 
-    fn actuate(&mut self, _t: f64, x: &[f64], a: &[f64], u: &mut [f64]) -> Result<bool, String> {
+    fn actuate(&mut self, _t: f64, x: &[f64], a: &[f64], u: &mut [f64]) -> Result<(), String> {
         for i in 0..x.len() / 7 {
             let applied = self.plant.actuate(&state(x, i), &axes(a, i));
             u[3 * i..3 * i + 3].copy_from_slice(applied.as_slice());
         }
-        Ok(true)
+        Ok(())
     }
 
-    fn in_domain(&mut self, _t: f64, x: &[f64], inside: &mut [f64]) -> Result<bool, String> {
+    fn in_domain(&mut self, _t: f64, x: &[f64], inside: &mut [f64]) -> Result<(), String> {
         for (i, v) in inside.iter_mut().enumerate() {
             *v = f64::from(u8::from(self.plant.in_domain(&state(x, i))));
         }
-        Ok(true)
+        Ok(())
     }
 }
 

@@ -382,13 +382,13 @@ struct PyPlant<const D: usize> {
 }
 
 impl<const D: usize> PyPlant<D> {
-    /// Hook `i` on `args`, its result into `out` (`n x width`); false when the plant has none.
-    fn call(&self, i: usize, t: f64, args: &[&[f64]], out: &mut [f64]) -> PyResult<bool> {
-        let Some(f) = &self.hooks[i] else {
-            return Ok(false);
-        };
+    /// Hook `i` on `args`, its result into `out` (`n x width`).
+    fn call(&self, i: usize, t: f64, args: &[&[f64]], out: &mut [f64]) -> PyResult<()> {
+        let what = ["derivative", "model", "actuate", "in_domain"][i];
+        let f = self.hooks[i]
+            .as_ref()
+            .ok_or_else(|| InputError::value(format!("the plant has no {what} to call")))?;
         let n = self.n;
-        let width = out.len() / n;
         Python::attach(|py| {
             let mut items = vec![t.into_pyobject(py)?.into_any()];
             for a in args {
@@ -400,14 +400,7 @@ impl<const D: usize> PyPlant<D> {
             }
             let r: PyReadonlyArray2<'_, f64> =
                 f.bind(py).call1(PyTuple::new(py, items)?)?.extract()?;
-            copy_rows(
-                ["derivative", "model", "actuate", "in_domain"][i],
-                &r,
-                n,
-                width,
-                out,
-            )?;
-            Ok(true)
+            copy_rows(what, &r, n, out.len() / n, out)
         })
     }
 }
@@ -419,19 +412,23 @@ impl<const D: usize> ExternalPlant<D> for PyPlant<D> {
         &self.layout
     }
 
-    fn derivative(&mut self, t: f64, x: &[f64], u: &[f64], xdot: &mut [f64]) -> PyResult<()> {
-        self.call(0, t, &[x, u], xdot).map(|_| ())
+    fn hooks(&self) -> [bool; 3] {
+        [1, 2, 3].map(|i| self.hooks[i].is_some())
     }
 
-    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> PyResult<bool> {
+    fn derivative(&mut self, t: f64, x: &[f64], u: &[f64], xdot: &mut [f64]) -> PyResult<()> {
+        self.call(0, t, &[x, u], xdot)
+    }
+
+    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> PyResult<()> {
         self.call(1, t, &[x], model)
     }
 
-    fn actuate(&mut self, t: f64, x: &[f64], a: &[f64], u: &mut [f64]) -> PyResult<bool> {
+    fn actuate(&mut self, t: f64, x: &[f64], a: &[f64], u: &mut [f64]) -> PyResult<()> {
         self.call(2, t, &[x, a], u)
     }
 
-    fn in_domain(&mut self, t: f64, x: &[f64], inside: &mut [f64]) -> PyResult<bool> {
+    fn in_domain(&mut self, t: f64, x: &[f64], inside: &mut [f64]) -> PyResult<()> {
         self.call(3, t, &[x], inside)
     }
 }

@@ -35,7 +35,7 @@ use crate::kernel::{BaselineLaws, LawCalls, Level};
 use crate::plant::Plant;
 use crate::reference::Reference;
 use crate::rollout::{
-    Block, MAX_DIAGNOSTIC_WIDTH, PeriodHold, Setting, SimConfig, stage_disturbance,
+    Block, BlockBuffers, MAX_DIAGNOSTIC_WIDTH, Setting, SimConfig, stage_disturbance,
 };
 
 /// Most state components a plant computed outside the core may have.
@@ -112,13 +112,16 @@ impl<const D: usize> StateLayout<D> {
 }
 
 /// A plant computed outside the core, for every case of the batch at once. Arrays are `n x
-/// width` row-major, case after case; the outputs are written in place. A hook a plant does
-/// not have returns `Ok(false)` and leaves its output alone.
+/// width` row-major, case after case; the outputs are written in place. The optional hooks
+/// are called only when [`ExternalPlant::hooks`] says the plant has them.
 pub trait ExternalPlant<const D: usize> {
     /// What the plant's failure carries (the bindings: the Python exception).
     type Error;
 
     fn layout(&self) -> &StateLayout<D>;
+
+    /// Which of the optional hooks the plant has: its model, its actuator, its domain.
+    fn hooks(&self) -> [bool; 3];
 
     /// `x'` of every case at time `t`, state `x` (`n x dim`) and applied command `u` (`n x D`),
     /// without the disturbance, into `xdot` (`n x dim`).
@@ -132,14 +135,13 @@ pub trait ExternalPlant<const D: usize> {
 
     /// The drift then the inertia the law reads (`n x 2D`: D drifts, then D inertias, per
     /// case) at `t`.
-    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> Result<bool, Self::Error>;
+    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> Result<(), Self::Error>;
 
     /// The applied command (`n x D`) for the commanded generalized accelerations `a`.
-    fn actuate(&mut self, t: f64, x: &[f64], a: &[f64], u: &mut [f64])
-    -> Result<bool, Self::Error>;
+    fn actuate(&mut self, t: f64, x: &[f64], a: &[f64], u: &mut [f64]) -> Result<(), Self::Error>;
 
     /// Per case 1 when `x` is in the model's domain, 0 when not (`n x 1`).
-    fn in_domain(&mut self, t: f64, x: &[f64], inside: &mut [f64]) -> Result<bool, Self::Error>;
+    fn in_domain(&mut self, t: f64, x: &[f64], inside: &mut [f64]) -> Result<(), Self::Error>;
 }
 
 /// What the laws of a batch on an external plant are.
@@ -212,14 +214,9 @@ struct Case<'a, const D: usize> {
     reference: &'a Reference<D>,
     disturbance: &'a Disturbance<D>,
     block: Block<D, f64, View<D>>,
-    /// The stage point of the running step.
-    y: Row,
-    /// The built-in law's memory.
-    memory: Option<AnyMemory<D, f64>>,
-    /// The running period's command and random disturbance.
-    hold: Option<PeriodHold<D, f64>>,
-    /// Whether the case still runs (once it stops, its block is finished).
-    running: bool,
+    /// The built-in law's memory (boxed: a law's memory may take a kilobyte, and the cases are
+    /// walked several times per period).
+    memory: Option<Box<AnyMemory<D, f64>>>,
 }
 
 impl<const D: usize> Case<'_, D> {
@@ -239,6 +236,50 @@ impl<const D: usize> Case<'_, D> {
         };
         f(&mut self.block, &set)
     }
+}
+
+/// The end of a running case's substep `(tj, h)`: the block takes the state the integrator
+/// stepped to, `next`, and its row `x` (and its row of `xs`) the state the block keeps, unless
+/// the case stops, when its block is finished. Returns whether the case runs on.
+fn end_substep<const D: usize>(
+    case: &mut Case<'_, D>,
+    cfg: &SimConfig,
+    (tj, h): (f64, f64),
+    out: &mut BlockBuffers<'_, D>,
+    (next, x): (&Row, &mut Row),
+    xs_row: &mut [f64],
+) -> bool {
+    *case.block.next_mut().1 = *next;
+    if case.with(cfg, |b, set| b.end_substep(set, tj, h)) {
+        *x = *case.block.state();
+        xs_row.copy_from_slice(&x.as_slice()[..xs_row.len()]);
+        true
+    } else {
+        case.with(cfg, |b, set| b.finish(set, None, out));
+        false
+    }
+}
+
+/// How many cases ahead a walk over the blocks asks for their memory ([`prefetch`]).
+const AHEAD: usize = 4;
+
+/// Asks the CPU to bring `value`'s memory into the caches: a hint, which changes nothing else.
+/// A walk over 10^4 blocks otherwise waits on memory at every one of them (each is over a
+/// kilobyte, and the plant's calls between two walks evict them).
+#[inline(always)]
+fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        let start = (value as *const T).cast::<i8>();
+        for offset in (0..std::mem::size_of::<T>()).step_by(64) {
+            // SAFETY: SSE is in every x86-64 CPU, and a prefetch reads nothing the program
+            // sees and never faults, whatever the address
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.wrapping_add(offset)) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
 }
 
 /// `n x width` rows, case `i`'s.
@@ -325,7 +366,10 @@ pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
         view.inertia = SVector::from_fn(|c, _| m[D + c]);
     };
 
-    let has_model = plant.model(0.0, &xs, &mut model).map_err(fail)?;
+    let [has_model, ..] = plant.hooks();
+    if has_model {
+        plant.model(0.0, &xs, &mut model).map_err(fail)?;
+    }
     let mut cases: Vec<Case<'_, D>> = (0..n)
         .map(|i| {
             let mut view = View {
@@ -351,128 +395,195 @@ pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
                 reference: references.get(i),
                 disturbance: disturbances.get(i),
                 block,
-                y: Row::zeros(),
                 memory: None,
-                hold: None,
-                running: true,
             }
         })
         .collect();
     if let Laws::Builtin(l) = &laws {
         for (i, case) in cases.iter_mut().enumerate() {
-            case.memory = Some(BaselineLaws::start(l.get(i), case.block.input()));
+            case.memory = Some(Box::new(BaselineLaws::start(l.get(i), case.block.input())));
         }
     }
 
     let integrator = cfg.integrator;
+    let stages = integrator.evaluations();
     let h = cfg.dt / f64::from(cfg.substeps);
+    let [_, has_actuate, has_domain] = plant.hooks();
+    let builtin = match &laws {
+        Laws::Builtin(l) => Some(*l),
+        Laws::External(_) => None,
+    };
+    // The cases are walked as few times per period as the plant's calls allow, and the walks
+    // over the integrator's stages read only what the step needs, kept case after case: each
+    // case's block, for 10^4 cases, is far larger than the caches, and a walk over the blocks
+    // waits on memory at every case.
+    let mut x_rows: Vec<Row> = (0..n).map(|i| row(&xs, i)).collect();
+    let mut sums = x_rows.clone();
+    let mut y_rows = x_rows.clone();
+    let mut held: Vec<SVector<f64, D>> = vec![SVector::zeros(); n];
+    let mut running = vec![true; n];
+    let dist: Vec<&Disturbance<D>> = (0..n).map(|i| disturbances.get(i)).collect();
     let mut k = 0;
-    while k <= cfg.steps && cases.iter().any(|c| c.running) {
+    while k <= cfg.steps && running.contains(&true) {
         if cancel.load(Ordering::Relaxed) {
             return Err(BatchError::Cancelled.into());
         }
         let t = k as f64 * cfg.dt;
-        // the law's commands (and diagnostics) at t_k
-        match &mut laws {
-            Laws::Builtin(l) => {
-                for (i, case) in cases.iter_mut().enumerate().filter(|(_, c)| c.running) {
-                    let (law, input) = (l.get(i), case.block.input());
-                    let memory = case.memory.as_mut().expect("a built-in law has its memory");
-                    let command = BaselineLaws::command(law, memory, input);
-                    a[i * D..(i + 1) * D].copy_from_slice(command.as_slice());
-                    if case.block.records(cfg, k) || (k == cfg.steps && cfg.record_every > 0) {
-                        let out = &mut diag[i * nd..(i + 1) * nd];
-                        BaselineLaws::diagnostics(law, memory, input, out);
-                    }
-                    if k < cfg.steps && law.has_memory() {
-                        BaselineLaws::advance(law, memory, input);
-                    }
-                }
+        let last = k == cfg.steps;
+        // the law's commands (and diagnostics) at t_k: the built-in law's in the walk below,
+        // unless the plant's actuator needs them all first
+        if let Laws::External(law) = &mut laws {
+            for (i, case) in cases.iter().enumerate() {
+                inputs.write(i, case.block.input());
             }
-            Laws::External(law) => {
-                for (i, case) in cases.iter().enumerate() {
-                    inputs.write(i, case.block.input());
-                }
-                inputs.t = t;
-                inputs.k = k;
-                law.command(&inputs, &mut a, &mut diag)
-                    .map_err(ExternalError::Law)?;
-            }
+            inputs.t = t;
+            inputs.k = k;
+            law.command(&inputs, &mut a, &mut diag)
+                .map_err(ExternalError::Law)?;
         }
-        // the applied commands
-        let actuated = plant.actuate(t, &xs, &a, &mut u).map_err(fail)?;
-        for (i, case) in cases.iter_mut().enumerate().filter(|(_, c)| c.running) {
+        let command = |case: &mut Case<'_, D>, i: usize, a: &mut [f64], diag: &mut [f64]| {
+            if let Some(l) = builtin {
+                let (law, input) = (l.get(i), case.block.input());
+                let memory = case.memory.as_mut().expect("a built-in law has its memory");
+                let c = BaselineLaws::command(law, memory, input);
+                a[i * D..(i + 1) * D].copy_from_slice(c.as_slice());
+                if case.block.records(cfg, k) || (last && cfg.record_every > 0) {
+                    BaselineLaws::diagnostics(law, memory, input, &mut diag[i * nd..(i + 1) * nd]);
+                }
+                if !last && law.has_memory() {
+                    BaselineLaws::advance(law, memory, input);
+                }
+            }
+        };
+        if has_actuate {
+            for i in 0..n {
+                if !running[i] {
+                    continue;
+                }
+                if let Some(c) = cases.get(i + AHEAD) {
+                    prefetch(c);
+                }
+                command(&mut cases[i], i, &mut a, &mut diag);
+            }
+            plant.actuate(t, &xs, &a, &mut u).map_err(fail)?;
+        }
+        for i in 0..n {
+            if !running[i] {
+                continue;
+            }
+            if let Some(c) = cases.get(i + AHEAD) {
+                prefetch(c);
+            }
+            let case = &mut cases[i];
+            if !has_actuate {
+                command(case, i, &mut a, &mut diag);
+            }
             let ai = SVector::<f64, D>::from_column_slice(at(&a, D, i));
-            if actuated {
+            if has_actuate {
                 case.view.u = SVector::from_column_slice(at(&u, D, i));
             } else {
                 case.view.u = case.view.inertia.component_mul(&ai);
                 u[i * D..(i + 1) * D].copy_from_slice(case.view.u.as_slice());
             }
-            let di = at(&diag, nd, i);
-            let out = &mut buffers[i];
-            if k == cfg.steps {
+            let (di, out) = (at(&diag, nd, i), &mut buffers[i]);
+            if last {
                 case.with(cfg, |b, set| b.finish(set, Some((&ai, di)), out));
-                case.running = false;
+                running[i] = false;
                 continue;
             }
-            case.hold = case.with(cfg, |b, set| {
+            let hold = case.with(cfg, |b, set| {
                 b.begin_period::<BaselineLaws>(set, k, &ai, di, out)
             });
-            if case.hold.is_none() {
-                case.with(cfg, |b, set| b.finish(set, None, out));
-                case.running = false;
+            match hold {
+                Some(hold) => held[i] = hold.disturbance,
+                None => {
+                    case.with(cfg, |b, set| b.finish(set, None, out));
+                    running[i] = false;
+                }
             }
         }
-        if k == cfg.steps {
+        if last {
             break;
         }
+        let t1 = (k + 1) as f64 * cfg.dt;
         for j in 0..cfg.substeps as usize {
             let tj = t + j as f64 * h;
-            for s in 0..integrator.evaluations() {
+            // the period ends in this walk when no call of the plant comes between
+            let closes = j + 1 == cfg.substeps as usize && !has_model;
+            for s in 0..stages {
                 let stage = integrator.stage(s);
                 let ts = stage.time(tj, h);
                 let points = if s == 0 { &xs } else { &ys };
                 plant.derivative(ts, points, &u, &mut ks).map_err(fail)?;
-                for (i, case) in cases.iter_mut().enumerate().filter(|(_, c)| c.running) {
-                    let hold = case.hold.as_ref().expect("a running case holds its period");
-                    let held = &hold.disturbance;
-                    let d = stage_disturbance(case.disturbance, None, (k, j, stage), ts, held);
+                for i in 0..n {
+                    if !running[i] {
+                        continue;
+                    }
+                    // the last stage's walk ends the cases' substeps
+                    if s + 1 == stages
+                        && !has_domain
+                        && let Some(c) = cases.get(i + AHEAD)
+                    {
+                        prefetch(c);
+                    }
+                    let d = stage_disturbance(dist[i], None, (k, j, stage), ts, &held[i]);
                     let mut ki = row(&ks, i);
                     for (c, &v) in layout.velocities.iter().enumerate() {
                         ki[v] += d[c];
                     }
-                    let (x, next) = case.block.next_mut();
-                    integrator.accumulate(s, x, &ki, h, next, &mut case.y);
-                    write_row(&mut ys, i, &case.y);
+                    integrator.accumulate(s, &x_rows[i], &ki, h, &mut sums[i], &mut y_rows[i]);
+                    if s + 1 < stages {
+                        write_row(&mut ys, i, &y_rows[i]);
+                        continue;
+                    }
+                    integrator.combine(&x_rows[i], h, &mut sums[i]);
+                    if has_domain {
+                        // the domain is asked of every stepped state before the substep ends
+                        write_row(&mut ys, i, &sums[i]);
+                        continue;
+                    }
+                    let case = &mut cases[i];
+                    let rows = (&sums[i], &mut x_rows[i]);
+                    let xs_row = &mut xs[i * nx..(i + 1) * nx];
+                    running[i] = end_substep(case, cfg, (tj, h), &mut buffers[i], rows, xs_row);
+                    if closes && running[i] {
+                        case.with(cfg, |b, set| b.end_period(set, k));
+                    }
                 }
             }
-            for (i, case) in cases.iter_mut().enumerate().filter(|(_, c)| c.running) {
-                let (x, next) = case.block.next_mut();
-                integrator.combine(x, h, next);
-                write_row(&mut ys, i, next);
-            }
-            // the stepped states are in `ys`: the domain is asked of them
-            let has_domain = plant.in_domain(tj + h, &ys, &mut inside).map_err(fail)?;
-            for (i, case) in cases.iter_mut().enumerate().filter(|(_, c)| c.running) {
-                case.view.inside = !has_domain || inside[i] != 0.0;
-                if case.with(cfg, |b, set| b.end_substep(set, tj, h)) {
-                    write_row(&mut xs, i, case.block.state());
-                } else {
-                    let out = &mut buffers[i];
-                    case.with(cfg, |b, set| b.finish(set, None, out));
-                    case.running = false;
+            if has_domain {
+                plant.in_domain(tj + h, &ys, &mut inside).map_err(fail)?;
+                for i in 0..n {
+                    if !running[i] {
+                        continue;
+                    }
+                    if let Some(c) = cases.get(i + AHEAD) {
+                        prefetch(c);
+                    }
+                    let case = &mut cases[i];
+                    case.view.inside = inside[i] != 0.0;
+                    let rows = (&sums[i], &mut x_rows[i]);
+                    let xs_row = &mut xs[i * nx..(i + 1) * nx];
+                    running[i] = end_substep(case, cfg, (tj, h), &mut buffers[i], rows, xs_row);
+                    if closes && running[i] {
+                        case.with(cfg, |b, set| b.end_period(set, k));
+                    }
                 }
             }
         }
-        // the law's input at t_(k+1)
-        let t1 = (k + 1) as f64 * cfg.dt;
-        let has_model = plant.model(t1, &xs, &mut model).map_err(fail)?;
-        for (i, case) in cases.iter_mut().enumerate().filter(|(_, c)| c.running) {
-            if has_model {
-                from_model(&model, i, &mut case.view);
+        // the law's input at t_(k+1), from the plant's model there
+        if has_model {
+            plant.model(t1, &xs, &mut model).map_err(fail)?;
+            for i in 0..n {
+                if !running[i] {
+                    continue;
+                }
+                if let Some(c) = cases.get(i + AHEAD) {
+                    prefetch(c);
+                }
+                from_model(&model, i, &mut cases[i].view);
+                cases[i].with(cfg, |b, set| b.end_period(set, k));
             }
-            case.with(cfg, |b, set| b.end_period(set, k));
         }
         k += 1;
     }
