@@ -8,7 +8,6 @@ thrust or torque and saturates it.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -20,6 +19,7 @@ import numpy as np
 from landing import _core
 from landing._internal.table import ArrayLike, Parameter, Table, as_float_array
 from landing._internal.user_law import qualified_name, source_hash
+from landing._internal.user_params import frozen_params, replace_with_params
 from landing.errors import ParameterError, ParameterTypeError
 from landing.fuzzy import variable_rate_system
 
@@ -419,19 +419,7 @@ class PythonLaw(Controller):
         owner = "PythonLaw"
         if not callable(self.function):
             raise ParameterTypeError(f"{owner}: function must be callable, got {type(self.function).__name__}")
-        if not isinstance(self.params, Mapping):
-            raise ParameterTypeError(f"{owner}: params must be a dict of numbers, got {type(self.params).__name__}")
-        params = {}
-        for key, value in self.params.items():
-            if not isinstance(key, str) or not key.isidentifier():
-                raise ParameterError(f"{owner}: params key {key!r} must be a name (an identifier)")
-            arr = as_float_array(owner, f"params[{key!r}]", value).copy()
-            if arr.ndim > 2:
-                raise ParameterError(f"{owner}: params[{key!r}] has shape {arr.shape}; it takes a scalar, (D,), "
-                                     "(N,), (N, 1) or (N, D)")
-            arr.setflags(write=False)
-            params[key] = arr
-        object.__setattr__(self, "params", MappingProxyType(params))
+        object.__setattr__(self, "params", frozen_params(owner, self.params, "a scalar, (D,), (N,), (N, 1) or (N, D)"))
         memory = self.memory
         if memory is not None and not callable(memory):
             if not isinstance(memory, Mapping):
@@ -482,12 +470,4 @@ class PythonLaw(Controller):
     def replace(self, **changes: Any) -> PythonLaw:
         """A copy with some fields or parameters changed: ``law.replace(kp=2.0)`` changes
         ``params["kp"]``; ``law.replace(params={...})`` replaces them all."""
-        fields = {f.name for f in dataclasses.fields(self)}
-        unknown = [k for k in changes if k not in fields and k not in self.params]
-        if unknown:
-            raise ParameterError(f"PythonLaw: {unknown[0]!r} is neither a field ({sorted(fields)}) nor one of "
-                                 f"its params ({sorted(self.params)})")
-        params = dict(changes.pop("params", self.params))
-        for k in [k for k in changes if k not in fields]:
-            params[k] = changes.pop(k)
-        return dataclasses.replace(self, params=params, **changes)
+        return replace_with_params(self, "PythonLaw", changes)

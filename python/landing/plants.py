@@ -6,7 +6,6 @@ with one entry per case of the batch, or ``(N, 3)`` for per-axis ones).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -18,8 +17,9 @@ import numpy as np
 from landing import _core
 from landing._internal.args import real, real_array
 from landing._internal.limits import require_memory
-from landing._internal.table import ArrayLike, Parameter, Table, as_float_array
+from landing._internal.table import ArrayLike, Parameter, Table
 from landing._internal.user_law import qualified_name, source_hash
+from landing._internal.user_params import frozen_params, replace_with_params
 from landing._internal.user_plant import PlantStep, per_case
 from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
@@ -380,19 +380,7 @@ class PythonPlant(Plant):
         object.__setattr__(self, "n_state", int(n_state))
         object.__setattr__(self, "positions", indices["positions"])
         object.__setattr__(self, "velocities", indices["velocities"])
-        if not isinstance(self.params, Mapping):
-            raise ParameterTypeError(f"{owner}: params must be a dict of numbers, got {type(self.params).__name__}")
-        params = {}
-        for key, value in self.params.items():
-            if not isinstance(key, str) or not key.isidentifier():
-                raise ParameterError(f"{owner}: params key {key!r} must be a name (an identifier)")
-            arr = as_float_array(owner, f"params[{key!r}]", value).copy()
-            if arr.ndim > 2:
-                raise ParameterError(f"{owner}: params[{key!r}] has shape {arr.shape}; it takes a scalar, (k,), "
-                                     "(N,) or (N, k)")
-            arr.setflags(write=False)
-            params[key] = arr
-        object.__setattr__(self, "params", MappingProxyType(params))
+        object.__setattr__(self, "params", frozen_params(owner, self.params, "a scalar, (k,), (N,) or (N, k)"))
         for key, count, prefix in (("state_names", n_state, "x"), ("control_names", axes, "u")):
             names = tuple(str(s) for s in getattr(self, key)) or tuple(f"{prefix}{i}" for i in range(count))
             if len(names) != count:
@@ -434,17 +422,9 @@ class PythonPlant(Plant):
         return x[..., list(self.positions)], x[..., list(self.velocities)]
 
     def replace(self, **changes: Any) -> PythonPlant:
-        """A copy with some fields or parameters changed: ``plant.replace(mass=2.0)`` changes
-        ``params["mass"]``; ``plant.replace(params={...})`` replaces them all."""
-        fields = {f.name for f in dataclasses.fields(self)}
-        unknown = [k for k in changes if k not in fields and k not in self.params]
-        if unknown:
-            raise ParameterError(f"PythonPlant: {unknown[0]!r} is neither a field ({sorted(fields)}) nor one of "
-                                 f"its params ({sorted(self.params)})")
-        params = dict(changes.pop("params", self.params))
-        for k in [k for k in changes if k not in fields]:
-            params[k] = changes.pop(k)
-        return dataclasses.replace(self, params=params, **changes)
+        """A copy with some fields or parameters changed: ``plant.replace(isp=300.0)`` changes
+        ``params["isp"]``; ``plant.replace(params={...})`` replaces them all."""
+        return replace_with_params(self, "PythonPlant", changes)
 
     def _step(self, n: int, first_case: int) -> PlantStep:
         """The hooks the core calls for a batch of n cases numbered from ``first_case``."""
