@@ -228,3 +228,24 @@ def test_ctrl_c_stops_a_python_plant_run_within_a_second():
     with pytest.raises(KeyboardInterrupt):
         landing.simulate_batch(plant, C.OpenLoop(), np.ones((2, 6)), t_final=100.0, dt=0.1)
     assert time.monotonic() - start < 1.5
+
+
+@pytest.mark.dask
+def test_a_dask_cluster_runs_a_plant_defined_in_a_script():
+    distributed = pytest.importorskip("distributed")
+
+    # closures: not importable by name, they travel by cloudpickle
+    def local_derivative(t, x, u, params):
+        return np.concatenate([x[:, 3:], u], axis=1)
+
+    plant = P.PythonPlant(local_derivative, 6, positions=(0, 1, 2), velocities=(3, 4, 5))
+    x0 = np.array([1.0, -1.0, 2.0, 0.0, 0.5, 0.0])
+    s = landing.scenarios.Scenario(name="di", description="", plant=plant,
+                                   controller=C.PDSlidingMode(lambda_=1.0, k=2.0), x0=x0,
+                                   dispersion=landing.dispersions.Normal(mean=x0, std=np.full(6, 0.1)),
+                                   t_final=1.0, dt=0.01, record_every=0)
+    expected = landing.monte_carlo(s, 12, seed=2, progress=False, check_bounds=False)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        mc = landing.monte_carlo(s, 12, seed=2, client=client, chunk_size=5, threads=1, check_bounds=False)
+    np.testing.assert_array_equal(mc.result.final_state, expected.result.final_state)

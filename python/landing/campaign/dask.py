@@ -94,8 +94,9 @@ def check_client(client: Any) -> Any:
 def scenario_payload(scenario: Scenario) -> tuple[str, Any]:
     """What a task carries of the scenario: ``("toml", text)`` when the text reads back to the
     same scenario, else ``("pickle", bytes)`` (cloudpickle's, which plain pickle reads)."""
-    text = scenario.to_toml()
     try:
+        # a plant written in Python has no text yet: it travels pickled
+        text = scenario.to_toml()
         if files.scenario_from_dict(files.tomllib.loads(text)).to_toml() == text:
             return ("toml", text)
     except (files.tomllib.TOMLDecodeError, LandingError):

@@ -18,9 +18,10 @@
 //! case. The disturbance is a generalized acceleration, added to the derivative of each
 //! velocity component, as the built-in plants add it.
 //!
-//! The cases run one by one on the calling thread, with `f64` numbers (the [`Level::Baseline`]
-//! rollout of width 1): the plant's calls take far longer than the cases' bookkeeping between
-//! them.
+//! The cases run one by one on one thread, with `f64` numbers (the [`Level::Baseline`]
+//! rollout of width 1), between calls that hold the interpreter anyway. The bookkeeping per case
+//! is not small against a numpy call (BENCHMARKS.md, "A plant written in Python"): blocks of
+//! several cases in SIMD lanes, as the built-in driver runs them, are the next step.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -304,6 +305,10 @@ pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
 ) -> Result<BatchOutput<D>, ExternalError<X::Error>> {
     let layout = *plant.layout();
     let nx = layout.dim;
+    assert!(
+        (1..=MAX_EXTERNAL_STATE).contains(&nx),
+        "a state of {nx} components (StateLayout::new checks 1..={MAX_EXTERNAL_STATE})"
+    );
     let n = x0.len() / nx;
     let laws_len = match &laws {
         Laws::Builtin(l) => l.len(),
