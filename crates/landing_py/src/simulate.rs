@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
 use landing_core::batch::{Batch, RunOptions, RunRequest, run};
+use landing_core::control::AnyLaw;
 use landing_core::disturbance::Disturbance as CoreDisturbance;
 use landing_core::external::{
     ExternalError, ExternalLaw, ExternalPlant, Inputs, Laws, StateLayout, run_external,
@@ -209,17 +210,25 @@ fn outcome<const D: usize>(
     }
 }
 
+/// What computes the commands of a batch with D axes: the compiled law's cases, or the Python
+/// law's adapter.
+enum Commands<const D: usize> {
+    Builtin(PerCase<AnyLaw<D>>),
+    Python(PyLaw),
+}
+
+/// What every batch needs beside its plant, read for D axes.
+struct Parts<const D: usize> {
+    references: PerCase<CoreReference<D>>,
+    disturbances: PerCase<CoreDisturbance<D>>,
+    commands: Commands<D>,
+    /// The names and widths of the law's diagnostic signals.
+    layout: Vec<(String, usize)>,
+}
+
 impl<'py> Simulate<'_, 'py> {
-    /// The reference and the disturbance for D axes, the cancellation flag's options, the
-    /// law's diagnostic layout and, for a Python law, its adapter.
-    #[allow(clippy::type_complexity)]
-    fn parts<const D: usize>(
-        &self,
-    ) -> PyResult<(
-        PerCase<CoreReference<D>>,
-        PerCase<CoreDisturbance<D>>,
-        Vec<(String, usize)>,
-    )>
+    /// The reference, the disturbance and the law for D axes, each checked against the cases.
+    fn parts<const D: usize>(&self) -> PyResult<Parts<D>>
     where
         Dim<D>: AxisCount<D>,
     {
@@ -232,65 +241,54 @@ impl<'py> Simulate<'_, 'py> {
             None => PerCase::shared(CoreDisturbance::none()),
             Some(d) => for_cases(&d.compiled, "disturbance", n)?,
         };
-        let layout = match &self.control {
+        let (commands, layout) = match &self.control {
             Control::Builtin(law) => {
-                let laws =
-                    for_cases::<_, D>(&law.compiled, &format!("controller ({})", law.kind), n)?;
+                let laws: PerCase<AnyLaw<D>> =
+                    for_cases(&law.compiled, &format!("controller ({})", law.kind), n)?;
                 let named = laws.get(0).diagnostic_layout();
-                named
-                    .into_iter()
-                    .map(|(name, w)| (name.to_string(), w))
-                    .collect()
+                let layout = named.into_iter().map(|(name, w)| (name.to_string(), w));
+                (Commands::Builtin(laws), layout.collect())
             }
-            Control::Python { layout, .. } => {
+            Control::Python { step, layout } => {
                 let width: usize = layout.iter().map(|(_, w)| w).sum();
                 if width > MAX_DIAGNOSTIC_WIDTH {
                     let most = MAX_DIAGNOSTIC_WIDTH;
                     let msg = format!("diagnostics take {width} values per case; at most {most}");
                     return Err(InputError::value(msg).into());
                 }
-                layout.clone()
+                let step = (*step).clone().unbind();
+                (Commands::Python(PyLaw { step, width, n }), layout.clone())
             }
         };
-        Ok((references, disturbances, layout))
-    }
-
-    /// The Python law's adapter, for a diagnostic layout of `width` values.
-    fn py_law(&self, width: usize) -> Option<PyLaw> {
-        match &self.control {
-            Control::Builtin(_) => None,
-            Control::Python { step, .. } => Some(PyLaw {
-                step: (*step).clone().unbind(),
-                width,
-                n: self.n,
-            }),
-        }
+        Ok(Parts {
+            references,
+            disturbances,
+            commands,
+            layout,
+        })
     }
 
     /// Runs the batch on a plant written in Python (`landing.plants.PythonPlant`: its `_hooks`
     /// and `_layout`, see [`PyPlant`]) with D axes.
-    fn python_plant<const D: usize>(self, plant: PyPlant<D>) -> PyResult<Bound<'py, PyDict>>
+    fn python_plant<const D: usize>(self, mut plant: PyPlant<D>) -> PyResult<Bound<'py, PyDict>>
     where
         Dim<D>: AxisCount<D>,
     {
-        let (references, disturbances, layout) = self.parts::<D>()?;
-        let width = layout.iter().map(|(_, w)| w).sum();
+        let Parts {
+            references,
+            disturbances,
+            mut commands,
+            layout,
+        } = self.parts::<D>()?;
         let cancel = AtomicBool::new(false);
         let options = RunOptions {
             cancel: Some(&cancel),
             ..self.options
         };
         let (cfg, x0) = (self.cfg, self.x0);
-        let mut plant = plant;
-        let builtin = match &self.control {
-            Control::Builtin(law) => Some(for_cases::<_, D>(&law.compiled, "controller", self.n)?),
-            Control::Python { .. } => None,
-        };
-        let mut py_law = self.py_law(width);
-        let laws = match (&builtin, &mut py_law) {
-            (Some(l), _) => Laws::Builtin(l),
-            (None, Some(l)) => Laws::External(l),
-            (None, None) => unreachable!("a control is a built-in or a Python law"),
+        let laws = match &mut commands {
+            Commands::Builtin(l) => Laws::Builtin(l),
+            Commands::Python(l) => Laws::External(l),
         };
         let job = Box::new(|| {
             run_external_plant(
@@ -322,7 +320,12 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
         Dim<D>: AxisCount<D>,
     {
         let n = self.n;
-        let (references, disturbances, layout) = self.parts::<D>()?;
+        let Parts {
+            references,
+            disturbances,
+            commands,
+            layout,
+        } = self.parts::<D>()?;
         let x0 = initial_states(plants, self.x0).map_err(InputError::from)?;
         let cfg = self.cfg;
         let cancel = AtomicBool::new(false);
@@ -331,12 +334,11 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
             ..self.options
         };
         let work = (n as u128) * u128::from(cfg.steps) * u128::from(cfg.substeps);
-        let width = layout.iter().map(|(_, w)| w).sum();
-        let out = match (&self.control, self.py_law(width)) {
-            (Control::Builtin(law), _) => {
-                let laws = for_cases(&law.compiled, "controller", n)?;
+        let plants = plants.clone();
+        let out = match commands {
+            Commands::Builtin(laws) => {
                 let batch = Batch {
-                    plants: plants.clone(),
+                    plants,
                     laws,
                     references,
                     disturbances,
@@ -345,10 +347,9 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
                 let job = Box::new(|| run(&batch, &cfg, &options));
                 detached(self.py, work, &cancel, job)?.map_err(batch_error)?
             }
-            (Control::Python { .. }, mut law) => {
-                let law = law.as_mut().expect("a Python control has its adapter");
+            Commands::Python(mut law) => {
                 let batch = Batch {
-                    plants: plants.clone(),
+                    plants,
                     laws: (),
                     references,
                     disturbances,
@@ -356,7 +357,7 @@ impl<'py> PlantVisitor for Simulate<'_, 'py> {
                 };
                 // always interruptible: every call of the law takes the GIL, so even a short
                 // horizon may run long
-                let job = Box::new(|| run_external(&batch, &cfg, &options, law));
+                let job = Box::new(|| run_external(&batch, &cfg, &options, &mut law));
                 outcome(detached(self.py, u128::MAX, &cancel, job)?)?
             }
         };
