@@ -19,7 +19,7 @@ use landing_core::plant::{MarsLander, Plant};
 use landing_core::reference::Reference;
 use landing_core::workloads::{mars_dispersed, mars_storm};
 use landing_core::{Level, SimConfig};
-use nalgebra::{SVector, Vector3};
+use nalgebra::Vector3;
 
 /// The core's Mars lander, case by case, as an external plant; `calls` counts the derivative's
 /// calls; `fail_at` makes the derivative fail at that time.
@@ -118,8 +118,8 @@ fn fingerprint(out: &BatchOutput<3>) -> (Vec<u64>, Vec<u64>, Vec<u64>, Vec<u64>,
     )
 }
 
-/// 21 dispersed cases, one with an absurd speed (it leaves the domain), one started below the
-/// ground's level... above it and falling through (a touchdown), per-case gains.
+/// 21 dispersed cases, one with an absurd speed (it leaves the domain), one 2 m above the
+/// ground falling at 30 m/s (a touchdown), per-case gains.
 fn cases(law: impl Fn(usize) -> AnyLaw<3>) -> (Vec<AnyLaw<3>>, Vec<MarsState>) {
     let mut x0 = mars_dispersed(21, 42);
     x0[3][3] = 1e200;
@@ -269,5 +269,4 @@ fn a_layout_is_checked() {
         let e = result.unwrap_err().to_string();
         assert!(e.contains(message), "{e:?} lacks {message:?}");
     }
-    let _: SVector<f64, 3> = SVector::zeros();
 }

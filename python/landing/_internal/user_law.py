@@ -21,7 +21,8 @@ import numpy as np
 
 from landing.errors import UserFunctionError
 
-__all__ = ["ReferencePoint", "LawStep", "qualified_name", "source_hash", "per_axis", "load_function"]
+__all__ = ["ReferencePoint", "LawStep", "qualified_name", "source_hash", "per_axis", "load_function",
+           "checked_floats"]
 
 
 class ReferencePoint(NamedTuple):
@@ -101,7 +102,7 @@ def per_axis(owner: str, name: str, given: Any, n: int, axes: int) -> np.ndarray
     return out
 
 
-def _floats(what: str, value: Any, shape: tuple[int, ...], where: str) -> np.ndarray:
+def checked_floats(what: str, value: Any, shape: tuple[int, ...], where: str) -> np.ndarray:
     """``value`` as a float64 array of ``shape``, or an error saying what was expected."""
     if not hasattr(value, "__array__") and not isinstance(value, np.ndarray):
         raise UserFunctionError(
@@ -154,7 +155,7 @@ class LawStep:
             if before is None and (arr.ndim == 0 or arr.shape[0] != self.n):
                 raise UserFunctionError(f"{where} returned {what}[{key!r}] of shape {arr.shape}; "
                                         f"expected one row per case, ({self.n}, ...)")
-            out[key] = _floats(f"{what}[{key!r}]", v, shape, where)
+            out[key] = checked_floats(f"{what}[{key!r}]", v, shape, where)
         return out
 
     def _start(self, t: float, args: tuple[Any, ...]) -> None:
@@ -197,7 +198,7 @@ class LawStep:
             self.memory = self._memory(memory, where, "memory")
         else:
             command = out
-        u = _floats("a command", command, (self.n, self.axes), where)
+        u = checked_floats("a command", command, (self.n, self.axes), where)
         return u, self._diagnostics(diagnostics, where)
 
     def _diagnostics(self, value: Any, where: str) -> np.ndarray:
@@ -212,7 +213,7 @@ class LawStep:
             if name not in value:
                 raise UserFunctionError(f"{where} returned diagnostics without {name!r}")
             shape = (self.n, width) if width == self.axes else (self.n,)
-            arr = _floats(f"diagnostics[{name!r}]", value[name], shape, where)
+            arr = checked_floats(f"diagnostics[{name!r}]", value[name], shape, where)
             out[:, col:col + width] = arr.reshape(self.n, width)
             col += width
         return out

@@ -14,7 +14,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from landing._internal.user_law import _floats
+from landing._internal.user_law import checked_floats
 from landing.errors import UserFunctionError
 
 __all__ = ["PlantStep", "per_case"]
@@ -74,7 +74,7 @@ class PlantStep:
 
     def _derivative(self, t: float, x: np.ndarray, u: np.ndarray) -> np.ndarray:
         out, where = self._call("derivative", t, x, u)
-        return _floats("a derivative", out, (self.n, self.n_state), where)
+        return checked_floats("a derivative", out, (self.n, self.n_state), where)
 
     def _model(self, t: float, x: np.ndarray) -> np.ndarray:
         out, where = self._call("model", t, x)
@@ -82,13 +82,13 @@ class PlantStep:
             raise UserFunctionError(f"{where} returned {type(out).__name__}; expected (drift, inertia), "
                                     f"two arrays of shape ({self.n}, {self.axes})")
         shape = (self.n, self.axes)
-        drift = _floats("a drift", out[0], shape, where)
-        inertia = _floats("an inertia", out[1], shape, where)
+        drift = checked_floats("a drift", out[0], shape, where)
+        inertia = checked_floats("an inertia", out[1], shape, where)
         return np.ascontiguousarray(np.concatenate([drift, inertia], axis=1))
 
     def _actuate(self, t: float, x: np.ndarray, a: np.ndarray) -> np.ndarray:
         out, where = self._call("actuate", t, x, a)
-        return _floats("an applied command", out, (self.n, self.axes), where)
+        return checked_floats("an applied command", out, (self.n, self.axes), where)
 
     def _in_domain(self, t: float, x: np.ndarray) -> np.ndarray:
         out, where = self._call("in_domain", t, x)

@@ -241,7 +241,9 @@ impl<const D: usize> Case<'_, D> {
 
 /// The end of a running case's substep `(tj, h)`: the block takes the state the integrator
 /// stepped to, `next`, and its row `x` (and its row of `xs`) the state the block keeps, unless
-/// the case stops, when its block is finished. Returns whether the case runs on.
+/// the case stops, when its block is finished. When the substep is the last of control period
+/// `closes` and no call of the plant comes before the period's end, the period ends here too.
+/// Returns whether the case runs on.
 fn end_substep<const D: usize>(
     case: &mut Case<'_, D>,
     cfg: &SimConfig,
@@ -249,16 +251,19 @@ fn end_substep<const D: usize>(
     out: &mut BlockBuffers<'_, D>,
     (next, x): (&Row, &mut Row),
     xs_row: &mut [f64],
+    closes: Option<u64>,
 ) -> bool {
     *case.block.next_mut().1 = *next;
-    if case.with(cfg, |b, set| b.end_substep(set, tj, h)) {
-        *x = *case.block.state();
-        xs_row.copy_from_slice(&x.as_slice()[..xs_row.len()]);
-        true
-    } else {
+    if !case.with(cfg, |b, set| b.end_substep(set, tj, h)) {
         case.with(cfg, |b, set| b.finish(set, None, out));
-        false
+        return false;
     }
+    *x = *case.block.state();
+    xs_row.copy_from_slice(&x.as_slice()[..xs_row.len()]);
+    if let Some(k) = closes {
+        case.with(cfg, |b, set| b.end_period(set, k));
+    }
+    true
 }
 
 /// How many cases ahead a walk over the blocks asks for their memory ([`prefetch`]).
@@ -514,7 +519,7 @@ pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
         for j in 0..cfg.substeps as usize {
             let tj = t + j as f64 * h;
             // the period ends in this walk when no call of the plant comes between
-            let closes = j + 1 == cfg.substeps as usize && !has_model;
+            let closes = (j + 1 == cfg.substeps as usize && !has_model).then_some(k);
             for s in 0..stages {
                 let stage = integrator.stage(s);
                 let ts = stage.time(tj, h);
@@ -547,13 +552,17 @@ pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
                         write_row(&mut ys, i, &sums[i]);
                         continue;
                     }
-                    let case = &mut cases[i];
                     let rows = (&sums[i], &mut x_rows[i]);
                     let xs_row = &mut xs[i * nx..(i + 1) * nx];
-                    running[i] = end_substep(case, cfg, (tj, h), &mut buffers[i], rows, xs_row);
-                    if closes && running[i] {
-                        case.with(cfg, |b, set| b.end_period(set, k));
-                    }
+                    running[i] = end_substep(
+                        &mut cases[i],
+                        cfg,
+                        (tj, h),
+                        &mut buffers[i],
+                        rows,
+                        xs_row,
+                        closes,
+                    );
                 }
             }
             if has_domain {
@@ -565,14 +574,18 @@ pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
                     if let Some(c) = cases.get(i + AHEAD) {
                         prefetch(c);
                     }
-                    let case = &mut cases[i];
-                    case.view.inside = inside[i] != 0.0;
+                    cases[i].view.inside = inside[i] != 0.0;
                     let rows = (&sums[i], &mut x_rows[i]);
                     let xs_row = &mut xs[i * nx..(i + 1) * nx];
-                    running[i] = end_substep(case, cfg, (tj, h), &mut buffers[i], rows, xs_row);
-                    if closes && running[i] {
-                        case.with(cfg, |b, set| b.end_period(set, k));
-                    }
+                    running[i] = end_substep(
+                        &mut cases[i],
+                        cfg,
+                        (tj, h),
+                        &mut buffers[i],
+                        rows,
+                        xs_row,
+                        closes,
+                    );
                 }
             }
         }
