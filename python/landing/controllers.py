@@ -17,9 +17,9 @@ from typing import Any, ClassVar, Literal, Optional, Union
 import numpy as np
 
 from landing import _core
-from landing._internal.table import ArrayLike, Parameter, Table, as_float_array
+from landing._internal.table import ArrayLike, Parameter, Table, as_float_array, case_rows
 from landing._internal.user_law import qualified_name, source_hash
-from landing._internal.user_params import frozen_params, replace_with_params
+from landing._internal.user_params import frozen_params, params_taking_cases, replace_with_params
 from landing.errors import ParameterError, ParameterTypeError
 from landing.fuzzy import variable_rate_system
 
@@ -356,6 +356,14 @@ class Tabulated(Controller):
                 for j in range(force.shape[-2])]
         return {"kind": self.kind, "rows": rows, "hold": np.asarray(float(self.hold)), "after": self.after}
 
+    def case_rows(self, n: int, axes: int) -> dict[str, int]:
+        force = np.asarray(self.force)
+        return {"force": force.shape[0]} if force.ndim == 3 else {}
+
+    def take_cases(self, start: int, stop: int, n: int, axes: int) -> Tabulated:
+        force = np.asarray(self.force)
+        return self.replace(force=force[start:stop]) if force.ndim == 3 else self
+
 
 def _diagnostic_kinds(diagnostics: Union[Sequence[str], Mapping[str, str]]) -> dict[str, str]:
     """Diagnostic names and kinds, from a mapping or a sequence of per-axis names."""
@@ -385,7 +393,7 @@ class PythonLaw(Controller):
     ----------
     function : the law.
     params : its parameters, by name: each a scalar, a per-axis ``(D,)`` value, or per case
-        ``(N,)``, ``(N, 1)``, ``(N, D)`` (N the batch's cases; a 1-d value of length D is per
+        ``(N,)``, ``(N, 1)``, ``(N, D)`` (N the batch's or campaign's cases; a 1-d value of length D is per
         axis, so give ``(N, 1)`` for a value per case when N equals D). The function sees each
         as (n, D). ``law.replace(kp=2.0)`` changes one; ``landing.tune`` tunes them.
     memory : the law's internal state at t = 0: a dict of initial values shared by every case
@@ -471,3 +479,9 @@ class PythonLaw(Controller):
         """A copy with some fields or parameters changed: ``law.replace(kp=2.0)`` changes
         ``params["kp"]``; ``law.replace(params={...})`` replaces them all."""
         return replace_with_params(self, "PythonLaw", changes)
+
+    def case_rows(self, n: int, axes: int) -> dict[str, int]:
+        return {k: r for k, v in self.params.items() if (r := case_rows("per_axis", np.shape(v), axes)) is not None}
+
+    def take_cases(self, start: int, stop: int, n: int, axes: int) -> PythonLaw:
+        return params_taking_cases(self, lambda v: case_rows("per_axis", np.shape(v), axes), start, stop)

@@ -104,6 +104,13 @@ class Sum(Disturbance):
     def components(self) -> list[Disturbance]:
         return list(self.parts)
 
+    def case_rows(self, n: int, axes: int) -> dict[str, int]:
+        return {f"parts[{i}].{k}": r for i, p in enumerate(self.parts) for k, r in p.case_rows(n, axes).items()}
+
+    def take_cases(self, start: int, stop: int, n: int, axes: int) -> Sum:
+        taken = [p.take_cases(start, stop, n, axes) for p in self.parts]
+        return self if all(a is b for a, b in zip(taken, self.parts)) else Sum(taken)
+
     def __add__(self, other: Disturbance) -> Sum:
         if not isinstance(other, Disturbance):
             raise ParameterTypeError(

@@ -19,7 +19,7 @@ from landing._internal.args import real, real_array
 from landing._internal.limits import require_memory
 from landing._internal.table import ArrayLike, Parameter, Table
 from landing._internal.user_law import qualified_name, source_hash
-from landing._internal.user_params import frozen_params, replace_with_params
+from landing._internal.user_params import frozen_params, params_taking_cases, replace_with_params
 from landing._internal.user_plant import PlantStep, per_case
 from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
@@ -425,6 +425,18 @@ class PythonPlant(Plant):
         """A copy with some fields or parameters changed: ``plant.replace(isp=300.0)`` changes
         ``params["isp"]``; ``plant.replace(params={...})`` replaces them all."""
         return replace_with_params(self, "PythonPlant", changes)
+
+    @staticmethod
+    def _rows(value: np.ndarray, n: int) -> Optional[int]:
+        # as the functions see it (per_case): a vector of n values is one per case, another
+        # vector is shared; a matrix has a row per case
+        return value.shape[0] if value.ndim == 2 or (value.ndim == 1 and value.shape[0] == n) else None
+
+    def case_rows(self, n: int, axes: int) -> dict[str, int]:
+        return {k: r for k, v in self.params.items() if (r := self._rows(np.asarray(v), n)) is not None}
+
+    def take_cases(self, start: int, stop: int, n: int, axes: int) -> PythonPlant:
+        return params_taking_cases(self, lambda v: self._rows(v, n), start, stop)
 
     def _step(self, n: int, first_case: int) -> PlantStep:
         """The hooks the core calls for a batch of n cases numbered from ``first_case``."""

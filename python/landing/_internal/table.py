@@ -71,6 +71,37 @@ def schema(family: str, kind: str) -> Mapping[str, Parameter]:
     })
 
 
+def case_rows(shape: str, value_shape: tuple[int, ...], axes: int) -> Optional[int]:
+    """How many cases a numeric parameter's value gives one row each, by the core's rule (None:
+    the value is shared by every case): a scalar parameter per case is ``(N,)``; a per-axis one
+    ``(N, D)``, ``(N, 1)`` or ``(N,)``, where a 1-d value of length D is read per axis."""
+    if shape == "scalar" and len(value_shape) == 1:
+        return value_shape[0]
+    if shape == "per_axis" and (len(value_shape) == 2 or (len(value_shape) == 1 and value_shape[0] != axes)):
+        return value_shape[0]
+    return None
+
+
+def nested_tables(value: Any) -> list[tuple[str, Table]]:
+    """The configurations inside a field's value (a nested one, or a list of them), each with
+    the suffix that names it (``""``, ``"[1]"``)."""
+    if isinstance(value, Table):
+        return [("", value)]
+    if isinstance(value, (list, tuple)) and value and all(isinstance(v, Table) for v in value):
+        return [(f"[{i}]", v) for i, v in enumerate(value)]
+    return []
+
+
+def nested_taking_cases(value: Any, start: int, stop: int, n: int, axes: int) -> Any:
+    """A field's nested configurations (see :func:`nested_tables`) for cases ``start .. stop``
+    (:meth:`Table.take_cases`), or ``value`` itself when none has a parameter per case."""
+    inner = [t for _, t in nested_tables(value)]
+    taken = [t.take_cases(start, stop, n, axes) for t in inner]
+    if all(a is b for a, b in zip(inner, taken)):
+        return value
+    return taken[0] if isinstance(value, Table) else type(value)(taken)
+
+
 class Table:
     """Base of the configuration dataclasses: ``kind`` names the core type; ``_compiler`` is the
     core's handle type that compiles the table; ``family`` names the core's registry the kind is
@@ -150,3 +181,43 @@ class Table:
         """A copy with some parameters changed, validated like a new object:
         ``law.replace(alpha1=6.0)``."""
         return dataclasses.replace(self, **changes)
+
+    # Parameters given per case, and the configuration for some of the cases (a campaign's
+    # chunk): one rule for every kind, read from the core's schema.
+
+    def _numbers(self) -> dict[str, tuple[Parameter, np.ndarray]]:
+        """The numeric parameters given as arrays, by field name, with their declarations."""
+        out = {}
+        declared = getattr(self, "parameters", {})
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            p = declared.get(self._renamed.get(f.name, f.name))
+            numbers = isinstance(value, (np.ndarray, list, tuple)) and not nested_tables(value)
+            if p is not None and p.numeric and numbers:
+                out[f.name] = (p, np.asarray(value, dtype=np.float64))
+        return out
+
+    def case_rows(self, n: int, axes: int) -> dict[str, int]:
+        """The parameters given one row per case, by name (a nested one's dotted), and their
+        rows; ``axes`` is the plant's, ``n`` the cases of the batch or campaign (which tells
+        a vector per case from a shared one where the shape alone cannot)."""
+        out = {name: rows for name, (p, v) in self._numbers().items()
+               if (rows := case_rows(p.shape, v.shape, axes)) is not None}
+        for f in dataclasses.fields(self):
+            for suffix, inner in nested_tables(getattr(self, f.name)):
+                out.update({f"{f.name}{suffix}.{k}": r for k, r in inner.case_rows(n, axes).items()})
+        return out
+
+    def take_cases(self, start: int, stop: int, n: int, axes: int) -> Any:
+        """This configuration for cases ``start .. stop`` of ``n``: each parameter given per case
+        keeps its rows ``start .. stop`` (itself if none is)."""
+        changes: dict[str, Any] = {
+            name: v[start:stop] for name, (p, v) in self._numbers().items()
+            if case_rows(p.shape, v.shape, axes) is not None
+        }
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            taken = nested_taking_cases(value, start, stop, n, axes)
+            if taken is not value:
+                changes[f.name] = taken
+        return dataclasses.replace(self, **changes) if changes else self

@@ -6,12 +6,14 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Any, Protocol, TypeVar
+from typing import Any, Callable, Optional, Protocol, TypeVar
+
+import numpy as np
 
 from landing._internal.table import as_float_array
 from landing.errors import ParameterError, ParameterTypeError
 
-__all__ = ["frozen_params", "replace_with_params"]
+__all__ = ["frozen_params", "replace_with_params", "params_taking_cases"]
 
 
 class _HasParams(Protocol):
@@ -53,3 +55,13 @@ def replace_with_params(obj: T, owner: str, changes: dict[str, Any]) -> T:
     for k in [k for k in changes if k not in fields]:
         params[k] = changes.pop(k)
     return dataclasses.replace(obj, params=params, **changes)  # type: ignore[type-var]
+
+
+def params_taking_cases(obj: T, rows_of: Callable[[np.ndarray], Optional[int]], start: int, stop: int) -> T:
+    """``obj`` with each parameter given per case (``rows_of(value)`` rows; None when shared)
+    cut to its rows ``start .. stop`` (``obj`` itself if none is)."""
+    params = dict(obj.params)
+    cut = {k: v[start:stop] for k, v in params.items() if rows_of(v) is not None}
+    if not cut:
+        return obj
+    return dataclasses.replace(obj, params={**params, **cut})  # type: ignore[type-var]

@@ -66,6 +66,10 @@ def monte_carlo(
     Case i's initial state and random disturbances depend only on (seed, i): the result is
     the same for any ``chunk_size`` (cases per batch) and thread count.
 
+    A parameter of the plant, law, reference or disturbance given per case has one row per
+    case of the campaign (``n`` rows; another number is refused, naming it); each chunk runs
+    its own rows (:meth:`Scenario.cases`), so the result does not depend on the chunking.
+
     Parameters
     ----------
     record_every : decimation of the kept trajectories (default: the scenario's); 0 keeps
@@ -107,6 +111,8 @@ def monte_carlo(
     if progress is not None:
         progress = boolean("progress", progress)
     check_bounds = boolean("check_bounds", check_bounds)
+    # parameters given per case must have a row for each of the n cases; a chunk takes its own
+    scenario.cases(0, n, n)
     if client is not None:
         # the Dask runner, loaded for a cluster campaign only (it is the landing[dask] extra's side)
         from landing.campaign import dask as cluster  # noqa: PLC0415 - the optional extra's runner, on demand
@@ -143,8 +149,8 @@ def monte_carlo(
         nonlocal diverged_warnings
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", DivergenceWarning)
-            part = scenario.simulate_batch(x0[start:stop], seed=seed, first_case=start, threads=threads,
-                                           record_every=every)
+            part = scenario.cases(start, stop, n).simulate_batch(x0[start:stop], seed=seed, first_case=start,
+                                                                 threads=threads, record_every=every)
         diverged_warnings += sum(issubclass(w.category, DivergenceWarning) for w in caught)
         return part
 

@@ -140,19 +140,21 @@ def run_chunk(
     version: str,
     x0: np.ndarray,
     start: int,
+    n: int,
     seed: int,
     record_every: int,
     threads: Optional[int],
     keep: tuple[str, ...],
 ) -> SimulationResult:
-    """One chunk, on a worker: cases ``start .. start + len(x0)`` of the campaign, with the
-    signals not kept dropped (the task the client submits)."""
+    """One chunk, on a worker: cases ``start .. start + len(x0)`` of the campaign's ``n``, with
+    the signals not kept dropped (the task the client submits)."""
     if version != __version__:
         raise RuntimeError(
             f"this worker runs landing {__version__}, the client {version}: install the same version "
             "on every worker (the same bits need the same code)"
         )
-    scenario = _scenario_on_worker(payload)
+    # the chunk's own rows of the parameters given per case
+    scenario = _scenario_on_worker(payload).cases(start, start + len(x0), n)
     # an array received over the network may be read-only or misaligned: the core wants its own
     x0 = np.array(x0, dtype=np.float64, order="C", copy=True)
     with warnings.catch_warnings():
@@ -241,7 +243,7 @@ def run_campaign(
     def submit(chunk: tuple[int, int, int]) -> Any:
         index, start, stop = chunk
         future = client.submit(
-            run_chunk, payload, __version__, x0[start:stop], start, seed, record_every, threads, keep,
+            run_chunk, payload, __version__, x0[start:stop], start, n, seed, record_every, threads, keep,
             key=f"{KEY_PREFIX}-{run_id}-{index:06d}", pure=True, retries=RETRIES,
         )
         chunk_of[future.key] = chunk

@@ -10,6 +10,7 @@ import numpy as np
 
 from landing._internal.args import integer, pair, real, real_array, short
 from landing._internal.limits import require_memory
+from landing._internal.table import nested_tables, nested_taking_cases
 from landing.controllers import Controller
 from landing.dispersions import Dispersion
 from landing.disturbances import DisturbanceLike, compiled
@@ -161,6 +162,41 @@ class Scenario:
                 f"state has {self.plant.state_dim}"
             )
         return x
+
+    #: The fields whose parameters may be given per case (a dispersion draws per case instead).
+    PER_CASE: ClassVar[tuple[str, ...]] = ("plant", "controller", "reference", "disturbance")
+
+    def case_rows(self, n: int) -> dict[str, int]:
+        """The parameters given one row per case (``"controller.kp"``, ``"plant.isp"``), and
+        their rows, for a campaign of ``n`` cases (see :meth:`cases`)."""
+        axes = self.plant.axes
+        return {f"{name}{suffix}.{k}": rows
+                for name in self.PER_CASE for suffix, part in nested_tables(getattr(self, name))
+                for k, rows in part.case_rows(n, axes).items()}
+
+    def cases(self, start: int, stop: int, n: int) -> Scenario:
+        """This scenario for cases ``start .. stop`` of a campaign of ``n``: each parameter given
+        per case (of the plant, law, reference or disturbance: ``n`` rows) keeps its rows
+        ``start .. stop``, so that a chunk of a campaign runs its own cases' values. A
+        parameter with another number of rows than ``n`` is refused, naming it."""
+        owner = f"scenario {self.name!r}"
+        n = integer("n", n, minimum=1, cap="max_cases", owner=owner)
+        stop = integer("stop", stop, minimum=0, maximum=n, owner=owner)
+        start = integer("start", start, minimum=0, maximum=stop, owner=owner)
+        wrong = {k: r for k, r in self.case_rows(n).items() if r != n}
+        if wrong:
+            name, rows = next(iter(wrong.items()))
+            raise ParameterError(f"{owner}: {name} has {rows} values per case but the campaign has {n} cases")
+        if (start, stop) == (0, n):
+            return self
+        axes = self.plant.axes
+        changes = {}
+        for name in self.PER_CASE:
+            value = getattr(self, name)
+            taken = nested_taking_cases(value, start, stop, n, axes)
+            if taken is not value:
+                changes[name] = taken
+        return self.replace(**changes) if changes else self
 
     def bounds(self) -> Optional[MSSBounds]:
         """Seed 001's practical fixed-time bounds for this scenario's law and disturbance (None

@@ -172,8 +172,11 @@ def mss_bounds(law: FixedTimeMSS, ap_max: Any = 0.0, theta1: float = 0.5, theta2
 def scenario_bounds(scenario: Scenario) -> Optional[MSSBounds]:
     """Seed 001's practical fixed-time bounds for a scenario's law and disturbance (what
     :meth:`Scenario.bounds` returns): None unless the law is FixedTimeMSS and the scenario's
-    ``theta`` is set."""
+    ``theta`` is set, and None for a disturbance given per case (its bound is one number per
+    axis, shared by every case)."""
     if scenario.theta is None or not isinstance(scenario.controller, FixedTimeMSS):
+        return None
+    if any(name.startswith("disturbance") for name in scenario.case_rows(1)):
         return None
     ap_max = disturbance_bound(scenario.disturbance, scenario.plant.axes)
     return mss_bounds(scenario.controller, ap_max, *scenario.theta)
