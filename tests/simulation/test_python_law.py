@@ -164,6 +164,21 @@ def test_one_call_per_control_instant_with_all_cases():
     np.testing.assert_allclose([c[0] for c in calls], np.arange(11) * 0.1, rtol=0, atol=1e-15)
 
 
+def test_inputs_a_law_keeps_are_never_overwritten():
+    # the engine reuses its input arrays from one instant to the next, unless the function kept
+    # one: then the kept array must still hold its own instant's values
+    kept = []
+
+    def law(t, e, de, ref, drift, inertia, params, memory):
+        kept.append(e)  # the array itself, not a copy
+        return -e - de
+
+    x0 = np.array([[1.0, -2.0, 0.5, 0.0, 0.0, 0.0], [0.0, 1.0, 2.0, 0.5, 0.0, 0.0]])
+    res = landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(law), x0, t_final=1.0, dt=0.1)
+    # e = q - q_ref, q_ref = 0: each kept array is its instant's positions, as recorded
+    np.testing.assert_array_equal(np.stack(kept), res.states[:, :, :3].transpose(1, 0, 2))
+
+
 def test_a_time_dependent_disturbance_sees_the_true_time():
     # OpenLoop stepped one period at a time restarts every call at t = 0; a PythonLaw does not
     dist = landing.disturbances.Sinusoid(amplitude=(1.0, 0.0, 0.0), omega=3.0)

@@ -96,6 +96,22 @@ def test_the_double_integrator_in_python_gives_the_built_in_bits(integrator):
         assert python.state_names == ("x0", "x1", "x2", "x3", "x4", "x5")
 
 
+def test_states_a_plant_keeps_are_never_overwritten():
+    # the engine reuses the arrays it hands the functions, unless one was kept: a kept state
+    # must still hold its own stage's values (forward Euler: one stage, the period's start)
+    kept = []
+
+    def derivative(t, x, u, params):
+        kept.append(x)  # the array itself, not a copy
+        return np.concatenate([x[:, 3:], u], axis=1)
+
+    plant = P.PythonPlant(derivative, 6, positions=(0, 1, 2), velocities=(3, 4, 5))
+    x0 = np.array([[1.0, -2.0, 0.5, 0.0, 0.0, 0.0], [0.0, 1.0, 2.0, 0.5, 0.0, 0.0]])
+    res = landing.simulate_batch(plant, C.PDSlidingMode(lambda_=1.0, k=2.0), x0, t_final=1.0, dt=0.1,
+                                 integrator="euler")
+    np.testing.assert_array_equal(np.stack(kept), res.states[:, :-1].transpose(1, 0, 2))
+
+
 def test_the_mars_lander_in_python_agrees_with_the_built_in_one():
     x0 = mars_x0(30)
     x0[4] = [10.0, 0.0, 3.0, 0.0, 0.0, -40.0, 1900.0]  # touches down in the first tenth of a second

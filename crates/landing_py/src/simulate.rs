@@ -5,7 +5,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
@@ -92,6 +92,47 @@ struct PyLaw {
     step: Py<PyAny>,
     width: usize,
     n: usize,
+    handed: Handed,
+}
+
+/// The (N, width) arrays handed to Python at every call, reused from one call to the next: a
+/// fresh array at every call faults its pages in again (a quarter of a Python law's time at
+/// 10^4 cases). An array the callee kept a reference to (in its memory, a view of it) is left
+/// to it, and replaced by a new one.
+#[derive(Default)]
+struct Handed {
+    slots: Vec<Option<Py<PyArray2<f64>>>>,
+}
+
+impl Handed {
+    /// Slot `slot`'s array, holding `values` (`n x width`, row-major).
+    fn array<'py>(
+        &mut self,
+        py: Python<'py>,
+        slot: usize,
+        values: &[f64],
+        n: usize,
+    ) -> Bound<'py, PyAny> {
+        let width = values.len() / n;
+        if self.slots.len() <= slot {
+            self.slots.resize_with(slot + 1, || None);
+        }
+        let held = &mut self.slots[slot];
+        // SAFETY: a plain reference count read of a live object, with the GIL held
+        let ours = |a: &Py<PyArray2<f64>>| unsafe { pyo3::ffi::Py_REFCNT(a.as_ptr()) } == 1;
+        if !held
+            .as_ref()
+            .is_some_and(|a| ours(a) && a.bind(py).shape() == [n, width])
+        {
+            *held = Some(PyArray2::zeros(py, [n, width], false).unbind());
+        }
+        let a = held.as_ref().expect("set above").bind(py);
+        // SAFETY: a C-contiguous (n, width) float64 array that only this slot holds (its count
+        // is one, or it was just made), so no Python code sees the write; numpy's read-only
+        // flag, which the Python layer sets, guards Python's writes, not this one
+        unsafe { std::ptr::copy_nonoverlapping(values.as_ptr(), a.data(), values.len()) };
+        a.clone().into_any()
+    }
 }
 
 impl<const D: usize> ExternalLaw<D> for PyLaw {
@@ -108,24 +149,25 @@ impl<const D: usize> ExternalLaw<D> for PyLaw {
         diagnostics: &mut [f64],
     ) -> PyResult<()> {
         let n = self.n;
+        let handed = &mut self.handed;
         Python::attach(|py| {
-            let rows = |v: &[f64]| -> PyResult<Bound<'_, PyAny>> {
-                Ok(PyArray1::from_slice(py, v).reshape([n, D])?.into_any())
-            };
-            let args = PyTuple::new(
-                py,
-                [
-                    inputs.t.into_pyobject(py)?.into_any(),
-                    inputs.k.into_pyobject(py)?.into_any(),
-                    rows(&inputs.e)?,
-                    rows(&inputs.de)?,
-                    rows(&inputs.position)?,
-                    rows(&inputs.velocity)?,
-                    rows(&inputs.acceleration)?,
-                    rows(&inputs.drift)?,
-                    rows(&inputs.inertia)?,
-                ],
-            )?;
+            let fields = [
+                &inputs.e,
+                &inputs.de,
+                &inputs.position,
+                &inputs.velocity,
+                &inputs.acceleration,
+                &inputs.drift,
+                &inputs.inertia,
+            ];
+            let mut items = vec![
+                inputs.t.into_pyobject(py)?.into_any(),
+                inputs.k.into_pyobject(py)?.into_any(),
+            ];
+            for (slot, v) in fields.into_iter().enumerate() {
+                items.push(handed.array(py, slot, v, n));
+            }
+            let args = PyTuple::new(py, items)?;
             let out = self.step.bind(py).call1(args)?;
             let (u, diag): (PyReadonlyArray2<'_, f64>, PyReadonlyArray2<'_, f64>) =
                 out.extract()?;
@@ -257,7 +299,16 @@ impl<'py> Simulate<'_, 'py> {
                     return Err(InputError::value(msg).into());
                 }
                 let step = (*step).clone().unbind();
-                (Commands::Python(PyLaw { step, width, n }), layout.clone())
+                let handed = Handed::default();
+                (
+                    Commands::Python(PyLaw {
+                        step,
+                        width,
+                        n,
+                        handed,
+                    }),
+                    layout.clone(),
+                )
             }
         };
         Ok(Parts {
@@ -380,24 +431,22 @@ struct PyPlant<const D: usize> {
     layout: StateLayout<D>,
     hooks: [Option<Py<PyAny>>; 4],
     n: usize,
+    handed: Handed,
 }
 
 impl<const D: usize> PyPlant<D> {
     /// Hook `i` on `args`, its result into `out` (`n x width`).
-    fn call(&self, i: usize, t: f64, args: &[&[f64]], out: &mut [f64]) -> PyResult<()> {
+    fn call(&mut self, i: usize, t: f64, args: &[&[f64]], out: &mut [f64]) -> PyResult<()> {
         let what = ["derivative", "model", "actuate", "in_domain"][i];
         let f = self.hooks[i]
             .as_ref()
             .ok_or_else(|| InputError::value(format!("the plant has no {what} to call")))?;
-        let n = self.n;
+        let (n, handed) = (self.n, &mut self.handed);
         Python::attach(|py| {
             let mut items = vec![t.into_pyobject(py)?.into_any()];
-            for a in args {
-                items.push(
-                    PyArray1::from_slice(py, a)
-                        .reshape([n, a.len() / n])?
-                        .into_any(),
-                );
+            for (j, a) in args.iter().enumerate() {
+                // two slots per hook: its arguments after t
+                items.push(handed.array(py, 2 * i + j, a, n));
             }
             let r: PyReadonlyArray2<'_, f64> =
                 f.bind(py).call1(PyTuple::new(py, items)?)?.extract()?;
@@ -536,7 +585,7 @@ pub fn simulate_batch<'py>(
                 with_axes!(positions.len(), D => {
                     let layout = StateLayout::<D>::new(dim, &positions, &velocities, mass, altitude)
                         .map_err(InputError::from)?;
-                    simulate.python_plant(PyPlant { layout, hooks, n })
+                    simulate.python_plant(PyPlant { layout, hooks, n, handed: Handed::default() })
                 }, a => Err(axes_error(a).into()))
             }
             (None, None) => unreachable!("a plant is compiled or has a spec"),

@@ -143,9 +143,9 @@ impl InputRows<'_> {
 }
 
 /// A law computed outside the core: once per control instant, for every case of the batch.
-pub trait ExternalLaw<const D: usize> {
+pub trait ExternalLaw<const D: usize>: Send {
     /// What the law's failure carries (the bindings: the Python exception).
-    type Error;
+    type Error: Send;
 
     /// Diagnostic values per case and instant (at most [`MAX_DIAGNOSTIC_WIDTH`]).
     fn diagnostic_width(&self) -> usize;
@@ -362,50 +362,80 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
             Box::new(move || kernel::dispatch(level, job))
         })
         .collect();
+    let blocks = n.div_ceil(w);
+    // the whole loop runs on the pool: the law's call and the blocks' periods take turns on
+    // its threads, with no hand-over to and from the calling thread at every instant
+    let threads = pool.map_or_else(rayon::current_num_threads, |p| p.current_num_threads());
+    let group = blocks
+        .div_ceil(threads * GROUPS_PER_THREAD)
+        .clamp(1, MAX_GROUP);
     let mut held = parallel::on_pool(pool, Box::new(|| parallel::each(jobs)));
     let mut buffers = outputs.blocks(w, nr, nx, nd);
-    let mut running = vec![true; held.len()];
-    let mut k = 0;
-    while k <= cfg.steps && running.contains(&true) {
-        if cancel.load(Ordering::Relaxed) {
-            return Err(BatchError::Cancelled.into());
+    let run = Box::new(|| -> Result<(), ExternalError<X::Error>> {
+        let mut running = vec![true; held.len()];
+        let mut k = 0;
+        while k <= cfg.steps && running.contains(&true) {
+            if cancel.load(Ordering::Relaxed) {
+                return Err(BatchError::Cancelled.into());
+            }
+            inputs.t = k as f64 * cfg.dt;
+            inputs.k = k;
+            law.command(&inputs, &mut command, &mut diagnostics)
+                .map_err(ExternalError::Law)?;
+            let mut steps: Vec<(Step<'_, '_, '_, D, P>, &mut bool)> = held
+                .iter_mut()
+                .zip(buffers.iter_mut())
+                .zip(command.chunks(w * D))
+                .zip(chunks_or_empty(&diagnostics, w * nd, blocks))
+                .zip(inputs.rows(w))
+                .zip(running.iter_mut())
+                .enumerate()
+                .filter(|(_, (_, running))| **running)
+                .map(
+                    |(b, (((((held, out), command), diagnostics), rows), running))| {
+                        let job = Step {
+                            common,
+                            k,
+                            held,
+                            used: used(b),
+                            command,
+                            diagnostics,
+                            rows,
+                            out,
+                        };
+                        (job, running)
+                    },
+                )
+                .collect();
+            // runs of consecutive blocks, one task each: a task per block cost more in
+            // scheduling than its period. (Asking for the next block's memory ahead, all 12 kB
+            // of a Mars block, made a run slower: the period reads about half of it.)
+            let mut jobs: Vec<Job<'_, ()>> = Vec::with_capacity(steps.len().div_ceil(group));
+            while !steps.is_empty() {
+                let rest = steps.split_off(group.min(steps.len()));
+                let run = std::mem::replace(&mut steps, rest);
+                jobs.push(Box::new(move || {
+                    for (job, running) in run {
+                        *running = kernel::dispatch(level, job);
+                    }
+                }));
+            }
+            parallel::each(jobs);
+            k += 1;
         }
-        inputs.t = k as f64 * cfg.dt;
-        inputs.k = k;
-        law.command(&inputs, &mut command, &mut diagnostics)
-            .map_err(ExternalError::Law)?;
-        let blocks = held.len();
-        let jobs = held
-            .iter_mut()
-            .zip(buffers.iter_mut())
-            .zip(command.chunks(w * D))
-            .zip(chunks_or_empty(&diagnostics, w * nd, blocks))
-            .zip(inputs.rows(w))
-            .zip(running.iter_mut())
-            .enumerate()
-            .filter(|(_, (_, running))| **running)
-            .map(
-                |(b, (((((held, out), command), diagnostics), rows), running))| -> Job<'_, ()> {
-                    let job = Step {
-                        common,
-                        k,
-                        held,
-                        used: used(b),
-                        command,
-                        diagnostics,
-                        rows,
-                        out,
-                    };
-                    Box::new(move || *running = kernel::dispatch(level, job))
-                },
-            )
-            .collect();
-        parallel::on_pool(pool, Box::new(|| parallel::each(jobs)));
-        k += 1;
-    }
+        Ok(())
+    });
+    parallel::on_pool(pool, run)?;
     drop(buffers);
     Ok(outputs.finish(cfg, nx, nd, level))
 }
+
+/// Tasks per pool thread at each instant: enough that a thread whose blocks stop early finds
+/// others' work.
+const GROUPS_PER_THREAD: usize = 4;
+
+/// At most this many blocks in one task.
+const MAX_GROUP: usize = 64;
 
 /// `len`-sized chunks of `values`, or `n` empty slices when `len` is 0.
 fn chunks_or_empty(values: &[f64], len: usize, n: usize) -> Vec<&[f64]> {

@@ -117,7 +117,7 @@ impl<const D: usize> StateLayout<D> {
 /// are called only when [`ExternalPlant::hooks`] says the plant has them.
 pub trait ExternalPlant<const D: usize> {
     /// What the plant's failure carries (the bindings: the Python exception).
-    type Error;
+    type Error: Send;
 
     fn layout(&self) -> &StateLayout<D>;
 
