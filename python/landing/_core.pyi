@@ -14,7 +14,7 @@ __all__ = [
     "_panic_for_test", "fixed_time_bound", "practical_time_bound", "practical_radius", "mss_bounds",
     "min_final_time", "min_time_to_rest", "fntsmc_ts_printed", "fntsmc_td_printed", "fntsmc_bounds",
     "philox4x64", "Dispersion", "DispersionHandle", "INTEGRATORS", "PLANT_KINDS", "CONTROLLER_KINDS",
-    "GRAVITY_KINDS", "KERNEL_LEVELS", "GRAVITATIONAL_CONSTANT", "DIVERGENCE_REASONS", "MAX_COMMAND", "LIMITS",
+    "GRAVITY_KINDS", "KERNEL_LEVELS", "EVENTS", "GRAVITATIONAL_CONSTANT", "DIVERGENCE_REASONS", "MAX_COMMAND", "LIMITS",
     "SCHEMAS", "METRICS",
 ]
 
@@ -24,6 +24,7 @@ PLANT_KINDS: list[str]
 CONTROLLER_KINDS: list[str]
 GRAVITY_KINDS: list[str]
 KERNEL_LEVELS: list[str]
+EVENTS: list[str]
 GRAVITATIONAL_CONSTANT: float
 #: The caps of landing_core::limits by name (docs/parameters.md, "Limits").
 LIMITS: dict[str, int]
@@ -173,6 +174,7 @@ def simulate_batch(
     chatter_cutoff: Optional[float],
     threads: Optional[int],
     kernel: Optional[str] = None,
+    stop_at: Optional[str] = None,
     diagnostic_layout: Optional[list[tuple[str, int]]] = None,
 ) -> dict[str, Any]:
     """Run a batch. Returns t, states, controls, diagnostics, final_state, metrics (a dict of

@@ -315,7 +315,9 @@ class PythonPlant(Plant):
         shared by every case (seen as (n, k)), or a value per case (N,) or (N, k).
     state_names, control_names : names for tables and plots (default x0, x1, ... and u0, ...).
     mass, altitude : the components holding the mass (fuel metrics) and the height above the
-        ground (touchdown metrics), if any.
+        ground (touchdown metrics and ``stop_at="touchdown"``), if any. An altitude that is one
+        of ``positions`` has its crossing located on the step's interpolant, as the built-in
+        landers do; another component, on the chord between the step's ends.
     name : how the plant is named in messages (default: the derivative's ``module:qualname``).
 
     The cases run one after the other between the calls, on the calling thread, with the

@@ -55,6 +55,7 @@ class RunOptions:
     chatter_cutoff: Optional[float] = None
     threads: Optional[int] = None
     kernel: Optional[str] = None
+    stop_at: Optional[str] = None
 
     #: The least value of each count (a scenario file's reader names it when a count is not
     #: written as an integer).
@@ -81,6 +82,10 @@ class RunOptions:
             if not isinstance(self.kernel, str):
                 raise ParameterTypeError(f"kernel must be a string or None, got {self.kernel!r}")
             choice("kernel", self.kernel, tuple(_core.KERNEL_LEVELS))
+        if self.stop_at is not None:
+            if not isinstance(self.stop_at, str):
+                raise ParameterTypeError(f"stop_at must be a string or None, got {self.stop_at!r}")
+            choice("stop_at", self.stop_at, tuple(_core.EVENTS))
         # the checked Python values (a numpy integer becomes an int): what the core is given
         for name, value in checked.items():
             object.__setattr__(self, name, value)
@@ -105,7 +110,7 @@ class RunOptions:
             record_every=self.record_every,
             settle_tolerance=0.02 if self.settle_tolerance is None else self.settle_tolerance,
             settle_relative=self.settle_relative, chatter_cutoff=self.chatter_cutoff, threads=self.threads,
-            kernel=self.kernel,
+            kernel=self.kernel, stop_at=self.stop_at,
         )
 
 
@@ -127,6 +132,7 @@ def simulate_batch(
     chatter_cutoff: Optional[float] = None,
     threads: Optional[int] = None,
     kernel: Optional[str] = None,
+    stop_at: Optional[str] = None,
 ) -> SimulationResult:
     """Simulate N cases of ``plant`` under ``controller`` in parallel (the semantics in README.md).
 
@@ -159,6 +165,14 @@ def simulate_batch(
         ``landing.kernel_levels()`` (``"baseline"``, ``"avx2"``, ``"avx512"`` on x86-64); the
         default is the ``LANDING_KERNEL`` environment variable, else the best this CPU has. Every
         level gives the same bits; forcing one is for testing and benchmarking.
+    stop_at : an event that ends each case, or None to run every case to ``t_final``.
+        ``"touchdown"`` (a plant with an altitude: the landers) ends a case at its first
+        crossing of the ground, ``rz = 0``, located inside the integrator step (on the step's
+        cubic Hermite interpolant, to 1e-12 of the step): the case is then frozen in its state
+        there (its final state), no fuel is burnt and no metric accumulates after the control
+        period of the event, and its recorded signals are NaN from the next recorded instant.
+        ``metrics["touchdown_time"]``, ``touchdown_position`` and ``touchdown_velocity`` are
+        the event's.
 
     Returns
     -------
@@ -183,7 +197,7 @@ def simulate_batch(
         )
     options = RunOptions(t_final=t_final, dt=dt, integrator=integrator, substeps=substeps, record_every=record_every,
                          settle_tolerance=settle_tolerance, chatter_cutoff=chatter_cutoff, threads=threads,
-                         kernel=kernel)
+                         kernel=kernel, stop_at=stop_at)
     seed_i = integer("seed", seed, minimum=0, maximum=2**64 - 1)
     first = integer("first_case", first_case, minimum=0, maximum=2**63 - 1)
     integer("x0 cases N", x.shape[0], cap="max_cases")

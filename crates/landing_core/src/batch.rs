@@ -16,6 +16,7 @@ use std::sync::atomic::AtomicBool;
 use crate::control::AnyLaw;
 use crate::disturbance::Disturbance;
 use crate::error::ReadError;
+use crate::event::Event;
 use crate::integrator::IntegratorKind;
 use crate::kernel::{self, LawCalls, Level, LevelError, LevelJob};
 use crate::lanes::{Gather, Real};
@@ -104,6 +105,8 @@ pub enum BatchError {
     Level(LevelError),
     /// The run was cancelled (its output is incomplete and dropped).
     Cancelled,
+    /// The run's event cannot happen on this plant (a touchdown without an altitude).
+    Event(Event),
 }
 
 impl std::fmt::Display for BatchError {
@@ -143,6 +146,11 @@ impl std::fmt::Display for BatchError {
             Self::ThreadPool(e) => write!(f, "could not start the thread pool: {e}"),
             Self::Level(e) => write!(f, "{e}"),
             Self::Cancelled => write!(f, "the batch was cancelled"),
+            Self::Event(e) => write!(
+                f,
+                "stop_at = '{}' needs a plant with an altitude (a lander); this plant has none",
+                e.name()
+            ),
         }
     }
 }
@@ -213,6 +221,8 @@ pub struct RunRequest<'a> {
     pub threads: Option<i64>,
     /// One of [`Level::NAMES`].
     pub kernel: Option<&'a str>,
+    /// One of [`Event::NAMES`]: the event that ends each case.
+    pub stop_at: Option<&'a str>,
 }
 
 impl RunRequest<'_> {
@@ -266,6 +276,15 @@ impl RunRequest<'_> {
             None => cfg,
             Some(hz) => cfg.with_chatter_cutoff(hz)?,
         };
+        let stop_at = self.stop_at.map(|name| {
+            Event::from_name(name).ok_or_else(|| {
+                bad(format!(
+                    "stop_at = {name:?} is not one of {:?} or None",
+                    Event::NAMES
+                ))
+            })
+        });
+        let cfg = cfg.with_stop_at(stop_at.transpose()?);
         let options = RunOptions {
             threads,
             level,
@@ -396,8 +415,11 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for BlockJob<'_, '_, D, P> {
 }
 
 /// Checks that the per-case tables have 1 or `n` entries and agree on what a block shares.
-fn check_shapes<const D: usize, P: PlantModel<D>>(batch: &Batch<D, P>) -> Result<(), BatchError> {
-    check_cases(batch, &[("controller", batch.laws.len())])?;
+fn check_shapes<const D: usize, P: PlantModel<D>>(
+    batch: &Batch<D, P>,
+    cfg: &SimConfig,
+) -> Result<(), BatchError> {
+    check_cases(batch, cfg, &[("controller", batch.laws.len())])?;
     same(
         "controller",
         &batch.laws,
@@ -426,9 +448,15 @@ fn same<T, F: Fn(&T, &T) -> bool>(
 /// The checks of [`check_shapes`] on everything but the laws (whose lengths are `laws`).
 pub(crate) fn check_cases<const D: usize, P: PlantModel<D>, L>(
     batch: &Batch<D, P, L>,
+    cfg: &SimConfig,
     laws: &[(&'static str, usize)],
 ) -> Result<(), BatchError> {
     let n = batch.x0.len();
+    if let (Some(event), Some(x0)) = (cfg.stop_at, batch.x0.first())
+        && batch.plants.get(0).altitude(x0).is_none()
+    {
+        return Err(BatchError::Event(event));
+    }
     let tables = [
         ("plant", batch.plants.len()),
         ("reference", batch.references.len()),
@@ -622,7 +650,7 @@ pub fn run<const D: usize, P: PlantModel<D>>(
     cfg: &SimConfig,
     options: &RunOptions<'_>,
 ) -> Result<BatchOutput<D>, BatchError> {
-    check_shapes(batch)?;
+    check_shapes(batch, cfg)?;
     let level = Level::resolve(options.level)?;
     let never = AtomicBool::new(false);
     let cancel = options.cancel.unwrap_or(&never);
@@ -654,7 +682,7 @@ pub fn run_scalar<const D: usize, P: PlantModel<D>>(
     cfg: &SimConfig,
     threads: Option<usize>,
 ) -> Result<BatchOutput<D>, BatchError> {
-    check_shapes(batch)?;
+    check_shapes(batch, cfg)?;
     run_on(batch, cfg, Kernel::Scalar, threads, &AtomicBool::new(false))
 }
 

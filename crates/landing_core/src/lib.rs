@@ -13,6 +13,7 @@ pub mod control;
 pub mod dispersion;
 pub mod disturbance;
 pub mod error;
+pub mod event;
 pub mod external;
 pub mod fuzzy;
 pub mod gravity;

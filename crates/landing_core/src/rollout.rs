@@ -23,6 +23,7 @@ use nalgebra::SVector;
 use crate::control::{AnyLaw, LawInput};
 use crate::disturbance::{Disturbance, NoiseStreams, disturbance_stream};
 use crate::error::ParamError;
+use crate::event::{Event, locate_crossing};
 use crate::integrator::{IntegratorKind, Stage, StageDerivative};
 use crate::kernel::{LawCalls, OutOfLine};
 use crate::lanes::{
@@ -78,6 +79,9 @@ pub struct SimConfig {
     /// Cut-off frequency (Hz) of the high-pass filter behind the chattering metric; NaN for
     /// a tenth of the Nyquist frequency, 1 / (20 dt).
     pub chatter_cutoff: f64,
+    /// The event that ends each case, if any ([`crate::event`]): the case is then frozen at
+    /// its state at the event.
+    pub stop_at: Option<Event>,
 }
 
 impl SimConfig {
@@ -128,7 +132,14 @@ impl SimConfig {
             settle: Tolerance::Relative(0.02),
             integrator: IntegratorKind::Rk4,
             chatter_cutoff: f64::NAN,
+            stop_at: None,
         })
+    }
+
+    /// The same configuration ending each case at `event` (or at t_final only, for None).
+    pub fn with_stop_at(mut self, event: Option<Event>) -> Self {
+        self.stop_at = event;
+        self
     }
 
     /// The same configuration with another settle tolerance.
@@ -484,6 +495,8 @@ pub(crate) struct Block<const D: usize, R: Real, P: Plant<R, D>> {
     live: R::Mask,
     stops: Stops<R>,
     touched: R::Mask,
+    // the lanes stopped by the run's event (not diverged: their state is the event's)
+    landed: R::Mask,
     td_time: R,
     td_position: SVector<R, D>,
     td_velocity: SVector<R, D>,
@@ -531,6 +544,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             live: R::Mask::splat(true),
             stops: Stops::<R>::new(),
             touched: R::Mask::splat(false),
+            landed: R::Mask::splat(false),
             td_time: nan,
             td_position: filled(nan),
             td_velocity: filled(nan),
@@ -689,28 +703,46 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         let plant = set.plant;
         let zero = R::zero();
         let (x, next) = (&self.x, &self.next);
+        let mut landing = R::Mask::splat(false);
         if let (Some(z0), Some(z1)) = (plant.altitude(x), plant.altitude(next)) {
             let cross = self.live & !self.touched & z0.simd_gt(zero) & z1.simd_le(zero);
             if cross.any() {
-                let w = z0 / (z0 - z1);
                 let (q0, v0) = plant.coordinates(x);
                 let (q1, v1) = plant.coordinates(next);
-                self.td_time = R::select(cross, w * h + tj, self.td_time);
-                self.td_position = select_vector(
-                    cross,
-                    &add(&q0, &scale_by(&sub(&q1, &q0), w)),
-                    &self.td_position,
-                );
-                self.td_velocity = select_vector(
-                    cross,
-                    &add(&v0, &scale_by(&sub(&v1, &v0), w)),
-                    &self.td_velocity,
-                );
+                let (s, q, v) = match plant.altitude_axis() {
+                    Some(axis) => locate_crossing((&q0, &v0), (&q1, &v1), axis, h, cross),
+                    // an altitude that is not a coordinate: the chord
+                    None => {
+                        let s = z0 / (z0 - z1);
+                        let at =
+                            |a: &SVector<R, D>, b: &SVector<R, D>| add(a, &scale_by(&sub(b, a), s));
+                        (s, at(&q0, &q1), at(&v0, &v1))
+                    }
+                };
+                self.td_time = R::select(cross, s * R::splat(h) + R::splat(tj), self.td_time);
+                self.td_position = select_vector(cross, &q, &self.td_position);
+                self.td_velocity = select_vector(cross, &v, &self.td_velocity);
                 self.touched = self.touched | cross;
+                if set.cfg.stop_at == Some(Event::Touchdown) {
+                    // the case ends at the event, frozen in the state there: the coordinates
+                    // as located, the other components (a lander's mass) along the chord
+                    let (qc, vc) = plant.coordinate_components();
+                    let mut at = <P::State as State<R>>::from_components(|c| {
+                        let (a, b) = (x.component(c), next.component(c));
+                        a + (b - a) * s
+                    });
+                    for i in 0..D {
+                        at.set_component(qc[i], q[i]);
+                        at.set_component(vc[i], v[i]);
+                    }
+                    self.next.select_assign(cross, &at);
+                    landing = cross;
+                }
             }
         }
+        let next = &self.next;
         let finite = next.all_finite();
-        let bad = self.live & !(finite & plant.in_domain(next));
+        let bad = self.live & !landing & !(finite & plant.in_domain(next));
         if bad.any() {
             self.stops
                 .mark(bad & !finite, tj + h, Divergence::NonFiniteState);
@@ -718,6 +750,12 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 .mark(bad & finite, tj + h, Divergence::OutOfDomain);
             self.stats.freeze(bad);
             self.live = self.live & !bad;
+        }
+        if landing.any() {
+            self.x.select_assign(landing, &self.next);
+            self.stats.freeze(landing);
+            self.landed = self.landed | landing;
+            self.live = self.live & !landing;
         }
         self.x.select_assign(self.live, &self.next);
         self.live.any()
@@ -761,6 +799,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 );
             }
         }
+        // a case the event ended finished there, in the state it was frozen in
+        finished = finished | self.landed;
         let input = &self.input;
         let inside = dot(&input.e, &input.e).simd_le(self.tolerance_sq);
         if let (Some(sm), Some(m)) = (self.settle_mass.as_mut(), plant.mass(&self.x)) {

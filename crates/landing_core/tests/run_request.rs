@@ -1,6 +1,7 @@
 //! `RunRequest::compile`: the one place run options from outside Rust are checked.
 
 use landing_core::batch::RunRequest;
+use landing_core::event::Event;
 use landing_core::integrator::IntegratorKind;
 use landing_core::{Level, Tolerance};
 
@@ -18,6 +19,7 @@ fn request() -> RunRequest<'static> {
         chatter_cutoff: Some(4.0),
         threads: Some(2),
         kernel: Some("baseline"),
+        stop_at: Some("touchdown"),
     }
 }
 
@@ -34,6 +36,7 @@ fn a_valid_request_keeps_every_option() {
     assert_eq!(options.threads, Some(2));
     assert_eq!(options.level, Some(Level::Baseline));
     assert!(options.cancel.is_none());
+    assert_eq!(cfg.stop_at, Some(Event::Touchdown));
 }
 
 /// One option set to a bad value.
@@ -41,7 +44,7 @@ type Change = fn(&mut RunRequest<'static>);
 
 #[test]
 fn each_bad_option_is_named_with_its_rule() {
-    let cases: [(Change, &str); 9] = [
+    let cases: [(Change, &str); 10] = [
         (
             |r| r.integrator = "rk45",
             r#"integrator = "rk45" is not one of ["rk4", "euler"]"#,
@@ -68,6 +71,10 @@ fn each_bad_option_is_named_with_its_rule() {
         (
             |r| r.chatter_cutoff = Some(50.0),
             "chatter_cutoff = 50 violates 0 < chatter_cutoff",
+        ),
+        (
+            |r| r.stop_at = Some("landing"),
+            r#"stop_at = "landing" is not one of ["touchdown"] or None"#,
         ),
     ];
     for (change, message) in cases {

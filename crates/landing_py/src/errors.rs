@@ -110,7 +110,10 @@ impl From<InputError> for PyErr {
 pub fn batch_error(e: BatchError) -> PyErr {
     match e {
         BatchError::Allocation { .. } => PyMemoryError::new_err(e.to_string()),
-        BatchError::Length { .. } | BatchError::Shape { .. } | BatchError::Level(_) => raise(
+        BatchError::Length { .. }
+        | BatchError::Shape { .. }
+        | BatchError::Level(_)
+        | BatchError::Event(_) => raise(
             |c| &c.parameter,
             PyValueError::new_err::<String>,
             e.to_string(),

@@ -163,6 +163,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CONTROLLER_KINDS", LAW_KINDS.to_vec())?;
     m.add("GRAVITY_KINDS", GRAVITY_KINDS.to_vec())?;
     m.add("KERNEL_LEVELS", Level::NAMES.to_vec())?;
+    m.add("EVENTS", landing_core::event::Event::NAMES.to_vec())?;
     m.add("GRAVITATIONAL_CONSTANT", G)?;
     m.add("DIVERGENCE_REASONS", Divergence::NAMES.to_vec())?;
     m.add("MAX_COMMAND", MAX_COMMAND)?;

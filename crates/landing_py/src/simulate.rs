@@ -494,7 +494,7 @@ type PlantSpec = (
 /// diagnostic signals. A panic anywhere below arrives as a `SimulationError` (see [`guard`]);
 /// an exception `step` raises stops the batch and is raised as it is.
 #[pyfunction]
-#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None, diagnostic_layout=None))]
+#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None, stop_at=None, diagnostic_layout=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_batch<'py>(
     py: Python<'py>,
@@ -515,6 +515,7 @@ pub fn simulate_batch<'py>(
     chatter_cutoff: Option<f64>,
     threads: Option<i64>,
     kernel: Option<&str>,
+    stop_at: Option<&str>,
     diagnostic_layout: Option<Vec<(String, usize)>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     guard(move || {
@@ -543,6 +544,7 @@ pub fn simulate_batch<'py>(
             chatter_cutoff,
             threads,
             kernel,
+            stop_at,
         };
         let (cfg, options) = request.compile().map_err(InputError::from)?;
         let compiled = plant.cast::<Plant>().ok().map(|p| p.borrow());

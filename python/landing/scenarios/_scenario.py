@@ -34,15 +34,17 @@ class Scenario:
     a Monte Carlo campaign. ``theta`` holds the splitting constants (theta1, theta2) of seed
     001's practical fixed-time analysis, for the bounds a campaign is checked against.
     ``options`` is the :class:`~landing.simulation.RunOptions` of ``t_final``, ``dt``,
-    ``integrator``, ``substeps``, ``record_every``, ``settle_tolerance`` and
-    ``chatter_cutoff``, checked once when the scenario is made. A scenario is changed by
-    making a new one, :meth:`replace`.
+    ``integrator``, ``substeps``, ``record_every``, ``settle_tolerance``, ``chatter_cutoff``
+    and ``stop_at`` (None, the default: every case runs to ``t_final``; ``"touchdown"`` ends
+    each lander case at its touchdown, see :func:`~landing.simulate_batch`), checked once when
+    the scenario is made. A scenario is changed by making a new one, :meth:`replace`.
     """
 
     #: The fields that are run options (the threads and the kernel level are the machine's,
     #: given per run).
     RUN_OPTIONS: ClassVar[tuple[str, ...]] = (
         "t_final", "dt", "integrator", "substeps", "record_every", "settle_tolerance", "chatter_cutoff",
+        "stop_at",
     )
 
     name: str
@@ -59,6 +61,7 @@ class Scenario:
     record_every: int = 1
     settle_tolerance: Optional[float] = None
     chatter_cutoff: Optional[float] = None
+    stop_at: Optional[str] = None
     theta: Optional[tuple[float, float]] = None
     description: str = ""
     options: RunOptions = field(init=False, repr=False)

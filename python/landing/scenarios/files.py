@@ -70,7 +70,7 @@ NESTED: dict[str, ModuleType] = {"gravity": gravity, "system": fuzzy}
 
 #: The scenario's own settings: key -> (rule, check). The parts are checked by their classes.
 _SETTINGS = ("name", "description", "x0", "t_final", "dt", "integrator", "substeps", "record_every",
-             "settle_tolerance", "chatter_cutoff", "theta")
+             "settle_tolerance", "chatter_cutoff", "stop_at", "theta")
 
 
 class FileError(ParameterError):
@@ -160,7 +160,7 @@ def scenario_to_dict(scenario: Scenario) -> dict[str, Any]:
         value = getattr(scenario, key)
         if value is None:
             continue
-        if key in ("name", "description", "integrator"):
+        if key in ("name", "description", "integrator", "stop_at"):
             out[key] = str(value)
         elif key in ("substeps", "record_every"):
             out[key] = int(value)
@@ -372,7 +372,7 @@ def _decode_table(table: Any, module: ModuleType, source: str, path: str) -> Tab
 def _check_settings(d: Mapping[str, Any], source: str) -> None:
     """The scenario's own settings: what a TOML value must be (a string, an integer), then the
     run options' rules (:class:`~landing.simulation.RunOptions`), each refusal naming the file."""
-    for key in ("name", "description", "integrator"):
+    for key in ("name", "description", "integrator", "stop_at"):
         if key in d and not isinstance(d[key], str):
             raise FileError(f"{source}: {key} = {d[key]!r} must be a string")
     for key, low in RunOptions.MINIMUM.items():

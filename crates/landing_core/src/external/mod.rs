@@ -315,7 +315,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
     options: &RunOptions<'_>,
     law: &mut X,
 ) -> Result<BatchOutput<D>, ExternalError<X::Error>> {
-    check_cases(batch, &[])?;
+    check_cases(batch, cfg, &[])?;
     let level = Level::resolve(options.level).map_err(BatchError::from)?;
     let pool = parallel::pool(options.threads).map_err(BatchError::ThreadPool)?;
     let pool = pool.as_ref();

@@ -204,6 +204,15 @@ impl<const D: usize> Plant<f64, D> for View<D> {
         self.layout.altitude.map(|i| x[i])
     }
 
+    fn altitude_axis(&self) -> Option<usize> {
+        let a = self.layout.altitude?;
+        self.layout.positions.iter().position(|&p| p == a)
+    }
+
+    fn coordinate_components(&self) -> ([usize; D], [usize; D]) {
+        (self.layout.positions, self.layout.velocities)
+    }
+
     fn state_dim(&self) -> usize {
         self.layout.dim
     }
@@ -315,6 +324,9 @@ pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
         "a state of {nx} components (StateLayout::new checks 1..={MAX_EXTERNAL_STATE})"
     );
     let n = x0.len() / nx;
+    if let Some(event) = cfg.stop_at.filter(|_| layout.altitude.is_none()) {
+        return Err(BatchError::Event(event).into());
+    }
     let laws_len = match &laws {
         Laws::Builtin(l) => l.len(),
         Laws::External(_) => 1,

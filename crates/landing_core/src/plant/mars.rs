@@ -233,6 +233,10 @@ impl<R: Real> Plant<R, 3> for Prepared<R> {
     fn altitude(&self, x: &MarsState<R>) -> Option<R> {
         Some(x[2])
     }
+
+    fn altitude_axis(&self) -> Option<usize> {
+        Some(2)
+    }
 }
 
 /// The one-case plant is its prepared form, the reciprocals computed per call.
@@ -269,6 +273,10 @@ impl<R: Real> Plant<R, 3> for MarsLander<R> {
 
     fn altitude(&self, x: &MarsState<R>) -> Option<R> {
         Prepared::new(self).altitude(x)
+    }
+
+    fn altitude_axis(&self) -> Option<usize> {
+        Some(2)
     }
 }
 

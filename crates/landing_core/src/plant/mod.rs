@@ -97,6 +97,20 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
     fn altitude(&self, _x: &Self::State) -> Option<R> {
         None
     }
+
+    /// The axis whose coordinate is the altitude (`q[axis]`), when it is one: the touchdown
+    /// is then located on the coordinates' interpolant ([`crate::event`]), else on the chord.
+    #[inline(always)]
+    fn altitude_axis(&self) -> Option<usize> {
+        None
+    }
+
+    /// The state components of q and of q', axis by axis (where an event writes the state it
+    /// froze a case in): q then q', the landers' layout, unless the plant says otherwise.
+    #[inline(always)]
+    fn coordinate_components(&self) -> ([usize; D], [usize; D]) {
+        (std::array::from_fn(|i| i), std::array::from_fn(|i| D + i))
+    }
 }
 
 /// A plant as configured: one case's `f64` parameters, its names and rules, and the same
