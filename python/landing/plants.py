@@ -75,7 +75,11 @@ class MarsLander(Plant):
     """Mars powered descent (seed 001).
 
     State ``[rx, ry, rz, vx, vy, vz, m]`` in an inertial frame at the target, z up; the
-    command is the engine force ``F = m a`` (N), clipped per axis to ``thrust_limit``.
+    command is the engine force ``F = m a`` (N), clipped per axis to ``thrust_limit``, or, for
+    an engine with ``thrust_magnitude_limit`` or ``pointing_limit``, projected onto what the
+    engine can give: onto the cone within ``pointing_limit`` of +z (the Euclidean projection),
+    then its magnitude clamped into ``[min_throttle, 1] * thrust_magnitude_limit`` along its
+    direction (the engine is always on: a zero command gives the least thrust straight up).
 
     ``r' = v``, ``v' = F/m + g + a_drag + a_p(t)``, ``m' = -|F| / (isp g0)``, with
     ``a_drag_i = -drag_coefficient v_i |v_i| exp(-density_decay rz) / (area_i m)``.
@@ -87,6 +91,11 @@ class MarsLander(Plant):
     gravity : Mars surface gravity, m/s^2 (acts along -z).
     drag : whether the plant has drag (the guidance then models it).
     thrust_limit : per-axis limit on |F_i|, N; ``None`` for unlimited (seed part 3: 50 kN).
+        Not combined with the engine's limits below.
+    thrust_magnitude_limit : limit on |F|, N (the engine's full thrust); ``None`` for none.
+    min_throttle : the least |F| as a fraction of ``thrust_magnitude_limit``, in [0, 1);
+        ``None`` for 0.
+    pointing_limit : largest angle of F from +z, rad, in (0, pi/2]; ``None`` for any direction.
     drag_coefficient : k_d of seed eq. 12, kg/m.
     density_decay : h_d of seed eq. 12, 1/m (the seed's 0.0009; the Mars-atmosphere model it
         cites uses 0.00009).
@@ -98,6 +107,9 @@ class MarsLander(Plant):
     gravity: ArrayLike = 3.7114
     drag: bool = True
     thrust_limit: Optional[ArrayLike] = None
+    thrust_magnitude_limit: Optional[ArrayLike] = None
+    min_throttle: Optional[ArrayLike] = None
+    pointing_limit: Optional[ArrayLike] = None
     drag_coefficient: ArrayLike = 0.699
     density_decay: ArrayLike = 0.0009
     g0: ArrayLike = 9.807

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import landing
-from _cases import G_MARS
+from _cases import G_MARS, RECONSTRUCTED_GAINS, dispersed
 
 ISP, G0 = 225.0, 9.807
 
@@ -89,3 +89,46 @@ def test_thrust_is_clipped_per_axis_and_recorded_after_saturation(nominal, ftmss
     peak = np.abs(res.controls).max(axis=0)
     np.testing.assert_allclose(peak, [50_000.0, 40_000.0, 30_000.0])
     np.testing.assert_allclose(res.metrics["peak_command_axis"], peak)
+
+
+def test_an_engine_with_throttle_and_pointing_limits_meets_them_over_a_dispersed_campaign():
+    # per-case limits (a dispersion of the engine), under a law that asks for far more than it
+    # can give: every applied thrust is within the throttle range and the pointing cone
+    n = 64
+    rng = np.random.default_rng(7)
+    t_max = rng.uniform(20_000.0, 45_000.0, n)
+    throttle = rng.uniform(0.1, 0.4, n)
+    pointing = rng.uniform(0.2, 1.2, n)
+    plant = landing.plants.MarsLander(thrust_magnitude_limit=t_max, min_throttle=throttle, pointing_limit=pointing)
+    law = landing.controllers.FixedTimeMSS(**RECONSTRUCTED_GAINS)
+    x0 = dispersed(n)
+    res = landing.simulate_batch(plant, law, x0, t_final=20.0, dt=0.01, record_every=1)
+    u = res.controls  # (n, instants, 3): the applied force
+    live = np.isfinite(u).all(axis=2)
+    mag = np.linalg.norm(u, axis=2)
+    angle = np.arccos(np.clip(u[..., 2] / mag, -1, 1))
+    assert live.sum() > n * 100
+    assert (mag[live] <= (t_max[:, None] * (1 + 1e-15) * np.ones_like(mag))[live]).all()
+    assert (mag[live] >= (throttle * t_max)[:, None].repeat(mag.shape[1], 1)[live] * (1 - 1e-15)).all()
+    assert (angle[live] <= pointing[:, None].repeat(mag.shape[1], 1)[live] + 1e-12).all()
+    # both bounds bind somewhere: the constraints are exercised, not idle
+    assert np.isclose(mag[live], t_max[:, None].repeat(mag.shape[1], 1)[live], rtol=1e-12).any()
+    assert np.isclose(angle[live], pointing[:, None].repeat(mag.shape[1], 1)[live], atol=1e-9).any()
+    # the mass burns the applied thrust: m' = -|F| / (isp g0) over each held period
+    dm = res.states[:, 1:, 6] - res.states[:, :-1, 6]
+    expect = -mag[:, :-1] * 0.01 / (225.0 * 9.807)
+    ok = live[:, :-1] & live[:, 1:]
+    np.testing.assert_allclose(dm[ok], expect[ok], rtol=1e-9)
+
+
+def test_the_engine_limits_are_checked_naming_the_rule():
+    P = landing.plants.MarsLander
+    for kwargs, message in [
+        (dict(min_throttle=0.2), "min_throttle > 0 needs a thrust_magnitude_limit"),
+        (dict(thrust_magnitude_limit=4e4, min_throttle=1.0), "0 <= min_throttle < 1"),
+        (dict(pointing_limit=2.0), "0 < pointing_limit <= pi/2"),
+        (dict(thrust_magnitude_limit=-1.0), "thrust_magnitude_limit > 0"),
+        (dict(thrust_magnitude_limit=4e4, thrust_limit=5e4), "not combined with thrust_magnitude_limit"),
+    ]:
+        with pytest.raises(landing.ParameterError, match=message):
+            P(**kwargs)

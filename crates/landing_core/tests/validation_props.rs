@@ -144,6 +144,7 @@ proptest! {
         let plant = MarsLander {
             isp, area: Vector3::from(area), gravity: Uniform { g0: gravity }, g0, drag: true,
             drag_coefficient, density_decay, thrust_limit: Vector3::from(thrust_limit),
+            ..MarsLander::default()
         };
         let positive = |x: f64| x > 0.0;
         let nonnegative = |x: f64| x >= 0.0;

@@ -14,6 +14,16 @@
 //! hence `v_i |v_i|`. The command is an acceleration `a`; the engine force `F = m a` is clipped
 //! per axis to the thrust limit and held over the control period, so the acceleration it gives
 //! follows the mass down within the period.
+//!
+//! A real engine is limited otherwise ([`MarsLander::engine`]): its thrust magnitude lies in
+//! `[min_throttle T_max, T_max]` and points within `pointing_limit` of +z. The commanded force
+//! is then projected onto that set: first onto the pointing cone (the Euclidean projection onto
+//! a second-order cone: inside it the force is kept; in its polar cone it becomes zero; else it
+//! goes to the nearest point of the boundary ray in its own vertical half-plane), then its
+//! magnitude is clamped into the throttle range along the same direction (a zero force becomes
+//! the minimum thrust straight up). Scaling keeps the direction, so both constraints hold after
+//! the second step. The engine is always on, as in the convexified powered-descent problem
+//! (Acikmese and Ploen 2007), whose lossless relaxation assumes it.
 
 use nalgebra::{SVector, Vector3};
 
@@ -48,11 +58,21 @@ pub struct MarsLander<R = f64> {
     pub density_decay: R,
     /// Per-axis thrust limit |F_i| <= F_max, N; infinite for none.
     pub thrust_limit: Vector3<R>,
+    /// Limit on |F|, N; infinite for none.
+    pub thrust_magnitude_limit: R,
+    /// The least |F| as a fraction of `thrust_magnitude_limit` (the engine is always on).
+    pub min_throttle: R,
+    /// Largest angle of F from +z, rad, in (0, pi/2]; pi/2 only forbids thrusting down.
+    pub pointing_limit: R,
+    /// Whether the engine's magnitude and pointing limits apply (any of them is set): shared by
+    /// a block, so that a lander without them pays nothing for them.
+    pub engine: bool,
 }
 
 crate::gather_struct!(MarsLander<R> {
-    lanes: [isp, area, gravity, g0, drag_coefficient, density_decay, thrust_limit],
-    shared: [drag],
+    lanes: [isp, area, gravity, g0, drag_coefficient, density_decay, thrust_limit,
+            thrust_magnitude_limit, min_throttle, pointing_limit],
+    shared: [drag, engine],
 });
 
 impl Default for MarsLander {
@@ -66,11 +86,57 @@ impl Default for MarsLander {
             drag_coefficient: 0.699,
             density_decay: 0.0009,
             thrust_limit: Vector3::repeat(f64::INFINITY),
+            thrust_magnitude_limit: f64::INFINITY,
+            min_throttle: 0.0,
+            pointing_limit: std::f64::consts::FRAC_PI_2,
+            engine: false,
         }
     }
 }
 
 impl<R: Real> MarsLander<R> {
+    /// The engine's projection of a commanded force `f` (see the module's comment): onto the
+    /// cone within `pointing_limit` of +z, then into `[min_throttle, 1] T_max` in magnitude.
+    #[inline(always)]
+    pub fn engine_force(&self, f: &Vector3<R>) -> Vector3<R> {
+        let zero = R::zero();
+        let (s, c) = (self.pointing_limit.sin(), self.pointing_limit.cos());
+        let r = (f[0] * f[0] + f[1] * f[1]).sqrt();
+        let z = f[2];
+        let inside = (r * c).simd_le(z * s);
+        let along = r * s + z * c; // the force's component along the cone's boundary ray
+        let polar = along.simd_le(zero);
+        // the boundary ray in the force's vertical half-plane: (s h/r, c); r > 0 off the axis
+        let k = R::select(r.simd_gt(zero), along * s / r, zero);
+        let projected = Vector3::new(k * f[0], k * f[1], along * c);
+        let keep = |v: R, p: R| R::select(inside, v, R::select(polar, zero, p));
+        let g = Vector3::new(
+            keep(f[0], projected[0]),
+            keep(f[1], projected[1]),
+            keep(f[2], projected[2]),
+        );
+        let n = norm(&g);
+        let (hi, lo) = (
+            self.thrust_magnitude_limit,
+            self.min_throttle * self.thrust_magnitude_limit,
+        );
+        // the throttle range: scaled along the force's own direction (1 ulp inside the bound,
+        // so that rounding cannot put it outside); a zero force becomes the least thrust up
+        let shrink = R::splat(1.0 - f64::EPSILON);
+        let grow = R::splat(1.0 + f64::EPSILON);
+        let scale = R::select(
+            n.simd_gt(hi),
+            hi / n * shrink,
+            R::select(n.simd_lt(lo) & n.simd_gt(zero), lo / n * grow, R::one()),
+        );
+        let off = n.simd_le(zero) & lo.simd_gt(zero);
+        Vector3::new(
+            R::select(off, zero, g[0] * scale),
+            R::select(off, zero, g[1] * scale),
+            R::select(off, lo * grow, g[2] * scale),
+        )
+    }
+
     /// Drag acceleration at altitude `rz`, velocity `v` and mass `m`.
     #[inline(always)]
     pub fn drag_acceleration(&self, rz: R, v: &Vector3<R>, m: R) -> Vector3<R> {
@@ -182,6 +248,10 @@ impl<R: Real> Plant<R, 3> for Prepared<R> {
 
     #[inline(always)]
     fn actuate(&self, x: &MarsState<R>, acceleration: &Vector3<R>) -> Vector3<R> {
+        if self.lander.engine {
+            // validation keeps the per-axis limit off when the engine's limits are on
+            return self.lander.engine_force(&(acceleration * x[6]));
+        }
         let lim = &self.lander.thrust_limit;
         let mut f = *acceleration;
         for i in 0..3 {
@@ -307,6 +377,30 @@ impl Validate for MarsLander {
                 return Err(ParamError::new(THRUST_LIMIT.name, l, THRUST_LIMIT.rule).on_axis(i));
             }
         }
+        if self.thrust_magnitude_limit != f64::INFINITY {
+            // infinite is "none"
+            check(&THRUST_MAGNITUDE_LIMIT, self.thrust_magnitude_limit, |v| {
+                v > 0.0
+            })?;
+        }
+        check(&MIN_THROTTLE, self.min_throttle, |v| {
+            (0.0..1.0).contains(&v)
+        })?;
+        check(&POINTING_LIMIT, self.pointing_limit, |v| {
+            v > 0.0 && v <= std::f64::consts::FRAC_PI_2
+        })?;
+        if self.min_throttle > 0.0 && self.thrust_magnitude_limit.is_infinite() {
+            let rule = "min_throttle > 0 needs a thrust_magnitude_limit";
+            return Err(ParamError::new(MIN_THROTTLE.name, self.min_throttle, rule));
+        }
+        if self.engine && self.thrust_limit.iter().any(|l| l.is_finite()) {
+            let rule = "thrust_limit (per axis) not combined with thrust_magnitude_limit or pointing_limit";
+            return Err(ParamError::new(
+                THRUST_LIMIT.name,
+                self.thrust_limit[0],
+                rule,
+            ));
+        }
         Ok(())
     }
 }
@@ -326,6 +420,21 @@ const THRUST_LIMIT: Param = Param::axes("thrust_limit")
     .rule("thrust_limit > 0")
     .optional()
     .doc("per-axis limit on |F_i|; None for unlimited");
+const THRUST_MAGNITUDE_LIMIT: Param = Param::scalar("thrust_magnitude_limit")
+    .unit("N")
+    .rule("thrust_magnitude_limit > 0")
+    .optional()
+    .doc("limit on |F| (the engine's full thrust); None for unlimited");
+const MIN_THROTTLE: Param = Param::scalar("min_throttle")
+    .unit("1")
+    .rule("0 <= min_throttle < 1")
+    .optional()
+    .doc("the least |F| as a fraction of thrust_magnitude_limit (the engine is always on)");
+const POINTING_LIMIT: Param = Param::scalar("pointing_limit")
+    .unit("rad")
+    .rule("0 < pointing_limit <= pi/2")
+    .optional()
+    .doc("largest angle of the thrust from +z; None for any direction");
 const DRAG_COEFFICIENT: Param = Param::scalar("drag_coefficient")
     .unit("kg/m")
     .rule("drag_coefficient >= 0")
@@ -346,6 +455,9 @@ impl Declared for MarsLander {
         GRAVITY,
         DRAG,
         THRUST_LIMIT,
+        THRUST_MAGNITUDE_LIMIT,
+        MIN_THROTTLE,
+        POINTING_LIMIT,
         DRAG_COEFFICIENT,
         DENSITY_DECAY,
         G0,
@@ -354,6 +466,8 @@ impl Declared for MarsLander {
 
 impl FromParams for MarsLander {
     fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        let magnitude = p.opt_scalar(&THRUST_MAGNITUDE_LIMIT)?;
+        let pointing = p.opt_scalar(&POINTING_LIMIT)?;
         Ok(Self {
             isp: p.scalar(&ISP)?,
             area: p.axes::<3>(&AREA)?,
@@ -367,6 +481,10 @@ impl FromParams for MarsLander {
             thrust_limit: p
                 .opt_axes::<3>(&THRUST_LIMIT)?
                 .unwrap_or(Vector3::repeat(f64::INFINITY)),
+            thrust_magnitude_limit: magnitude.unwrap_or(f64::INFINITY),
+            min_throttle: p.opt_scalar(&MIN_THROTTLE)?.unwrap_or(0.0),
+            pointing_limit: pointing.unwrap_or(std::f64::consts::FRAC_PI_2),
+            engine: magnitude.is_some() || pointing.is_some(),
         })
     }
 }
@@ -404,6 +522,73 @@ mod tests {
         let x = MarsState::from([0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2000.0]);
         let f = p.actuate(&x, &Vector3::new(10.0, -40.0, 30.0));
         assert_eq!(f, Vector3::new(20_000.0, -50_000.0, 50_000.0));
+    }
+
+    /// A deterministic spread of forces: every direction, magnitudes from 0 to 3 T_max.
+    fn forces(n: usize) -> impl Iterator<Item = Vector3<f64>> {
+        (0..n).map(|k| {
+            let u = (k as f64 * 0.618_033_988_749_895).fract();
+            let v = (k as f64 * 0.754_877_666_246_693).fract();
+            let w = (k as f64 * 0.569_840_290_998_053).fract();
+            let (z, phi) = (2.0 * u - 1.0, std::f64::consts::TAU * v);
+            let h = (1.0 - z * z).sqrt();
+            Vector3::new(h * phi.cos(), h * phi.sin(), z) * (3.0 * 40_000.0 * w)
+        })
+    }
+
+    #[test]
+    fn the_engine_projection_meets_every_limit() {
+        let p = MarsLander {
+            thrust_magnitude_limit: 40_000.0,
+            min_throttle: 0.3,
+            pointing_limit: 0.35,
+            engine: true,
+            ..Default::default()
+        };
+        for f in forces(20_000).chain([Vector3::zeros(), Vector3::new(0.0, 0.0, -5.0)]) {
+            let g = p.engine_force(&f);
+            let n = g.norm();
+            assert!(
+                n <= 40_000.0 * (1.0 + 1e-15) && n >= 12_000.0 * (1.0 - 1e-15),
+                "{f:?} -> {g:?}"
+            );
+            let angle = (g[2] / n).clamp(-1.0, 1.0).acos();
+            assert!(angle <= 0.35 + 1e-12, "{f:?} -> {g:?}: {angle}");
+            // a force already allowed is kept
+            let f_angle = (f[2] / f.norm()).acos();
+            if f_angle < 0.35 && f.norm() > 12_000.0 && f.norm() < 40_000.0 {
+                assert_eq!(g, f);
+            }
+        }
+    }
+
+    #[test]
+    fn the_pointing_step_is_the_euclidean_projection_onto_the_cone() {
+        // Moreau: p is the projection of f onto the cone K iff p in K, f - p in the polar cone
+        // and <f - p, p> = 0; without magnitude limits the engine's force is that p
+        let theta: f64 = 0.5;
+        let p = MarsLander {
+            pointing_limit: theta,
+            engine: true,
+            ..Default::default()
+        };
+        let (s, c) = theta.sin_cos();
+        for f in forces(5_000) {
+            let g = p.engine_force(&f);
+            let q = f - g;
+            let scale = f.norm().max(1.0);
+            let (gr, qr) = (g.xy().norm(), q.xy().norm());
+            assert!(gr * c <= g[2] * s + 1e-9 * scale, "p in K: {f:?} -> {g:?}");
+            // the polar cone of K: the angle from -z at most pi/2 - theta
+            assert!(
+                qr * s <= -q[2] * c + 1e-9 * scale,
+                "f - p in the polar cone: {f:?} -> {g:?}"
+            );
+            assert!(
+                q.dot(&g).abs() <= 1e-9 * scale * scale,
+                "orthogonal: {f:?} -> {g:?}"
+            );
+        }
     }
 
     #[test]
