@@ -80,6 +80,10 @@ class MarsLander(Plant):
     engine can give: onto the cone within ``pointing_limit`` of +z (the Euclidean projection),
     then its magnitude clamped into ``[min_throttle, 1] * thrust_magnitude_limit`` along its
     direction (the engine is always on: a zero command gives the least thrust straight up).
+    Between the law and those limits, the command may be delayed by ``control_delay`` whole
+    control periods and lagged by the engine, ``F' = (F_c - F) / engine_time_constant``, solved
+    exactly over each period; the limits are imposed again on the lag's output, so the applied
+    force meets them at every instant (docs/parameters.md, "actuator").
 
     ``r' = v``, ``v' = F/m + g + a_drag + a_p(t)``, ``m' = -|F| / (isp g0)``, with
     ``a_drag_i = -drag_coefficient v_i |v_i| exp(-density_decay rz) / (area_i m)``.
@@ -96,6 +100,11 @@ class MarsLander(Plant):
     min_throttle : the least |F| as a fraction of ``thrust_magnitude_limit``, in [0, 1);
         ``None`` for 0.
     pointing_limit : largest angle of F from +z, rad, in (0, pi/2]; ``None`` for any direction.
+    control_delay : the command's transport delay in whole control periods, an integer in
+        [0, 1000]; ``None`` for none. Before the first command arrives, the limits applied to a
+        zero command (Simulink's Transport Delay default of an initial output 0).
+    engine_time_constant : the engine's first-order lag time constant, s, >= 0; ``None`` or 0
+        for none. The lag starts in steady state, at the first command that reaches it.
     drag_coefficient : k_d of seed eq. 12, kg/m.
     density_decay : h_d of seed eq. 12, 1/m (the seed's 0.0009; the Mars-atmosphere model it
         cites uses 0.00009).
@@ -110,6 +119,8 @@ class MarsLander(Plant):
     thrust_magnitude_limit: Optional[ArrayLike] = None
     min_throttle: Optional[ArrayLike] = None
     pointing_limit: Optional[ArrayLike] = None
+    control_delay: Optional[ArrayLike] = None
+    engine_time_constant: Optional[ArrayLike] = None
     drag_coefficient: ArrayLike = 0.699
     density_decay: ArrayLike = 0.0009
     g0: ArrayLike = 9.807

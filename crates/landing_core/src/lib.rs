@@ -8,6 +8,7 @@
 //! fixed-size nalgebra types without heap allocation per step; [`batch::run`] runs the blocks on
 //! rayon. The sampled-data semantics are those README.md states ("Semantics").
 
+pub mod actuator;
 pub mod batch;
 pub mod control;
 pub mod dispersion;

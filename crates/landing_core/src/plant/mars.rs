@@ -28,6 +28,7 @@
 use nalgebra::{SVector, Vector3};
 
 use super::{Plant, PlantModel};
+use crate::actuator::ActuatorSpec;
 use crate::error::{ParamError, ReadError, Validate, check, check_axes, require};
 use crate::gravity::{GRAVITY, GravityField, Uniform};
 use crate::lanes::math::{INV_LN2_16, exp16};
@@ -67,11 +68,16 @@ pub struct MarsLander<R = f64> {
     /// Whether the engine's magnitude and pointing limits apply (any of them is set): shared by
     /// a block, so that a lander without them pays nothing for them.
     pub engine: bool,
+    /// The command's transport delay, whole control periods (an integer >= 0).
+    pub control_delay: R,
+    /// The engine's first-order lag time constant, s; 0 for none.
+    pub engine_time_constant: R,
 }
 
 crate::gather_struct!(MarsLander<R> {
     lanes: [isp, area, gravity, g0, drag_coefficient, density_decay, thrust_limit,
-            thrust_magnitude_limit, min_throttle, pointing_limit],
+            thrust_magnitude_limit, min_throttle, pointing_limit, control_delay,
+            engine_time_constant],
     shared: [drag, engine],
 });
 
@@ -90,6 +96,8 @@ impl Default for MarsLander {
             min_throttle: 0.0,
             pointing_limit: std::f64::consts::FRAC_PI_2,
             engine: false,
+            control_delay: 0.0,
+            engine_time_constant: 0.0,
         }
     }
 }
@@ -248,16 +256,29 @@ impl<R: Real> Plant<R, 3> for Prepared<R> {
 
     #[inline(always)]
     fn actuate(&self, x: &MarsState<R>, acceleration: &Vector3<R>) -> Vector3<R> {
+        self.limit(&(acceleration * x[6]))
+    }
+
+    #[inline(always)]
+    fn limit(&self, f: &Vector3<R>) -> Vector3<R> {
         if self.lander.engine {
             // validation keeps the per-axis limit off when the engine's limits are on
-            return self.lander.engine_force(&(acceleration * x[6]));
+            return self.lander.engine_force(f);
         }
         let lim = &self.lander.thrust_limit;
-        let mut f = *acceleration;
-        for i in 0..3 {
-            f[i] = (acceleration[i] * x[6]).clamp(-lim[i], lim[i]);
-        }
-        f
+        Vector3::new(
+            f[0].clamp(-lim[0], lim[0]),
+            f[1].clamp(-lim[1], lim[1]),
+            f[2].clamp(-lim[2], lim[2]),
+        )
+    }
+
+    #[inline(always)]
+    fn actuator(&self) -> Option<ActuatorSpec<R>> {
+        Some(ActuatorSpec {
+            delay: self.lander.control_delay,
+            time_constant: self.lander.engine_time_constant,
+        })
     }
 
     #[inline(always)]
@@ -329,6 +350,14 @@ impl<R: Real> Plant<R, 3> for MarsLander<R> {
         Prepared::new(self).actuate(x, acceleration)
     }
 
+    fn limit(&self, f: &Vector3<R>) -> Vector3<R> {
+        Prepared::new(self).limit(f)
+    }
+
+    fn actuator(&self) -> Option<ActuatorSpec<R>> {
+        Prepared::new(self).actuator()
+    }
+
     fn derivative(&self, t: f64, x: &MarsState<R>, u: &Vector3<R>, d: &Vector3<R>) -> MarsState<R> {
         Prepared::new(self).derivative(t, x, u, d)
     }
@@ -389,6 +418,12 @@ impl Validate for MarsLander {
         check(&POINTING_LIMIT, self.pointing_limit, |v| {
             v > 0.0 && v <= std::f64::consts::FRAC_PI_2
         })?;
+        check(&CONTROL_DELAY, self.control_delay, |v| {
+            (0.0..=MAX_DELAY).contains(&v) && v.fract() == 0.0
+        })?;
+        check(&ENGINE_TIME_CONSTANT, self.engine_time_constant, |v| {
+            (0.0..=f64::MAX).contains(&v)
+        })?;
         if self.min_throttle > 0.0 && self.thrust_magnitude_limit.is_infinite() {
             let rule = "min_throttle > 0 needs a thrust_magnitude_limit";
             return Err(ParamError::new(MIN_THROTTLE.name, self.min_throttle, rule));
@@ -435,6 +470,18 @@ const POINTING_LIMIT: Param = Param::scalar("pointing_limit")
     .rule("0 < pointing_limit <= pi/2")
     .optional()
     .doc("largest angle of the thrust from +z; None for any direction");
+/// Longest control delay, periods: the delay keeps one command per period of it per block.
+const MAX_DELAY: f64 = 1000.0;
+const CONTROL_DELAY: Param = Param::scalar("control_delay")
+    .unit("periods")
+    .rule("control_delay an integer in [0, 1000]")
+    .optional()
+    .doc("the command's transport delay in whole control periods; None for none");
+const ENGINE_TIME_CONSTANT: Param = Param::scalar("engine_time_constant")
+    .unit("s")
+    .rule("engine_time_constant >= 0")
+    .optional()
+    .doc("the engine's first-order lag time constant; None (or 0) for none");
 const DRAG_COEFFICIENT: Param = Param::scalar("drag_coefficient")
     .unit("kg/m")
     .rule("drag_coefficient >= 0")
@@ -458,6 +505,8 @@ impl Declared for MarsLander {
         THRUST_MAGNITUDE_LIMIT,
         MIN_THROTTLE,
         POINTING_LIMIT,
+        CONTROL_DELAY,
+        ENGINE_TIME_CONSTANT,
         DRAG_COEFFICIENT,
         DENSITY_DECAY,
         G0,
@@ -485,6 +534,8 @@ impl FromParams for MarsLander {
             min_throttle: p.opt_scalar(&MIN_THROTTLE)?.unwrap_or(0.0),
             pointing_limit: pointing.unwrap_or(std::f64::consts::FRAC_PI_2),
             engine: magnitude.is_some() || pointing.is_some(),
+            control_delay: p.opt_scalar(&CONTROL_DELAY)?.unwrap_or(0.0),
+            engine_time_constant: p.opt_scalar(&ENGINE_TIME_CONSTANT)?.unwrap_or(0.0),
         })
     }
 }

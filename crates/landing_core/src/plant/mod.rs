@@ -20,6 +20,7 @@ pub use tether::{TetheredFlexible, TetheredSimplified};
 
 use nalgebra::SVector;
 
+use crate::actuator::ActuatorSpec;
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Gather, Mask, Real};
 use crate::state::State;
@@ -42,6 +43,21 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
     /// The applied command for a commanded generalized acceleration: scaling to actuator units
     /// and saturation. Held over the control period.
     fn actuate(&self, x: &Self::State, acceleration: &SVector<R, D>) -> SVector<R, D>;
+
+    /// The actuator's delay and lag ([`crate::actuator`]), for plants that model them; None
+    /// (the command acts at once, as it is) by default and when no lane of the block has one.
+    #[inline(always)]
+    fn actuator(&self) -> Option<ActuatorSpec<R>> {
+        None
+    }
+
+    /// The actuator's limits imposed on a command in actuator units: what `actuate` applies
+    /// after scaling, so that `actuate(x, a) == limit(scaled a)`. The lag's output passes it
+    /// at every stage. No limits by default.
+    #[inline(always)]
+    fn limit(&self, u: &SVector<R, D>) -> SVector<R, D> {
+        *u
+    }
 
     /// `x'` under the held command `u` and the disturbance acceleration `d`.
     fn derivative(
