@@ -362,7 +362,7 @@ pub(crate) fn stage_disturbance<const D: usize, R: Real>(
 
 /// The command over a period's stages: held as it is, or the actuator's lag through the
 /// plant's limits. A type, not a branch in the stage: the held command's |u| is then computed
-/// once per period (a branch per stage kept the compiler from hoisting it: W1 20 % slower).
+/// once per period (a branch per stage kept the compiler from hoisting it: W1 25 % slower, BENCHMARKS.md).
 trait StageCommand<const D: usize, R: Real, P> {
     fn with<T>(&self, plant: &P, time: f64, f: impl FnOnce(&SVector<R, D>) -> T) -> T;
 }
