@@ -144,3 +144,20 @@ def tether_laws(inertia):
         "ntsmc": C.NTSMC(),
         "fixed_time_ntsmc": C.FixedTimeNTSMC(),
     }
+
+
+def assert_within_engine_limits(u, t_max, throttle, pointing, *, cone_binds=True) -> np.ndarray:
+    """Every finite applied force ``u`` (n, instants, 3) within its case's magnitude limit, throttle
+    range and pointing cone, the magnitude bound (and the cone, unless told) binding somewhere: the
+    constraints exercised, not idle. Returns the mask of finite instants."""
+    live = np.isfinite(u).all(axis=2)
+    mag = np.linalg.norm(u, axis=2)
+    angle = np.arccos(np.clip(u[..., 2] / mag, -1, 1))
+    per = lambda v: np.broadcast_to(np.asarray(v)[:, None], mag.shape)[live]  # noqa: E731
+    assert (mag[live] <= per(t_max) * (1 + 1e-15)).all()
+    assert (mag[live] >= per(throttle * t_max) * (1 - 1e-15)).all()
+    assert (angle[live] <= per(pointing) + 1e-12).all()
+    assert np.isclose(mag[live], per(t_max), rtol=1e-12).any()
+    if cone_binds:
+        assert np.isclose(angle[live], per(pointing), atol=1e-9).any()
+    return live
