@@ -20,7 +20,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("landing._core", "landing.errors"),
     ("landing._internal",),
     ("landing.plants", "landing.controllers", "landing.gravity", "landing.reference", "landing.disturbances",
-     "landing.dispersions", "landing.fuzzy"),  # the configuration vocabulary
+     "landing.dispersions", "landing.fuzzy", "landing.sensors"),  # the configuration vocabulary
     ("landing.results",),
     ("landing.simulation",),
     ("landing.optimal",),  # what it imports (the vocabulary, the runs) puts it right above the runs

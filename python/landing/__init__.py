@@ -24,6 +24,7 @@ from landing import (
     plants,
     reference,
     scenarios,
+    sensors,
     theory,
 )
 from landing._core import __version__
@@ -52,6 +53,7 @@ __all__ = [
     "optimal",
     "reference",
     "scenarios",
+    "sensors",
     "theory",
     "monte_carlo",
     "load",

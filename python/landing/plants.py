@@ -23,6 +23,7 @@ from landing._internal.user_params import frozen_params, params_taking_cases, re
 from landing._internal.user_plant import PlantStep, per_case
 from landing.errors import ParameterError, ParameterTypeError
 from landing.gravity import Gravity, TwoPointMass
+from landing.sensors import Filter, Sensor
 
 __all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSatellite", "PythonPlant"]
 
@@ -109,6 +110,10 @@ class MarsLander(Plant):
     density_decay : h_d of seed eq. 12, 1/m (the seed's 0.0009; the Mars-atmosphere model it
         cites uses 0.00009).
     g0 : standard gravity in the rocket equation, m/s^2.
+    sensor : what the law reads the position and velocity through (:class:`landing.sensors.Noise`);
+        ``None`` for the true state. The mass is known to the law.
+    filter : the estimator between the sensor and the law (:class:`landing.sensors.KalmanFilter`);
+        ``None`` for none (the law reads the measurement). Needs a sensor.
     """
 
     isp: ArrayLike = 225.0
@@ -124,6 +129,8 @@ class MarsLander(Plant):
     drag_coefficient: ArrayLike = 0.699
     density_decay: ArrayLike = 0.0009
     g0: ArrayLike = 9.807
+    sensor: Optional[Sensor] = None
+    filter: Optional[Filter] = None
 
     kind: ClassVar[str] = "mars_lander"
 
@@ -157,9 +164,13 @@ class DoubleIntegrator(Plant):
     The plant on which a law's reaching law holds exactly, used to check the theory's bounds
     against simulation, and the simplest test bed for any law. State ``[x, y, z, vx, vy, vz]``;
     the command is the acceleration, clipped per axis to ``acceleration_limit`` (None: none).
+    ``sensor`` and ``filter`` (:mod:`landing.sensors`) put a measurement and an estimator
+    between the plant and the law (``None``: the law reads the true state).
     """
 
     acceleration_limit: Optional[ArrayLike] = None
+    sensor: Optional[Sensor] = None
+    filter: Optional[Filter] = None
 
     kind: ClassVar[str] = "double_integrator"
 
@@ -168,16 +179,28 @@ class DoubleIntegrator(Plant):
 class SmallBody(Plant):
     """A probe near a small body, in the body's frame rotating at ``omega`` about z (seeds 000
     and 002). State ``[x, y, z, vx, vy, vz]``; the command is a control acceleration
-    (m/s^2), clipped per axis to ``acceleration_limit`` (None: none).
+    (m/s^2), clipped per axis to ``acceleration_limit`` (None: none), then scaled into
+    ``|u| <= acceleration_magnitude_limit`` (None: none; the scaling keeps the per-axis bounds).
+    Between the law and those limits, the command may be delayed by ``control_delay`` whole
+    control periods and lagged by the thrusters, ``u' = (u_c - u) / engine_time_constant``,
+    solved exactly over each period, the limits imposed on the lag's output, as on the Mars
+    lander (docs/parameters.md, "actuator"). Each of the four per case.
 
     ``x'' - 2 omega y' - omega^2 x = g_x + u_x + d_x``, ``y'' + 2 omega x' - omega^2 y = g_y + u_y + d_y``,
     ``z'' = g_z + u_z + d_z``, with g from a :mod:`landing.gravity` field. Defaults: seed 000
-    (433 Eros as two mass points, omega = 3.3118e-4 rad/s).
+    (433 Eros as two mass points, omega = 3.3118e-4 rad/s). ``sensor`` and ``filter``
+    (:mod:`landing.sensors`) put a measurement and an estimator between the plant and the law
+    (``None``: the law reads the true state).
     """
 
     gravity: Gravity = field(default_factory=TwoPointMass)
     omega: ArrayLike = 3.3118e-4
     acceleration_limit: Optional[ArrayLike] = None
+    acceleration_magnitude_limit: Optional[ArrayLike] = None
+    control_delay: Optional[ArrayLike] = None
+    engine_time_constant: Optional[ArrayLike] = None
+    sensor: Optional[Sensor] = None
+    filter: Optional[Filter] = None
 
     kind: ClassVar[str] = "small_body"
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 
@@ -49,26 +49,32 @@ class Constant(Reference):
 
 @dataclass(frozen=True, eq=False)
 class Cubic(Reference):
-    """``p(t) = c0 + c1 t + c2 t^2 + c3 t^3`` per axis on ``[0, t_end]``, then the end point held.
+    """``p(t) = c0 + c1 t + c2 t^2 + c3 t^3`` per axis on ``[0, t_end]``; then, by ``after``, the
+    end point held at rest (``"hold"``, the seeds' references) or extended at the end velocity,
+    ``p(t) = p(t_end) + p'(t_end) (t - t_end)`` (``"extend"``: a constant-velocity phase, such
+    as a lander's terminal descent).
 
     ``coefficients`` has shape ``(axes, 4)`` (columns c0..c3), or ``(N, axes, 4)`` per case.
     """
 
     coefficients: ArrayLike
     t_end: ArrayLike
+    after: Literal["hold", "extend"] = "hold"
 
     kind: ClassVar[str] = "cubic"
 
     @classmethod
     def from_boundary(
-        cls, p0: ArrayLike, v0: ArrayLike, pT: ArrayLike, vT: ArrayLike, T: float
+        cls, p0: ArrayLike, v0: ArrayLike, pT: ArrayLike, vT: ArrayLike, T: float,
+        after: Literal["hold", "extend"] = "hold",
     ) -> Cubic:
-        """The cubic through position and velocity ``p0, v0`` at 0 and ``pT, vT`` at ``T``."""
+        """The cubic through position and velocity ``p0, v0`` at 0 and ``pT, vT`` at ``T``,
+        then ``after`` it (see the class)."""
         p0l, v0l, pTl, vTl = [real_array(n, v, finite=True, owner=cls.__name__).ravel().tolist() for n, v in
                               (("p0", p0), ("v0", v0), ("pT", pT), ("vT", vT))]
         t_end = real("T", T, owner=cls.__name__)
         c = _core.cubic_from_boundary(p0l, v0l, pTl, vTl, t_end)
-        return cls(coefficients=np.array(c).T, t_end=t_end)
+        return cls(coefficients=np.array(c).T, t_end=t_end, after=after)
 
     def _table(self) -> dict[str, Any]:
         c = as_float_array(type(self).__name__, "coefficients", self.coefficients)
@@ -76,7 +82,8 @@ class Cubic(Reference):
             raise ParameterError(
                 f"Cubic: coefficients has shape {c.shape}; it takes (axes, 4) or (N, axes, 4)"
             )
-        table: dict[str, Any] = {"kind": self.kind, "t_end": as_float_array("Cubic", "t_end", self.t_end)}
+        table: dict[str, Any] = {"kind": self.kind, "t_end": as_float_array("Cubic", "t_end", self.t_end),
+                                 "after": self.after}
         for j in range(4):
             table[f"c{j}"] = np.ascontiguousarray(c[..., j])
         return table

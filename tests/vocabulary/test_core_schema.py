@@ -28,7 +28,8 @@ def _check_param(where, p):
 
 def test_every_registered_kind_has_a_schema():
     s = _core.SCHEMAS
-    assert list(s) == ["plant", "law", "gravity", "disturbance", "reference", "dispersion", "fuzzy"]
+    assert list(s) == ["plant", "law", "gravity", "disturbance", "reference", "dispersion", "sensor", "filter",
+                       "fuzzy"]
     assert list(s["plant"]) == _core.PLANT_KINDS
     assert list(s["law"]) == _core.CONTROLLER_KINDS
     assert list(s["gravity"]) == _core.GRAVITY_KINDS
@@ -49,8 +50,13 @@ def test_the_schemas_name_each_kinds_keys():
         return [p["name"] for p in _core.SCHEMAS[family][kind]["parameters"]]
 
     assert names("law", "pd_sliding_mode") == ["lambda", "k", "switch", "boundary_layer"]
-    assert names("reference", "cubic") == ["t_end", "c0", "c1", "c2", "c3"]
-    assert names("plant", "small_body") == ["gravity", "omega", "acceleration_limit"]
+    assert names("reference", "cubic") == ["t_end", "c0", "c1", "c2", "c3", "after"]
+    assert names("plant", "small_body") == [
+        "gravity", "omega", "acceleration_limit", "acceleration_magnitude_limit", "control_delay",
+        "engine_time_constant", "sensor", "filter",
+    ]
+    assert names("sensor", "noise") == ["std", "bias", "random_walk"]
+    assert names("filter", "kalman") == ["process_noise"]
     tether = names("plant", "tethered_satellite")
     assert tether[0] == "fidelity" and {"nodes", "tether_density", "axial_damping"} <= set(tether)
     nodes = next(p for p in _core.SCHEMAS["plant"]["tethered_satellite"]["parameters"] if p["name"] == "nodes")

@@ -18,11 +18,11 @@ import pytest
 
 import landing
 from _cases import laws
-from landing import _core, controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
+from landing import _core, controllers, dispersions, disturbances, fuzzy, gravity, plants, reference, sensors
 from landing._internal.table import Parameter, Table
 from landing.errors import LandingError
 
-MODULES = (controllers, plants, gravity, reference, disturbances, dispersions, fuzzy)
+MODULES = (controllers, plants, gravity, reference, disturbances, dispersions, fuzzy, sensors)
 
 # One instance of each kind, built the way a user would.
 EXAMPLES: dict[type, Table] = {type(law): law for law in laws(inertia=1.0, blend_k=0.5).values()}
@@ -45,6 +45,8 @@ EXAMPLES.update({type(obj): obj for obj in (
     dispersions.Normal(mean=[0.0, 1.0], std=[1.0, 2.0]),
     dispersions.Uniform(low=[0.0, 1.0], high=[1.0, 2.0]),
     fuzzy.variable_rate_system(),
+    sensors.Noise(std=[1.0, 1.0, 1.0, 0.1, 0.1, 0.1], bias=0.5, random_walk=0.01),
+    sensors.KalmanFilter(process_noise=[0.1, 0.1, 0.2]),
 )})
 
 # Fields whose table is laid out otherwise than one key per field (documented on each class).

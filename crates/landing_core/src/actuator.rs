@@ -22,7 +22,24 @@
 
 use nalgebra::SVector;
 
+use crate::error::{ParamError, check};
 use crate::lanes::{Real, add, scale_by, sub};
+use crate::params::Param;
+
+/// Longest control delay, periods: the delay keeps one command per period of it per block.
+const MAX_DELAY: f64 = 1000.0;
+/// The delay, as every plant with an actuator declares it.
+pub const CONTROL_DELAY: Param = Param::scalar("control_delay")
+    .unit("periods")
+    .rule("control_delay an integer in [0, 1000]")
+    .optional()
+    .doc("the command's transport delay in whole control periods; None for none");
+/// The lag's time constant, as every plant with an actuator declares it.
+pub const ENGINE_TIME_CONSTANT: Param = Param::scalar("engine_time_constant")
+    .unit("s")
+    .rule("engine_time_constant >= 0")
+    .optional()
+    .doc("the engine's first-order lag time constant; None (or 0) for none");
 
 /// A plant's actuator dynamics over lanes of cases.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,6 +48,18 @@ pub struct ActuatorSpec<R> {
     pub delay: R,
     /// Lag time constant per lane, s; 0 for none.
     pub time_constant: R,
+}
+
+impl ActuatorSpec<f64> {
+    /// Checks one case's delay and time constant against their declared rules.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        check(&CONTROL_DELAY, self.delay, |v| {
+            (0.0..=MAX_DELAY).contains(&v) && v.fract() == 0.0
+        })?;
+        check(&ENGINE_TIME_CONSTANT, self.time_constant, |v| {
+            (0.0..=f64::MAX).contains(&v)
+        })
+    }
 }
 
 /// The lag over one control period: the held input `c`, the lag's output `p` at the period's

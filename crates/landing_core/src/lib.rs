@@ -25,6 +25,7 @@ pub mod limits;
 pub mod math;
 pub mod memory;
 pub mod metrics;
+pub mod navigation;
 mod parallel;
 pub mod params;
 pub mod plant;

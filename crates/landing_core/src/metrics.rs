@@ -2,6 +2,8 @@
 
 use nalgebra::SVector;
 
+use crate::navigation::NavigationMetrics;
+
 use crate::lanes::{Mask, Real, abs, add, mul, norm, scale, scale_by, select_vector, sub, zeros};
 
 /// First crossing of the landing surface (altitude from positive to non-positive),
@@ -112,6 +114,8 @@ pub struct CaseMetrics<const D: usize> {
     /// The same share over all axes together.
     pub high_frequency_share_total: f64,
     pub touchdown: Option<Touchdown<D>>,
+    /// The navigation error, for a plant with a sensor ([`crate::navigation`]).
+    pub navigation: Option<NavigationMetrics<D>>,
     /// Set when the case was stopped before t_final: its metrics are those of the instant it
     /// stopped (final errors and fuel NaN).
     pub diverged: Option<Diverged>,
@@ -139,6 +143,7 @@ impl<const D: usize> CaseMetrics<D> {
             high_frequency_share: SVector::repeat(f64::NAN),
             high_frequency_share_total: f64::NAN,
             touchdown: None,
+            navigation: None,
             diverged: None,
         }
     }
@@ -335,6 +340,36 @@ impl<const D: usize> CaseMetrics<D> {
             "units of q/s",
             "the speed at touchdown",
             Read::Scalar(|m| m.touchdown.map_or(NAN, |t| t.velocity.norm())),
+        ),
+        Column::new(
+            "navigation_position_rms",
+            "units of q",
+            "root mean square over the control instants of |q_hat - q|, the error of the position the law read (NaN without a sensor)",
+            Read::Scalar(|m| m.navigation.map_or(NAN, |n| n.position_rms)),
+        ),
+        Column::new(
+            "navigation_velocity_rms",
+            "units of q/s",
+            "root mean square over the control instants of |q'_hat - q'| (NaN without a sensor)",
+            Read::Scalar(|m| m.navigation.map_or(NAN, |n| n.velocity_rms)),
+        ),
+        Column::new(
+            "navigation_position_error",
+            "units of q",
+            "q_hat - q at the case's last control instant, per axis (NaN without a sensor)",
+            Read::Axes(|m| {
+                m.navigation
+                    .map_or(SVector::repeat(NAN), |n| n.position_error)
+            }),
+        ),
+        Column::new(
+            "navigation_velocity_error",
+            "units of q/s",
+            "q'_hat - q' at the case's last control instant, per axis (NaN without a sensor)",
+            Read::Axes(|m| {
+                m.navigation
+                    .map_or(SVector::repeat(NAN), |n| n.velocity_error)
+            }),
         ),
         Column::new(
             "diverged",

@@ -26,11 +26,25 @@ const C3: Param = Param::axes("c3")
     .unit("q/s^3")
     .doc("cubic coefficient of t^3");
 
+const AFTER: Param = Param::choice("after", After::NAMES)
+    .doc("past t_end: \"hold\" the end point (at rest), or \"extend\" it at the end velocity");
+
+crate::named! {
+    /// What a cubic does past its end.
+    pub enum After {
+        /// The end point held, at rest.
+        Hold => "hold",
+        /// The end velocity kept: `p(t) = p(t_end) + p'(t_end) (t - t_end)`, a constant-velocity
+        /// phase (a lander's terminal descent).
+        Extend => "extend",
+    }
+}
+
 crate::named! {
     /// The reference kinds at the Python boundary.
     pub enum ReferenceKind in "reference" {
         Constant => "constant": Schema::new(&[POSITION, VELOCITY]),
-        Cubic => "cubic": Schema::new(&[T_END, C0, C1, C2, C3]),
+        Cubic => "cubic": Schema::new(&[T_END, C0, C1, C2, C3, AFTER]),
     }
 }
 
@@ -58,10 +72,12 @@ pub enum Reference<const D: usize, R = f64> {
         velocity: SVector<R, D>,
     },
     /// `p(t) = c0 + c1 t + c2 t^2 + c3 t^3` per axis on `[0, t_end]`; afterwards the end point is
-    /// held (zero velocity and acceleration).
+    /// held (zero velocity and acceleration), or extended at the end velocity (`after`, shared
+    /// by a block).
     Cubic {
         coefficients: [SVector<R, D>; 4],
         t_end: R,
+        after: After,
     },
 }
 
@@ -86,6 +102,7 @@ impl<const D: usize, R: Real> Gather<R> for Reference<D, R> {
             Reference::Cubic {
                 coefficients,
                 t_end,
+                ..
             } => (coefficients, t_end),
             Reference::Constant { .. } => unreachable!("a block's references have one kind"),
         };
@@ -94,15 +111,19 @@ impl<const D: usize, R: Real> Gather<R> for Reference<D, R> {
                 position: Gather::gather(&|i| constant(i).0),
                 velocity: Gather::gather(&|i| constant(i).1),
             },
-            Reference::Cubic { .. } => Reference::Cubic {
+            Reference::Cubic { after, .. } => Reference::Cubic {
                 coefficients: Gather::gather(&|i| cubic(i).0),
                 t_end: Gather::gather(&|i| cubic(i).1),
+                after: *after,
             },
         }
     }
 
     fn same_shape(a: &Self::Case, b: &Self::Case) -> bool {
-        std::mem::discriminant(a) == std::mem::discriminant(b)
+        match (a, b) {
+            (Reference::Cubic { after: x, .. }, Reference::Cubic { after: y, .. }) => x == y,
+            _ => std::mem::discriminant(a) == std::mem::discriminant(b),
+        }
     }
 }
 
@@ -118,6 +139,7 @@ impl<const D: usize> Reference<D> {
         Ok(Self::Cubic {
             coefficients: cubic_coefficients(p0, v0, pt, vt, t_end)?,
             t_end,
+            after: After::Hold,
         })
     }
 
@@ -192,6 +214,7 @@ impl<const D: usize, R: Real> Reference<D, R> {
             Self::Cubic {
                 coefficients: [c0, c1, c2, c3],
                 t_end,
+                after,
             } => {
                 // before t_end the cubic at t, after it the end point held, per lane
                 let before = R::splat(t).simd_le(t_end);
@@ -209,10 +232,22 @@ impl<const D: usize, R: Real> Reference<D, R> {
                 );
                 let acceleration = add(&scale(&c2, 2.0), &scale_by(&c3, R::splat(6.0) * tt));
                 let zero = zeros();
-                RefPoint {
-                    position,
-                    velocity: select_vector(before, &velocity, &zero),
-                    acceleration: select_vector(before, &acceleration, &zero),
+                match after {
+                    After::Hold => RefPoint {
+                        position,
+                        velocity: select_vector(before, &velocity, &zero),
+                        acceleration: select_vector(before, &acceleration, &zero),
+                    },
+                    After::Extend => RefPoint {
+                        // the lanes before t_end keep the cubic's position as it is
+                        position: select_vector(
+                            before,
+                            &position,
+                            &add(&position, &scale_by(&velocity, R::splat(t) - t_end)),
+                        ),
+                        velocity,
+                        acceleration: select_vector(before, &acceleration, &zero),
+                    },
                 }
             }
         }
@@ -233,6 +268,7 @@ impl<const D: usize> Validate for Reference<D> {
             Self::Cubic {
                 coefficients,
                 t_end,
+                ..
             } => {
                 check(&T_END, *t_end, |v| v > 0.0)?;
                 for c in coefficients {
@@ -268,6 +304,7 @@ impl<const D: usize> FromParams for Reference<D> {
             ReferenceKind::Cubic => Ok(Self::Cubic {
                 coefficients: [p.axes(&C0)?, p.axes(&C1)?, p.axes(&C2)?, p.axes(&C3)?],
                 t_end: p.scalar(&T_END)?,
+                after: p.choice(&AFTER)?,
             }),
         }
     }
@@ -297,5 +334,39 @@ mod tests {
         // past the end the end point is held
         let c = r.at(9000.0);
         assert!((c.position - pt).norm() < 1e-6 && c.velocity == Vector3::zeros());
+    }
+
+    #[test]
+    fn an_extended_cubic_goes_on_at_its_end_velocity() {
+        let p0 = Vector3::new(-2000.0, 1000.0, 1500.0);
+        let v0 = Vector3::new(100.0, -15.0, -75.0);
+        let pt = Vector3::new(0.0, 0.0, 10.0);
+        let vt = Vector3::new(0.0, 0.0, -0.75);
+        let Reference::Cubic {
+            coefficients,
+            t_end,
+            ..
+        } = Reference::cubic_from_boundary(p0, v0, pt, vt, 40.0).unwrap()
+        else {
+            unreachable!()
+        };
+        let r = Reference::Cubic {
+            coefficients,
+            t_end,
+            after: After::Extend,
+        };
+        let held = Reference::Cubic {
+            coefficients,
+            t_end,
+            after: After::Hold,
+        };
+        // before the end: the cubic itself, bit for bit
+        for t in [0.0, 12.5, 39.99, 40.0] {
+            assert_eq!(r.at(t).position, held.at(t).position);
+        }
+        // after it: a straight line at the end velocity, 0.75 m/s down, reaching 0 at t = 40 + 10 / 0.75
+        let c = r.at(40.0 + 10.0 / 0.75);
+        assert!(c.position.norm() < 1e-9, "{:?}", c.position);
+        assert!((c.velocity - vt).norm() < 1e-12 && c.acceleration == Vector3::zeros());
     }
 }

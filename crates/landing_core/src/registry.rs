@@ -20,6 +20,7 @@ use crate::disturbance::ComponentKind;
 use crate::error::{ParamError, ReadError, Validate};
 use crate::fuzzy::{Mamdani, MembershipShape};
 use crate::gravity::{GravityField, Harmonic2, PointMass, TwoPointMass};
+use crate::navigation::{FilterKind, SensorKind};
 use crate::params::{
     AxisCount, Cases, Declared, Dim, FromParams, Kinds, ParamSource, Schema, Table,
 };
@@ -555,6 +556,8 @@ pub fn schemas() -> Vec<(&'static str, Vec<(&'static str, Schema)>)> {
         family::<ComponentKind>(),
         family::<ReferenceKind>(),
         family::<DispersionKind>(),
+        family::<SensorKind>(),
+        family::<FilterKind>(),
         fuzzy,
     ]
 }

@@ -44,6 +44,8 @@ pub mod streams {
     pub const DISTURBANCE: u64 = 1;
     /// Random disturbances proportional to the command (seed 002: up to 1 % of it).
     pub const COMMAND_NOISE: u64 = 2;
+    /// A sensor's white noise and random walk ([`crate::navigation`]).
+    pub const SENSOR: u64 = 3;
 }
 
 /// The random numbers of one case in one stream.

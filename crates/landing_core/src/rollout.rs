@@ -34,6 +34,7 @@ use crate::limits::MAX_STEPS;
 use crate::metrics::{
     CaseMetrics, CommandStats, Diverged, Divergence, HighPass, MAX_COMMAND, Touchdown,
 };
+use crate::navigation::Navigator;
 use crate::plant::Plant;
 use crate::reference::Reference;
 use crate::state::State;
@@ -549,6 +550,9 @@ pub(crate) struct Block<const D: usize, R: Real, P: Plant<R, D>> {
     was_outside: R::Mask,
     // the actuator's delay and lag, when the plant has them (boxed: most blocks have none)
     actuator: Option<Box<Actuator<D, R>>>,
+    // the sensor and filter, when the plant has them: the law reads their view, the metrics
+    // and the physics `input`, the truth
+    nav: Option<Box<Navigator<D, R>>>,
     used: usize,
 }
 
@@ -570,6 +574,12 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             Tolerance::Relative(f) => norm(&input.e) * f,
         };
         let m0 = set.plant.mass(x0);
+        let nav = set.plant.navigation().map(|n| {
+            let mut nav =
+                Navigator::start(n, set.plant, set.reference, (cfg.seed, cases, cfg.dt), x0);
+            nav.count_start(R::Mask::splat(true), set.plant, x0);
+            Box::new(nav)
+        });
         Self {
             rng: cases
                 .iter()
@@ -598,14 +608,18 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 .actuator()
                 .and_then(|spec| Actuator::new(&spec, set.plant.limit(&zeros())))
                 .map(Box::new),
+            nav,
             used,
         }
     }
 
-    /// What the law sees at the coming control instant.
+    /// What the law sees at the coming control instant: the truth, or the navigation's view.
     #[inline(always)]
     pub(crate) fn input(&self) -> &LawInput<D, R> {
-        &self.input
+        match &self.nav {
+            None => &self.input,
+            Some(nav) => &nav.view,
+        }
     }
 
     /// Whether any lane still runs.
@@ -704,6 +718,9 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         let (plant, cfg) = (set.plant, set.cfg);
         let t = k as f64 * cfg.dt;
         let (u, lag) = self.applied(plant, k, t, a);
+        if let Some(nav) = self.nav.as_deref_mut() {
+            nav.hold(&u);
+        }
         let bad = bad_command(self.live, &u, t, &mut self.stops);
         if bad.any() {
             self.stats.freeze(bad);
@@ -856,6 +873,9 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         let cfg = set.cfg;
         let t = (k + 1) as f64 * cfg.dt;
         self.input = law_input(set.plant, set.reference, t, cfg.dt, &self.x);
+        if let Some(nav) = self.nav.as_deref_mut() {
+            nav.advance((k + 1, t), set.plant, set.reference, &self.x, self.live);
+        }
     }
 
     /// Writes the block's final states and metrics. `last` is the law's command (and
@@ -902,6 +922,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             let m = &mut out.metrics[i];
             *m = CaseMetrics::new();
             self.stats.finish_lane(i, m);
+            m.navigation = self.nav.as_ref().map(|n| n.metrics(i));
             if self.touched.lane(i) {
                 m.touchdown = Some(Touchdown {
                     time: self.td_time.lane(i),

@@ -248,6 +248,19 @@ impl ParamSource for Recorder {
         self.within(sub, layout_of(p).expect("a nested table's layout"), read)
     }
 
+    fn opt_nested<T>(
+        &mut self,
+        p: &Param,
+        read: impl FnOnce(&mut Self) -> Result<T, ReadError>,
+    ) -> Result<Option<T>, ReadError> {
+        self.note(p, "opt_nested", |d| {
+            matches!(d.shape, Shape::Nested(_)) && !d.required
+        });
+        let sub = format!("{}/{}", self.at, p.name);
+        self.within(sub, layout_of(p).expect("a nested table's layout"), read)
+            .map(Some)
+    }
+
     fn list_len(&mut self, p: &Param) -> Result<usize, ReadError> {
         self.note(p, "list_len", |d| matches!(d.shape, Shape::List(_)));
         Ok(1)
@@ -412,6 +425,8 @@ fn schemas_list_every_registered_kind_once() {
             "disturbance",
             "reference",
             "dispersion",
+            "sensor",
+            "filter",
             "fuzzy"
         ]
     );

@@ -18,7 +18,8 @@ A file holds the scenario's own settings at the top level and one table per part
 
 ``kind`` names the class in the part's module (``landing.plants``, ``landing.controllers``,
 ``landing.reference``, ``landing.dispersions``, ``landing.disturbances``; a plant's ``gravity``
-table is a ``landing.gravity`` field, a law's ``system`` a ``landing.fuzzy.Mamdani``); the other
+table is a ``landing.gravity`` field, its ``sensor`` and ``filter`` tables ``landing.sensors``
+classes, a law's ``system`` a ``landing.fuzzy.Mamdani``); the other
 keys are the class's parameters, as in Python. A disturbance of several components is an array
 of tables (``[[disturbance]]``). Numbers, per-axis lists and per-case lists of lists are
 written as in Python.
@@ -42,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from landing import controllers, dispersions, disturbances, fuzzy, gravity, plants, reference
+from landing import controllers, dispersions, disturbances, fuzzy, gravity, plants, reference, sensors
 from landing._internal.table import Table
 from landing._internal.user_law import load_function, qualified_name
 from landing.errors import LandingError, ParameterError
@@ -66,7 +67,7 @@ SECTIONS: dict[str, ModuleType] = {
 }
 
 #: Parameters that hold a nested configuration object, and its module.
-NESTED: dict[str, ModuleType] = {"gravity": gravity, "system": fuzzy}
+NESTED: dict[str, ModuleType] = {"gravity": gravity, "system": fuzzy, "sensor": sensors, "filter": sensors}
 
 #: The scenario's own settings: key -> (rule, check). The parts are checked by their classes.
 _SETTINGS = ("name", "description", "x0", "t_final", "dt", "integrator", "substeps", "record_every",

@@ -69,6 +69,13 @@ pub trait ParamSource {
         read: impl FnOnce(&mut Self) -> Result<T, ReadError>,
     ) -> Result<T, ReadError>;
 
+    /// Reads the nested table `p` with `read` if it is given; None when it is absent.
+    fn opt_nested<T>(
+        &mut self,
+        p: &Param,
+        read: impl FnOnce(&mut Self) -> Result<T, ReadError>,
+    ) -> Result<Option<T>, ReadError>;
+
     /// Number of tables in the list `p` (0 if absent).
     fn list_len(&mut self, p: &Param) -> Result<usize, ReadError>;
 

@@ -526,6 +526,17 @@ impl ParamSource for Reader<'_> {
         }
     }
 
+    fn opt_nested<T>(
+        &mut self,
+        p: &Param,
+        read: impl FnOnce(&mut Self) -> Result<T, ReadError>,
+    ) -> Result<Option<T>, ReadError> {
+        match self.raw(p.name) {
+            Value::Absent => Ok(None),
+            _ => self.nested(p, read).map(Some),
+        }
+    }
+
     fn list_len(&mut self, p: &Param) -> Result<usize, ReadError> {
         match self.raw(p.name) {
             Value::Absent => Ok(0),

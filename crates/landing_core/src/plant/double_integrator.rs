@@ -7,6 +7,7 @@ use nalgebra::SVector;
 use super::{Plant, PlantModel};
 use crate::error::{ParamError, ReadError, Validate};
 use crate::lanes::{Real, add, filled, zeros};
+use crate::navigation::{FILTER, Navigation, SENSOR};
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 pub type DoubleIntegratorState<R = f64> = SVector<R, 6>;
@@ -15,14 +16,17 @@ pub type DoubleIntegratorState<R = f64> = SVector<R, 6>;
 pub struct DoubleIntegrator<R = f64> {
     /// Per-axis limit on the commanded acceleration |u_i|; infinite for none.
     pub acceleration_limit: SVector<R, 3>,
+    /// The sensor and filter the law reads through; None for the true state.
+    pub navigation: Option<Navigation<3>>,
 }
 
-crate::gather_struct!(DoubleIntegrator<R> { lanes: [acceleration_limit], shared: [] });
+crate::gather_struct!(DoubleIntegrator<R> { lanes: [acceleration_limit], shared: [navigation] });
 
 impl Default for DoubleIntegrator {
     fn default() -> Self {
         Self {
             acceleration_limit: SVector::repeat(f64::INFINITY),
+            navigation: None,
         }
     }
 }
@@ -56,6 +60,11 @@ impl<R: Real> Plant<R, 3> for DoubleIntegrator<R> {
             u[i] = a[i].clamp(-l[i], l[i]);
         }
         u
+    }
+
+    #[inline(always)]
+    fn navigation(&self) -> Option<&Navigation<3>> {
+        self.navigation.as_ref()
     }
 
     #[inline(always)]
@@ -98,7 +107,7 @@ const ACCELERATION_LIMIT: Param = Param::axes("acceleration_limit")
     .doc("per-axis limit on |u_i|; None for none");
 
 impl Declared for DoubleIntegrator {
-    const SCHEMA: Schema = Schema::new(&[ACCELERATION_LIMIT]);
+    const SCHEMA: Schema = Schema::new(&[ACCELERATION_LIMIT, SENSOR, FILTER]);
 }
 
 impl FromParams for DoubleIntegrator {
@@ -107,6 +116,7 @@ impl FromParams for DoubleIntegrator {
             acceleration_limit: p
                 .opt_axes::<3>(&ACCELERATION_LIMIT)?
                 .unwrap_or(SVector::repeat(f64::INFINITY)),
+            navigation: Navigation::read(p)?,
         })
     }
 }

@@ -28,11 +28,12 @@
 use nalgebra::{SVector, Vector3};
 
 use super::{Plant, PlantModel};
-use crate::actuator::ActuatorSpec;
+use crate::actuator::{ActuatorSpec, CONTROL_DELAY, ENGINE_TIME_CONSTANT};
 use crate::error::{ParamError, ReadError, Validate, check, check_axes, require};
 use crate::gravity::{GRAVITY, GravityField, Uniform};
 use crate::lanes::math::{INV_LN2_16, exp16};
 use crate::lanes::{Gather, Real, filled, norm, zeros};
+use crate::navigation::{FILTER, Navigation, SENSOR};
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
 pub type MarsState<R = f64> = SVector<R, 7>;
@@ -72,13 +73,15 @@ pub struct MarsLander<R = f64> {
     pub control_delay: R,
     /// The engine's first-order lag time constant, s; 0 for none.
     pub engine_time_constant: R,
+    /// The sensor and filter the law reads through; None for the true state.
+    pub navigation: Option<Navigation<3>>,
 }
 
 crate::gather_struct!(MarsLander<R> {
     lanes: [isp, area, gravity, g0, drag_coefficient, density_decay, thrust_limit,
             thrust_magnitude_limit, min_throttle, pointing_limit, control_delay,
             engine_time_constant],
-    shared: [drag, engine],
+    shared: [drag, engine, navigation],
 });
 
 impl Default for MarsLander {
@@ -98,6 +101,7 @@ impl Default for MarsLander {
             engine: false,
             control_delay: 0.0,
             engine_time_constant: 0.0,
+            navigation: None,
         }
     }
 }
@@ -149,6 +153,15 @@ impl<R: Real> MarsLander<R> {
     #[inline(always)]
     pub fn drag_acceleration(&self, rz: R, v: &Vector3<R>, m: R) -> Vector3<R> {
         Prepared::new(self).drag(rz, v, R::one() / m)
+    }
+
+    /// The command's delay and the engine's lag.
+    #[inline(always)]
+    pub fn actuator_spec(&self) -> ActuatorSpec<R> {
+        ActuatorSpec {
+            delay: self.control_delay,
+            time_constant: self.engine_time_constant,
+        }
     }
 
     /// Effective exhaust velocity `c = Isp g_e`, m/s.
@@ -275,10 +288,12 @@ impl<R: Real> Plant<R, 3> for Prepared<R> {
 
     #[inline(always)]
     fn actuator(&self) -> Option<ActuatorSpec<R>> {
-        Some(ActuatorSpec {
-            delay: self.lander.control_delay,
-            time_constant: self.lander.engine_time_constant,
-        })
+        Some(self.lander.actuator_spec())
+    }
+
+    #[inline(always)]
+    fn navigation(&self) -> Option<&Navigation<3>> {
+        self.lander.navigation.as_ref()
     }
 
     #[inline(always)]
@@ -358,6 +373,10 @@ impl<R: Real> Plant<R, 3> for MarsLander<R> {
         Prepared::new(self).actuator()
     }
 
+    fn navigation(&self) -> Option<&Navigation<3>> {
+        self.navigation.as_ref()
+    }
+
     fn derivative(&self, t: f64, x: &MarsState<R>, u: &Vector3<R>, d: &Vector3<R>) -> MarsState<R> {
         Prepared::new(self).derivative(t, x, u, d)
     }
@@ -418,12 +437,7 @@ impl Validate for MarsLander {
         check(&POINTING_LIMIT, self.pointing_limit, |v| {
             v > 0.0 && v <= std::f64::consts::FRAC_PI_2
         })?;
-        check(&CONTROL_DELAY, self.control_delay, |v| {
-            (0.0..=MAX_DELAY).contains(&v) && v.fract() == 0.0
-        })?;
-        check(&ENGINE_TIME_CONSTANT, self.engine_time_constant, |v| {
-            (0.0..=f64::MAX).contains(&v)
-        })?;
+        self.actuator_spec().validate()?;
         if self.min_throttle > 0.0 && self.thrust_magnitude_limit.is_infinite() {
             let rule = "min_throttle > 0 needs a thrust_magnitude_limit";
             return Err(ParamError::new(MIN_THROTTLE.name, self.min_throttle, rule));
@@ -470,18 +484,6 @@ const POINTING_LIMIT: Param = Param::scalar("pointing_limit")
     .rule("0 < pointing_limit <= pi/2")
     .optional()
     .doc("largest angle of the thrust from +z; None for any direction");
-/// Longest control delay, periods: the delay keeps one command per period of it per block.
-const MAX_DELAY: f64 = 1000.0;
-const CONTROL_DELAY: Param = Param::scalar("control_delay")
-    .unit("periods")
-    .rule("control_delay an integer in [0, 1000]")
-    .optional()
-    .doc("the command's transport delay in whole control periods; None for none");
-const ENGINE_TIME_CONSTANT: Param = Param::scalar("engine_time_constant")
-    .unit("s")
-    .rule("engine_time_constant >= 0")
-    .optional()
-    .doc("the engine's first-order lag time constant; None (or 0) for none");
 const DRAG_COEFFICIENT: Param = Param::scalar("drag_coefficient")
     .unit("kg/m")
     .rule("drag_coefficient >= 0")
@@ -507,6 +509,8 @@ impl Declared for MarsLander {
         POINTING_LIMIT,
         CONTROL_DELAY,
         ENGINE_TIME_CONSTANT,
+        SENSOR,
+        FILTER,
         DRAG_COEFFICIENT,
         DENSITY_DECAY,
         G0,
@@ -536,6 +540,7 @@ impl FromParams for MarsLander {
             engine: magnitude.is_some() || pointing.is_some(),
             control_delay: p.opt_scalar(&CONTROL_DELAY)?.unwrap_or(0.0),
             engine_time_constant: p.opt_scalar(&ENGINE_TIME_CONSTANT)?.unwrap_or(0.0),
+            navigation: Navigation::read(p)?,
         })
     }
 }

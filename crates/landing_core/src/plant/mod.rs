@@ -23,6 +23,7 @@ use nalgebra::SVector;
 use crate::actuator::ActuatorSpec;
 use crate::error::{ParamError, Validate, require};
 use crate::lanes::{Gather, Mask, Real};
+use crate::navigation::Navigation;
 use crate::state::State;
 
 /// The dynamics over lanes of cases.
@@ -48,6 +49,13 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
     /// (the command acts at once, as it is) by default and when no lane of the block has one.
     #[inline(always)]
     fn actuator(&self) -> Option<ActuatorSpec<R>> {
+        None
+    }
+
+    /// The sensor and filter between the plant and the law ([`crate::navigation`]), for
+    /// plants that carry one; None (the law reads the true state) by default.
+    #[inline(always)]
+    fn navigation(&self) -> Option<&Navigation<D>> {
         None
     }
 

@@ -14,9 +14,11 @@
 use nalgebra::{SVector, Vector3};
 
 use super::{Plant, PlantModel};
+use crate::actuator::{ActuatorSpec, CONTROL_DELAY, ENGINE_TIME_CONSTANT};
 use crate::error::{ParamError, ReadError, Validate, check};
 use crate::gravity::{GravityField, GravityModel};
-use crate::lanes::{Gather, Real, add, filled};
+use crate::lanes::{Gather, Real, add, filled, norm, scale_by};
+use crate::navigation::{FILTER, Navigation, SENSOR};
 use crate::params::{FromParams, Layout, Param, ParamSource};
 
 pub type SmallBodyState<R = f64> = SVector<R, 6>;
@@ -30,6 +32,18 @@ pub struct SmallBody<G, R = f64> {
     pub omega: R,
     /// Per-axis limit on |u_i|, m/s^2; infinite for none.
     pub acceleration_limit: Vector3<R>,
+    /// Limit on |u|, m/s^2; infinite for none.
+    pub acceleration_magnitude_limit: R,
+    /// Whether any case of the block has a magnitude limit (shared: a probe without one pays
+    /// nothing for it).
+    pub magnitude_limited: bool,
+    /// The command's transport delay, whole control periods (an integer >= 0).
+    pub control_delay: R,
+    /// The thrusters' first-order lag time constant, s; 0 for none.
+    pub engine_time_constant: R,
+    /// The sensor and filter the law reads through (shared by a block); None for the true
+    /// state.
+    pub navigation: Option<Navigation<3>>,
 }
 
 impl<G> SmallBody<G> {
@@ -38,6 +52,11 @@ impl<G> SmallBody<G> {
             gravity,
             omega,
             acceleration_limit: Vector3::repeat(f64::INFINITY),
+            acceleration_magnitude_limit: f64::INFINITY,
+            magnitude_limited: false,
+            control_delay: 0.0,
+            engine_time_constant: 0.0,
+            navigation: None,
         }
     }
 }
@@ -50,11 +69,20 @@ impl<R: Real, G: Gather<R>> Gather<R> for SmallBody<G, R> {
             gravity: G::gather(&|i| &case(i).gravity),
             omega: Gather::gather(&|i| &case(i).omega),
             acceleration_limit: Gather::gather(&|i| &case(i).acceleration_limit),
+            acceleration_magnitude_limit: Gather::gather(&|i| {
+                &case(i).acceleration_magnitude_limit
+            }),
+            magnitude_limited: case(0).magnitude_limited,
+            control_delay: Gather::gather(&|i| &case(i).control_delay),
+            engine_time_constant: Gather::gather(&|i| &case(i).engine_time_constant),
+            navigation: case(0).navigation,
         }
     }
 
     fn same_shape(a: &Self::Case, b: &Self::Case) -> bool {
         G::same_shape(&a.gravity, &b.gravity)
+            && a.navigation == b.navigation
+            && a.magnitude_limited == b.magnitude_limited
     }
 }
 
@@ -104,12 +132,44 @@ impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
 
     #[inline(always)]
     fn actuate(&self, _x: &SmallBodyState<R>, a: &Vector3<R>) -> Vector3<R> {
+        self.limit(a)
+    }
+
+    /// Clipped per axis, then scaled into the ball |u| <= the magnitude limit (1 ulp inside,
+    /// so that rounding cannot put it outside): scaling towards 0 keeps the box's bounds, so
+    /// both hold. (Not the Euclidean projection onto the box and ball together, which has no
+    /// closed form; the same as it where only one of them binds.)
+    #[inline(always)]
+    fn limit(&self, a: &Vector3<R>) -> Vector3<R> {
         let l = &self.acceleration_limit;
         let mut u = *a;
         for i in 0..3 {
             u[i] = a[i].clamp(-l[i], l[i]);
         }
+        if self.magnitude_limited {
+            let n = norm(&u);
+            let hi = self.acceleration_magnitude_limit;
+            let s = R::select(
+                n.simd_gt(hi),
+                hi / n * R::splat(1.0 - f64::EPSILON),
+                R::one(),
+            );
+            u = scale_by(&u, s);
+        }
         u
+    }
+
+    #[inline(always)]
+    fn actuator(&self) -> Option<ActuatorSpec<R>> {
+        Some(ActuatorSpec {
+            delay: self.control_delay,
+            time_constant: self.engine_time_constant,
+        })
+    }
+
+    #[inline(always)]
+    fn navigation(&self) -> Option<&Navigation<3>> {
+        self.navigation.as_ref()
     }
 
     #[inline(always)]
@@ -150,6 +210,18 @@ impl<G: GravityModel> PlantModel<3> for SmallBody<G> {
 impl<G: Validate> Validate for SmallBody<G> {
     fn validate(&self) -> Result<(), ParamError> {
         check(&OMEGA, self.omega, |_| true)?;
+        if self.acceleration_magnitude_limit != f64::INFINITY {
+            check(
+                &ACCELERATION_MAGNITUDE_LIMIT,
+                self.acceleration_magnitude_limit,
+                |v| v > 0.0,
+            )?;
+        }
+        ActuatorSpec {
+            delay: self.control_delay,
+            time_constant: self.engine_time_constant,
+        }
+        .validate()?;
         for (i, &l) in self.acceleration_limit.iter().enumerate() {
             if l.is_nan() || l <= 0.0 {
                 return Err(
@@ -173,19 +245,40 @@ const ACCELERATION_LIMIT: Param = Param::axes("acceleration_limit")
     .optional()
     .doc("per-axis limit on |u_i|; None for none");
 
+const ACCELERATION_MAGNITUDE_LIMIT: Param = Param::scalar("acceleration_magnitude_limit")
+    .unit("m/s^2")
+    .rule("acceleration_magnitude_limit > 0")
+    .optional()
+    .doc("limit on |u| (after the per-axis one); None for none");
+
 /// A small body's parameters, whatever its field.
-pub const SMALL_BODY: &[Param] = &[GRAVITY, OMEGA, ACCELERATION_LIMIT];
+pub const SMALL_BODY: &[Param] = &[
+    GRAVITY,
+    OMEGA,
+    ACCELERATION_LIMIT,
+    ACCELERATION_MAGNITUDE_LIMIT,
+    CONTROL_DELAY,
+    ENGINE_TIME_CONSTANT,
+    SENSOR,
+    FILTER,
+];
 
 impl<G: FromParams> FromParams for SmallBody<G> {
     /// The body's rotation and limit, and its field from the nested table `gravity` (whose kind
     /// the registry has matched with `G`).
     fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
+        let magnitude = p.opt_scalar(&ACCELERATION_MAGNITUDE_LIMIT)?;
         Ok(Self {
             gravity: p.nested(&GRAVITY, G::from_params)?,
             omega: p.scalar(&OMEGA)?,
             acceleration_limit: p
                 .opt_axes::<3>(&ACCELERATION_LIMIT)?
                 .unwrap_or(Vector3::repeat(f64::INFINITY)),
+            acceleration_magnitude_limit: magnitude.unwrap_or(f64::INFINITY),
+            magnitude_limited: magnitude.is_some(),
+            control_delay: p.opt_scalar(&CONTROL_DELAY)?.unwrap_or(0.0),
+            engine_time_constant: p.opt_scalar(&ENGINE_TIME_CONSTANT)?.unwrap_or(0.0),
+            navigation: Navigation::read(p)?,
         })
     }
 }
