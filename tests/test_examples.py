@@ -10,13 +10,14 @@ from _cases import ROOT
 
 SCRIPTS = ["mars_nominal.py", "mars_monte_carlo.py", "mars_reproduction.py", "asteroid_seed000.py",
            "asteroid_seed002.py", "tether_comparison.py", "tether_monte_carlo.py", "mars_optimal.py", "own_law.py",
-           "own_plant.py"]
+           "own_plant.py", "mars_realistic.py"]
 # scripts that write figures, and how many at least
-FIGURES = {"mars_monte_carlo.py": 5, "asteroid_seed000.py": 5, "asteroid_seed002.py": 5, "tether_comparison.py": 3,
-           "tether_monte_carlo.py": 1, "mars_optimal.py": 2}
+FIGURES = {"mars_monte_carlo.py": 5, "mars_realistic.py": 5, "asteroid_seed000.py": 5, "asteroid_seed002.py": 5,
+           "tether_comparison.py": 3, "tether_monte_carlo.py": 1, "mars_optimal.py": 2}
 # arguments that keep a campaign short; the documented command runs it in full
-SHORT = {"tether_monte_carlo.py": ["--cases", "2"], "mars_optimal.py": ["--nodes", "40"],
-         "own_law.py": ["--cases", "4", "--budget", "6"], "own_plant.py": ["--cases", "4", "--budget", "6"]}
+SHORT = {"tether_monte_carlo.py": ["--cases", "2"], "mars_realistic.py": ["--cases", "40"],
+         "mars_optimal.py": ["--nodes", "40"], "own_law.py": ["--cases", "4", "--budget", "6"],
+         "own_plant.py": ["--cases", "4", "--budget", "6"]}
 
 
 # more than about 5 s each on two cores; mars_optimal needs CasADi
