@@ -43,6 +43,7 @@ use crate::params::{Layout, Param, ParamSource, Schema};
 use crate::plant::Plant;
 use crate::reference::Reference;
 use crate::rng::{CaseStream, streams};
+use crate::rollout::law_input;
 use crate::state::State;
 
 const STD: Param = Param::components("std")
@@ -240,8 +241,8 @@ fn splat<const D: usize, R: Real>(v: &SVector<f64, D>) -> SVector<R, D> {
     SVector::from_fn(|i, _| R::splat(v[i]))
 }
 
-/// The law's input at (t, x) seen through the estimate `[q_hat, q'_hat]`: the state with its
-/// coordinates replaced, the drift and inertia there.
+/// The law's input at (t, x) seen through the estimate `[q_hat, q'_hat]`: the input at the
+/// state with its coordinates replaced (so the drift and inertia are the plant's there).
 fn seen<const D: usize, R: Real, P: Plant<R, D>>(
     plant: &P,
     reference: &Reference<D, R>,
@@ -256,16 +257,7 @@ fn seen<const D: usize, R: Real, P: Plant<R, D>>(
         at.set_component(qc[i], estimate[0][i]);
         at.set_component(vc[i], estimate[1][i]);
     }
-    let r = reference.at(t);
-    LawInput {
-        t,
-        dt,
-        e: sub(&estimate[0], &r.position),
-        de: sub(&estimate[1], &r.velocity),
-        reference: r,
-        drift: plant.modelled_acceleration(t, &at),
-        inertia: plant.inertia(&at),
-    }
+    law_input(plant, reference, t, dt, &at)
 }
 
 impl<const D: usize, R: Real> Navigator<D, R> {

@@ -443,7 +443,7 @@ pub(crate) struct Cancelled;
 
 /// Builds what the law sees at (t, x).
 #[inline(always)]
-fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
+pub(crate) fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
     plant: &P,
     reference: &Reference<D, R>,
     t: f64,
