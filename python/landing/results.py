@@ -397,7 +397,8 @@ class SimulationResult:
         at t_final, which would be held next.
     final_state : (N, n_state) state at t_final.
     diagnostics : name -> (N, T, D) internal signals of the law (sliding variables, ...), or
-        (N, T) for scalar ones (blending coefficients).
+        (N, T) for scalar ones (blending coefficients); for a plant with a sensor, also
+        ``estimated_position`` and ``estimated_velocity`` (N, T, D), what the law read.
     metrics : per-case table, see :class:`Metrics`.
 
     ``result[i]`` is case i alone, with the case axis dropped. A Monte Carlo campaign run with

@@ -5,7 +5,8 @@ A plant given ``sensor=Noise(...)`` makes its law read measured coordinates and 
 place of the true ones; with ``filter=KalmanFilter(...)`` as well, the law reads the filter's
 estimate. The physics, the events and the tracking metrics keep the true state; the metrics
 ``navigation_position_rms``, ``navigation_velocity_rms``, ``navigation_position_error`` and
-``navigation_velocity_error`` measure what the law read against it.
+``navigation_velocity_error`` measure what the law read against it, and a run that records
+keeps it beside the law's diagnostics as ``estimated_position`` and ``estimated_velocity``.
 
 Both are shared by every case of a batch. The noise is drawn from each case's own
 counter-based stream, so a case's measurements do not depend on the thread count, the batch or

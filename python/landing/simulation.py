@@ -24,6 +24,9 @@ from landing.results import Metrics, SimulationResult, describe_diverged
 __all__ = ["MAX_COMMAND", "RunOptions", "kernel_levels", "simulate_batch", "simulate"]
 
 MAX_COMMAND: float = _core.MAX_COMMAND
+#: The diagnostics a run records for a plant with a sensor (landing.sensors): the position and
+#: velocity the law read (the measurement, or the filter's estimate), per axis.
+ESTIMATES: tuple[str, ...] = ("estimated_position", "estimated_velocity")
 """Largest magnitude of a command component a case may apply before it is stopped."""
 
 
@@ -220,7 +223,11 @@ def simulate_batch(
     diag = out["diagnostics"]
     diagnostics = {}
     offset = 0
-    for name, width in out["diagnostic_layout"]:
+    layout = list(out["diagnostic_layout"])
+    if getattr(plant, "sensor", None) is not None:
+        # the core records the estimate the law read after the law's own signals
+        layout += [(name, out["axes"]) for name in ESTIMATES]
+    for name, width in layout:
         # per-axis signals keep their axis, scalar ones (blending coefficients...) drop it
         diagnostics[name] = diag[:, :, offset:offset + width] if width == out["axes"] else diag[:, :, offset]
         offset += width

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import landing
+from _cases import assert_same_campaign
 from landing.scenarios import MARS_REALISTIC_ENGINE, mars_realistic
 
 
@@ -47,3 +48,11 @@ def test_the_applied_thrust_meets_every_engine_limit_and_the_case_ends_at_the_gr
     z = mc.states[:, :, 2]
     assert np.nanmin(z) >= -1e-9
     assert np.all(np.isfinite(mc.metrics["touchdown_speed"]))
+
+
+def test_the_realistic_campaign_has_the_same_bits_whatever_the_chunks_and_threads():
+    # the sensor's noise, the disturbances and the delay's ring per case: nothing depends on
+    # which batch or thread a case runs in
+    scenario = mars_realistic(record_every=50)
+    whole = landing.monte_carlo(scenario, 30, seed=4, threads=1)
+    assert_same_campaign(whole, landing.monte_carlo(scenario, 30, seed=4, chunk_size=7, threads=2))

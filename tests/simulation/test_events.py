@@ -101,6 +101,29 @@ def test_nothing_accumulates_after_the_event():
     assert np.isfinite(short.states[short.t[None, :] < t_event[:, None]]).all()
 
 
+def test_a_frozen_case_keeps_its_error_at_the_event_whatever_its_block_does():
+    # under a moving reference the law's input goes on changing after a case lands, for the
+    # block's lanes that still fly: the landed case's final errors are those at its event's step
+    ref = landing.reference.Cubic.from_boundary([0.0, 0.0, 300.0], [0.0, 0.0, -10.0], [0.0, 0.0, -50.0],
+                                                [0.0, 0.0, -2.0], 20.0, after="extend")
+    x0 = states(16)
+    x0[1, 2] = 5_000.0  # a case that never lands keeps its block running to t_final
+    together = run(x0, reference=ref)
+    landed = np.flatnonzero(np.isfinite(together.metrics["touchdown_time"]))
+    assert landed.size >= 12 and 1 not in landed
+    for i in landed[:4]:
+        alone = run(x0[i:i + 1], reference=ref)
+        for name in ("final_error", "final_rate_error", "final_position_error", "settle_time"):
+            np.testing.assert_array_equal(alone.metrics[name][0], together.metrics[name][i], err_msg=name)
+    # and the error is the frozen state against the reference at the end of the event's step
+    i = landed[0]
+    step = np.ceil(together.metrics["touchdown_time"][i] / 1e-2) * 1e-2
+    p, v, _ = ref.evaluate(np.array([step]))
+    np.testing.assert_allclose(together.metrics["final_error"][i], together.final_state[i, :3] - p[0], atol=1e-9)
+    np.testing.assert_allclose(together.metrics["final_rate_error"][i], together.final_state[i, 3:6] - v[0],
+                               atol=1e-9)
+
+
 @pytest.mark.parametrize("level", LEVELS)
 def test_the_same_bits_at_every_level_thread_count_and_chunk(level):
     x0 = states(37)

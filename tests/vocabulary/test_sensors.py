@@ -200,3 +200,27 @@ def test_the_noise_changes_with_the_seed_and_not_the_truth_without_a_sensor():
 def test_bad_sensors_are_refused_naming_the_parameter(make, match):
     with pytest.raises(landing.ParameterError, match=match):
         make()
+
+
+def test_the_estimate_the_law_read_is_recorded_with_the_diagnostics():
+    std = np.array([1.0, 1.0, 1.0, 0.1, 0.1, 0.1])
+    law = Seen()
+    x0 = starts(5)
+    plant = P.DoubleIntegrator(sensor=Noise(std=std), filter=KalmanFilter(process_noise=0.01))
+    res = landing.simulate_batch(plant, C.PythonLaw(law), x0, t_final=2.0, dt=DT, record_every=1, threads=1)
+    est_q, est_v = res.diagnostics["estimated_position"], res.diagnostics["estimated_velocity"]
+    assert est_q.shape == est_v.shape == (5, 21, 3)
+    # what the law read at each instant (the reference is 0: e is the estimate), bit for bit
+    for t, e, de in law.calls:
+        k = int(round(t / DT))
+        rows = np.rint(e[:, 0] / SPACING).astype(int)
+        np.testing.assert_array_equal(est_q[rows, k], e)
+        np.testing.assert_array_equal(est_v[rows, k], de)
+    # a built-in law records its own signals first, then the estimate
+    mss = landing.simulate_batch(plant, C.FixedTimeMSS(**RECONSTRUCTED_GAINS), x0, t_final=2.0, dt=DT,
+                                 record_every=1)
+    assert list(mss.diagnostics)[-2:] == ["estimated_position", "estimated_velocity"]
+    assert "s1" in mss.diagnostics
+    # and without a sensor there is none
+    assert "estimated_position" not in landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(law), x0,
+                                                              t_final=1.0, dt=DT, record_every=1).diagnostics

@@ -195,6 +195,12 @@ impl<const D: usize> Navigation<D> {
     }
 }
 
+/// Diagnostic columns a run records beside the law's for a plant with a sensor: the estimate
+/// the law read, q_hat then q'_hat (D each).
+pub fn recorded_width<const D: usize, P: Plant<f64, D>>(plant: &P) -> usize {
+    plant.navigation().map_or(0, |_| 2 * D)
+}
+
 /// Per-case figures of the navigation error `estimate - truth` (what the law read minus the
 /// true coordinates and rates).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -422,6 +428,12 @@ impl<const D: usize, R: Real> Navigator<D, R> {
         self.view = seen(plant, reference, t, self.dt, x, &self.estimate);
         let (q, v) = plant.coordinates(x);
         self.count(live, &q, &v);
+    }
+
+    /// The estimate the law reads at the coming instant, `[q_hat, q'_hat]`.
+    #[inline]
+    pub(crate) fn estimate(&self) -> &[SVector<R, D>; 2] {
+        &self.estimate
     }
 
     /// Lane i's figures.

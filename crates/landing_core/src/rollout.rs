@@ -476,9 +476,9 @@ fn record<const D: usize, R: Real, S: State<R>>(
     nx: usize,
     x: &S,
     u: &SVector<R, D>,
-    diag: &[R],
+    (diag, estimate): (&[R], Option<&[SVector<R, D>; 2]>),
 ) {
-    let nd = diag.len();
+    let nd = diag.len() + estimate.map_or(0, |_| 2 * D);
     for i in 0..used {
         if !live.lane(i) {
             continue;
@@ -492,6 +492,13 @@ fn record<const D: usize, R: Real, S: State<R>>(
         }
         for (c, d) in diag.iter().enumerate() {
             out.diagnostics[row * nd + c] = d.lane(i);
+        }
+        // the navigation's estimate, after the law's own diagnostics: q_hat, then q'_hat
+        if let Some(est) = estimate {
+            let at = row * nd + diag.len();
+            for (c, v) in est.iter().flat_map(|part| part.iter()).enumerate() {
+                out.diagnostics[at + c] = v.lane(i);
+            }
         }
     }
 }
@@ -533,8 +540,12 @@ pub(crate) struct Block<const D: usize, R: Real, P: Plant<R, D>> {
     live: R::Mask,
     stops: Stops<R>,
     touched: R::Mask,
-    // the lanes stopped by the run's event (not diverged: their state is the event's)
+    // the lanes stopped by the run's event (not diverged: their state is the event's), and
+    // their tracking errors there, against the reference at the end of the event's step (the
+    // law's input goes on at later instants for the block's other lanes)
     landed: R::Mask,
+    landed_e: SVector<R, D>,
+    landed_de: SVector<R, D>,
     td_time: R,
     td_position: SVector<R, D>,
     td_velocity: SVector<R, D>,
@@ -594,6 +605,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             stops: Stops::<R>::new(),
             touched: R::Mask::splat(false),
             landed: R::Mask::splat(false),
+            landed_e: filled(nan),
+            landed_de: filled(nan),
             td_time: nan,
             td_position: filled(nan),
             td_velocity: filled(nan),
@@ -739,7 +752,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 plant.state_dim(),
                 &self.x,
                 &u,
-                diag,
+                (diag, self.nav.as_ref().map(|n| n.estimate())),
             );
             self.slot += 1;
             self.next_record += cfg.record_every;
@@ -862,6 +875,10 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             self.stats.freeze(landing);
             self.landed = self.landed | landing;
             self.live = self.live & !landing;
+            let (q, v) = plant.coordinates(&self.x);
+            let r = set.reference.at(tj + h);
+            self.landed_e = select_vector(landing, &sub(&q, &r.position), &self.landed_e);
+            self.landed_de = select_vector(landing, &sub(&v, &r.velocity), &self.landed_de);
         }
         self.x.select_assign(self.live, &self.next);
         self.live.any()
@@ -905,14 +922,15 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                     plant.state_dim(),
                     &self.x,
                     &u,
-                    diag,
+                    (diag, self.nav.as_ref().map(|n| n.estimate())),
                 );
             }
         }
         // a case the event ended finished there, in the state it was frozen in
         finished = finished | self.landed;
-        let input = &self.input;
-        let inside = dot(&input.e, &input.e).simd_le(self.tolerance_sq);
+        let e = select_vector(self.landed, &self.landed_e, &self.input.e);
+        let de = select_vector(self.landed, &self.landed_de, &self.input.de);
+        let inside = dot(&e, &e).simd_le(self.tolerance_sq);
         if let (Some(sm), Some(m)) = (self.settle_mass.as_mut(), plant.mass(&self.x)) {
             *sm = R::select(inside & self.was_outside, m, *sm);
         }
@@ -956,8 +974,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                     m.fuel_to_settle = m0.lane(i) - ms.lane(i);
                 }
             }
-            m.final_error = SVector::from_fn(|c, _| input.e[c].lane(i));
-            m.final_rate_error = SVector::from_fn(|c, _| input.de[c].lane(i));
+            m.final_error = SVector::from_fn(|c, _| e[c].lane(i));
+            m.final_rate_error = SVector::from_fn(|c, _| de[c].lane(i));
             if let (Some(m0), Some(mf)) = (self.m0, mass) {
                 m.fuel_used = m0.lane(i) - mf.lane(i);
             }

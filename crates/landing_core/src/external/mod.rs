@@ -330,9 +330,11 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         "a law records {nd} diagnostics, more than {MAX_DIAGNOSTIC_WIDTH}"
     );
     let nr = cfg.n_records();
-    let mut outputs = Outputs::<D>::allocate(n, nr, nx, nd)?;
+    // the output's rows: the law's diagnostics, then the navigation's estimate
+    let out_nd = nd + crate::navigation::recorded_width(batch.plants.get(0));
+    let mut outputs = Outputs::<D>::allocate(n, nr, nx, out_nd)?;
     if n == 0 {
-        return Ok(outputs.finish(cfg, nx, nd, level));
+        return Ok(outputs.finish(cfg, nx, out_nd, level));
     }
     let table = shared_table(batch, cfg);
     let common = Common {
@@ -370,7 +372,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         .div_ceil(threads * GROUPS_PER_THREAD)
         .clamp(1, MAX_GROUP);
     let mut held = parallel::on_pool(pool, Box::new(|| parallel::each(jobs)));
-    let mut buffers = outputs.blocks(w, nr, nx, nd);
+    let mut buffers = outputs.blocks(w, nr, nx, out_nd);
     let run = Box::new(|| -> Result<(), ExternalError<X::Error>> {
         let mut running = vec![true; held.len()];
         let mut k = 0;
@@ -427,7 +429,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
     });
     parallel::on_pool(pool, run)?;
     drop(buffers);
-    Ok(outputs.finish(cfg, nx, nd, level))
+    Ok(outputs.finish(cfg, nx, out_nd, level))
 }
 
 /// Tasks per pool thread at each instant: enough that a thread whose blocks stop early finds
