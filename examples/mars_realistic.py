@@ -80,18 +80,32 @@ def main() -> None:
     if engine:
         scenario = scenario.replace(plant=scenario.plant.replace(**engine), name="mars_realistic (changed)")
     print(scenario)
-    start = time.perf_counter()
-    mc = landing.monte_carlo(scenario, args.cases, seed=args.seed, threads=args.threads)
-    print(f"\n{args.cases} cases at dt = {scenario.dt:g} s in {time.perf_counter() - start:.2f} s\n")
+    mc = run(scenario, args.cases, args.seed, args.threads)
     print(mc.report())
+    summary(mc)
+    if engine:
+        return
+    written = landing.plots.save_all(mc, args.out)
+    print(f"\nfigures written to {args.out}/: " + ", ".join(p.name for p in written))
 
-    m = mc.metrics
+
+def run(scenario: landing.scenarios.Scenario, cases: int, seed: int, threads: int | None) -> landing.MonteCarloResult:
+    """The campaign, timed."""
+    start = time.perf_counter()
+    mc = landing.monte_carlo(scenario, cases, seed=seed, threads=threads)
+    print(f"\n{cases} cases at dt = {scenario.dt:g} s in {time.perf_counter() - start:.2f} s\n")
+    return mc
+
+
+def summary(mc: landing.MonteCarloResult) -> None:
+    """The campaign against the requirement (also printed by the main job, mars_monte_carlo.py)."""
+    scenario, m, n = mc.scenario, mc.metrics, mc.n_cases
     speed = m["touchdown_speed"]
     miss = np.linalg.norm(m["touchdown_position"][:, :2], axis=1)
     landed = np.isfinite(speed)
     soft = landed & (speed <= 1.0) & (miss <= 5.0)
     print("\nRequirement: every case touches down at most 1 m/s and within 5 m of the target")
-    print(f"  touched down: {int(landed.sum())} of {args.cases}; met: {int(soft.sum())} of {args.cases}")
+    print(f"  touched down: {int(landed.sum())} of {n}; met: {int(soft.sum())} of {n}")
     print(f"  touchdown speed: median {np.nanmedian(speed):.3f} m/s, max {np.nanmax(speed):.3f} m/s")
     print(f"  miss distance: median {np.nanmedian(miss):.3f} m, max {np.nanmax(miss):.3f} m")
     print(f"  touchdown time: {np.nanmin(m['touchdown_time']):.1f} .. {np.nanmax(m['touchdown_time']):.1f} s")
@@ -102,11 +116,6 @@ def main() -> None:
         print(f"  navigation error (rms over the descent): position median "
               f"{np.nanmedian(m['navigation_position_rms']):.3f} m, velocity median "
               f"{np.nanmedian(m['navigation_velocity_rms']):.4f} m/s")
-
-    if engine:
-        return
-    written = landing.plots.save_all(mc, args.out)
-    print(f"\nfigures written to {args.out}/: " + ", ".join(p.name for p in written))
 
 
 if __name__ == "__main__":
