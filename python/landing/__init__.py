@@ -35,6 +35,7 @@ from landing.errors import (
     ParameterError,
     ParameterTypeError,
     SimulationError,
+    StoreError,
 )
 from landing.results import DIVERGENCE_REASONS, Metrics, SimulationResult
 from landing.simulation import MAX_COMMAND, RunOptions, kernel_levels, simulate, simulate_batch
@@ -73,6 +74,7 @@ __all__ = [
     "ParameterError",
     "ParameterTypeError",
     "SimulationError",
+    "StoreError",
     "DivergenceWarning",
 ]
 

@@ -14,6 +14,7 @@ __all__ = [
     "ParameterTypeError",
     "SimulationError",
     "UserFunctionError",
+    "StoreError",
     "DivergenceWarning",
 ]
 
@@ -39,6 +40,11 @@ class UserFunctionError(LandingError, RuntimeError):
     or returned something other than what it must: the message names the function, the control
     instant and the cases, and what was expected; a raised exception is chained
     (``__cause__``)."""
+
+
+class StoreError(LandingError, RuntimeError):
+    """A campaign store cannot be used as asked (another process is writing it): the message
+    names the store, the reason and the remedy."""
 
 
 class DivergenceWarning(RuntimeWarning):

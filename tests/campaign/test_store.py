@@ -197,6 +197,49 @@ def test_a_store_of_another_campaign_is_refused(tmp_path):
         landing.load(tmp_path / "other")
 
 
+def _holding(path: Path) -> subprocess.Popen:
+    """A second process that opens the store for writing and holds it until killed."""
+    code = textwrap.dedent(f"""
+        import sys, time
+        import landing
+        from landing.campaign.store import open_campaign_store
+        s = landing.scenarios.mars_monte_carlo(t_final=5.0, dt=2e-3, record_every=25)
+        store = open_campaign_store({str(path)!r}, s, seed=3, n=10, x0=s.initial_states(10, seed=3),
+                                    keep=("states", "controls", "diagnostics"), record_every=25,
+                                    chunk_size=5, threads=1, check_bounds=True)
+        print("holding", flush=True)
+        time.sleep(600)
+    """)
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout is not None and proc.stdout.readline().strip() == "holding"
+    return proc
+
+
+@pytest.mark.skipif(os.name != "posix", reason="the writer lock is POSIX flock")
+def test_a_second_writer_is_refused_naming_the_holder_and_a_killed_one_frees_the_store(tmp_path):
+    path = tmp_path / "c"
+    s = small()
+    reference = landing.monte_carlo(s, 10, seed=3, chunk_size=5)
+    holder = _holding(path)
+    try:
+        with pytest.raises(landing.StoreError,
+                           match=rf"is being written by another process \(host \S+, pid {holder.pid}, since "):
+            landing.monte_carlo(s, 10, seed=3, chunk_size=5, store=path)
+        # nothing was written by the refused one: the holder's store is as it left it
+        assert not (path / "chunks" / "metrics" / "part-000000.parquet").exists()
+    finally:
+        holder.kill()  # SIGKILL: no clean-up runs, the operating system frees the lock
+        holder.wait()
+    mc = landing.monte_carlo(s, 10, seed=3, chunk_size=5, store=path)
+    assert_same_campaign(mc, reference)
+    # the campaign released the lock at its end: another run (a resume of a complete store) opens it
+    assert_same_campaign(landing.monte_carlo(s, 10, seed=3, chunk_size=5, store=path), reference)
+    # and one refused after taking the lock (another campaign's store) releases it too
+    with pytest.raises(ParameterError):
+        landing.monte_carlo(s, 10, seed=4, chunk_size=5, store=path)
+    assert_same_campaign(landing.monte_carlo(s, 10, seed=3, chunk_size=5, store=path), reference)
+
+
 def test_a_preset_campaign_loads_without_its_scenario(tmp_path):
     s = scenarios.mars_thrust_limited()
     mc = landing.monte_carlo(s, 3, seed=2, store=tmp_path / "c")

@@ -141,8 +141,9 @@ def monte_carlo(
             store, scenario, seed=seed, n=n, x0=x0, keep=keep, record_every=every,
             chunk_size=chunk_size if chunk_given else None, threads=threads, check_bounds=check_bounds,
         )
+        # the store is locked from here: released by the ``finally`` below, whatever happens
         chunk_size = campaign_store.key.chunk_size
-    bar = ProgressBar(n, label=scenario.name) if progress else None
+    bar: Optional[ProgressBar] = None
     diverged_warnings = 0
 
     def run_chunk(start: int, stop: int) -> SimulationResult:
@@ -155,6 +156,7 @@ def monte_carlo(
         return part
 
     try:
+        bar = ProgressBar(n, label=scenario.name) if progress else None
         if client is not None:
             mc = cluster.run_campaign(client, scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
                               record_every=every, threads=threads, store=campaign_store,
@@ -166,6 +168,8 @@ def monte_carlo(
     finally:
         if bar:
             bar.close()
+        if campaign_store is not None:
+            campaign_store.close()
     if mc.metrics["diverged"].any():
         warnings.warn(
             f"{describe_diverged(mc.metrics)}; they are flagged in metrics['diverged'] (why: "

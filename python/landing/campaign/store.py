@@ -12,6 +12,9 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
                               per-axis columns split with the axis names: final_error_x ...)
       chunks/initial/part-000000.parquet   the chunk's initial states (x0_<state>) and
                               dispersion draws (draw_<j>)
+      writer.lock             held (an advisory lock) by the one process writing the store; released
+                              when it ends, however it ends
+      writer.json             who holds it: host, pid, start time (stale once the lock is free)
       trajectories.zarr/      states (case, time, state), controls (case, time, control),
                               diagnostics (case, time[, axis]) as kept, final_state (case,
                               state); coordinates case, time (s), state, control, axis and the
@@ -31,18 +34,20 @@ from __future__ import annotations
 import dataclasses
 import datetime
 import hashlib
+import importlib
 import json
 import os
 import platform
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import ModuleType
 from typing import Any, Optional, Union
 
 import numpy as np
 
 from landing._core import __version__
-from landing.errors import LandingError, ParameterError, ParameterTypeError
+from landing.errors import LandingError, ParameterError, ParameterTypeError, StoreError
 from landing.results import Metrics, SimulationResult, dataset_coords, flat_columns, flat_metric_units, require_io
 from landing.scenarios import Scenario, files
 
@@ -54,9 +59,55 @@ STORE_FORMAT = 1
 
 PROVENANCE = "provenance.json"
 MANIFEST = "manifest.json"
+LOCK = "writer.lock"
+HOLDER = "writer.json"
 TRAJECTORIES = "trajectories.zarr"
 METRICS_DIR = Path("chunks") / "metrics"
 INITIAL_DIR = Path("chunks") / "initial"
+
+
+# --- one writer --------------------------------------------------------------------------------------
+
+#: The POSIX file-locking module (None elsewhere: stores are then not locked).
+_FCNTL: Optional[ModuleType] = importlib.import_module("fcntl") if os.name == "posix" else None
+
+
+class WriterLock:
+    """The exclusive lock of a store's one writer: ``flock`` on ``writer.lock``, which the
+    operating system releases when the process ends, however it ends (a kill leaves no stale
+    lock). The holder writes who it is into ``writer.json``, which a refused writer reads to
+    name it. POSIX only; where ``fcntl`` is missing (Windows) a store is not locked."""
+
+    def __init__(self, path: Path):
+        self.path = path
+        self._fd: Optional[int] = None
+
+    def acquire(self) -> None:
+        if _FCNTL is None:  # pragma: no cover - not POSIX
+            return
+        fd = os.open(self.path / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            _FCNTL.flock(fd, _FCNTL.LOCK_EX | _FCNTL.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            raise StoreError(
+                f"store = '{self.path}' is being written by another process ({self._holder()}); "
+                "wait for it to end or stop it, then run again to resume"
+            ) from None
+        self._fd = fd
+        _write_json_atomic(self.path / HOLDER, {"host": platform.node(), "pid": os.getpid(), "started": _now()})
+
+    def _holder(self) -> str:
+        try:
+            h = json.loads((self.path / HOLDER).read_text())
+            return f"host {h['host']}, pid {h['pid']}, since {h['started']}"
+        except (OSError, ValueError, KeyError, TypeError):
+            return f"its holder unrecorded in {self.path / HOLDER}"
+
+    def release(self) -> None:
+        if self._fd is not None:
+            os.close(self._fd)  # closing the descriptor releases the flock
+            self._fd = None
 
 
 # --- metric columns ----------------------------------------------------------------------------------
@@ -228,6 +279,8 @@ class CampaignStore:
     key: CampaignKey
     completed: dict[int, dict[str, Any]] = field(default_factory=dict)
     layout: dict[str, Any] = field(default_factory=dict)
+    #: Held from :meth:`open` to :meth:`close` (by the process writing the store).
+    lock: Optional[WriterLock] = None
 
     # -- opening --
 
@@ -238,6 +291,35 @@ class CampaignStore:
         campaign is refused with what differs."""
         require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
         path = Path(path)
+        prov_path = path / PROVENANCE
+        own = {LOCK, HOLDER}
+        if not prov_path.exists() and path.exists() and (
+                not path.is_dir() or any(p.name not in own for p in path.iterdir())):
+            raise ParameterError(
+                f"store = '{path}' exists and is not a campaign store (no {PROVENANCE}); "
+                "give a new or empty directory"
+            )
+        path.mkdir(parents=True, exist_ok=True)
+        lock = WriterLock(path)
+        lock.acquire()
+        try:
+            store = CampaignStore._open_locked(path, key, threads=threads, check_bounds=check_bounds,
+                                               record_every=record_every)
+        except BaseException:
+            lock.release()
+            raise
+        store.lock = lock
+        return store
+
+    def close(self) -> None:
+        """Releases the store's writer lock (the campaign's end, or its interruption)."""
+        if self.lock is not None:
+            self.lock.release()
+            self.lock = None
+
+    @staticmethod
+    def _open_locked(path: Path, key: CampaignKey, *, threads: Optional[int], check_bounds: bool,
+                     record_every: int) -> CampaignStore:
         prov_path = path / PROVENANCE
         if prov_path.exists():
             prov = json.loads(prov_path.read_text())
@@ -255,11 +337,6 @@ class CampaignStore:
             store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]},
                                   manifest.get("layout", {}))
         else:
-            if path.exists() and (not path.is_dir() or any(path.iterdir())):
-                raise ParameterError(
-                    f"store = '{path}' exists and is not a campaign store (no {PROVENANCE}); "
-                    "give a new or empty directory"
-                )
             (path / METRICS_DIR).mkdir(parents=True, exist_ok=True)
             (path / INITIAL_DIR).mkdir(parents=True, exist_ok=True)
             prov = {
