@@ -85,15 +85,23 @@ class WriterLock:
     def acquire(self) -> None:
         if _FCNTL is None:  # pragma: no cover - not POSIX
             return
-        fd = os.open(self.path / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fd = os.open(self.path / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise StoreError(f"store = '{self.path}': cannot open {LOCK} for writing ({exc.strerror}); "
+                             "give a directory this process may write") from None
         try:
             _FCNTL.flock(fd, _FCNTL.LOCK_EX | _FCNTL.LOCK_NB)
-        except OSError:
+        except BlockingIOError:
             os.close(fd)
             raise StoreError(
                 f"store = '{self.path}' is being written by another process ({self._holder()}); "
                 "wait for it to end or stop it, then run again to resume"
             ) from None
+        except OSError as exc:
+            os.close(fd)
+            raise StoreError(f"store = '{self.path}': cannot lock {LOCK} ({exc.strerror}); "
+                             "give a directory on a file system with locks (not every network one has)") from None
         self._fd = fd
         _write_json_atomic(self.path / HOLDER, {"host": platform.node(), "pid": os.getpid(), "started": _now()})
 
