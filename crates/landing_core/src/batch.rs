@@ -23,7 +23,6 @@ use crate::lanes::{Gather, Real};
 use crate::limits::{MAX_SUBSTEPS, MAX_THREADS, within_cap};
 use crate::memory::{available_bytes, gib};
 use crate::metrics::CaseMetrics;
-use crate::navigation::recorded_width;
 use crate::parallel::{self, Job};
 use crate::params::Named;
 use crate::plant::{Plant, PlantModel};
@@ -507,7 +506,7 @@ fn run_here<const D: usize, P: PlantModel<D>>(
     let n = batch.x0.len();
     let nx = P::STATE_DIM;
     // the law's diagnostics, then the navigation's estimate when the plant has a sensor
-    let nd = batch.laws.get(0).diagnostic_width() + recorded_width(batch.plants.get(0));
+    let nd = batch.laws.get(0).diagnostic_width() + batch.plants.get(0).navigation_width();
     let nr = cfg.n_records();
     let mut o = Outputs::<D>::allocate(n, nr, nx, nd)?;
     let table = shared_table(batch, cfg);

@@ -2,8 +2,6 @@
 
 use nalgebra::SVector;
 
-use crate::navigation::NavigationMetrics;
-
 use crate::lanes::{Mask, Real, abs, add, mul, norm, scale, scale_by, select_vector, sub, zeros};
 
 /// First crossing of the landing surface (altitude from positive to non-positive),
@@ -13,6 +11,18 @@ pub struct Touchdown<const D: usize> {
     pub time: f64,
     pub position: SVector<f64, D>,
     pub velocity: SVector<f64, D>,
+}
+
+/// Per-case figures of the navigation error `estimate - truth` (what the law read minus the
+/// true coordinates and rates), for a plant with a sensor ([`crate::navigation`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NavigationMetrics<const D: usize> {
+    /// At the case's last control instant (t_final, or the instant before its event).
+    pub position_error: SVector<f64, D>,
+    pub velocity_error: SVector<f64, D>,
+    /// Root mean square over the control instants of |q_hat - q| and |q'_hat - q'|.
+    pub position_rms: f64,
+    pub velocity_rms: f64,
 }
 
 /// Why a case was stopped before t_final.

@@ -36,15 +36,11 @@
 
 use nalgebra::SVector;
 
-use crate::control::LawInput;
 use crate::error::{ParamError, ReadError};
-use crate::lanes::{Real, add, div, dot, sub};
+use crate::lanes::{Mask, Real, add, div, dot, sub};
+use crate::metrics::NavigationMetrics;
 use crate::params::{Layout, Param, ParamSource, Schema};
-use crate::plant::Plant;
-use crate::reference::Reference;
 use crate::rng::{CaseStream, streams};
-use crate::rollout::law_input;
-use crate::state::State;
 
 const STD: Param = Param::components("std")
     .unit("units of q, then q/s")
@@ -195,24 +191,6 @@ impl<const D: usize> Navigation<D> {
     }
 }
 
-/// Diagnostic columns a run records beside the law's for a plant with a sensor: the estimate
-/// the law read, q_hat then q'_hat (D each).
-pub fn recorded_width<const D: usize, P: Plant<f64, D>>(plant: &P) -> usize {
-    plant.navigation().map_or(0, |_| 2 * D)
-}
-
-/// Per-case figures of the navigation error `estimate - truth` (what the law read minus the
-/// true coordinates and rates).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NavigationMetrics<const D: usize> {
-    /// At the case's last control instant (t_final, or the instant before its event).
-    pub position_error: SVector<f64, D>,
-    pub velocity_error: SVector<f64, D>,
-    /// Root mean square over the control instants of |q_hat - q| and |q'_hat - q'|.
-    pub position_rms: f64,
-    pub velocity_rms: f64,
-}
-
 /// A 2 x 2 symmetric covariance per axis: [[pp, pv], [pv, vv]].
 #[derive(Clone, Copy, Debug)]
 struct Covariance<const D: usize, R: Real> {
@@ -222,7 +200,8 @@ struct Covariance<const D: usize, R: Real> {
 }
 
 /// The navigation of a block of cases: the sensor's walk, the filter's estimate and
-/// covariance, the law's view and the error statistics.
+/// covariance, and the error statistics. It reads the true coordinates and rates and gives the
+/// estimate; the block builds the law's input from it ([`crate::rollout`]).
 pub(crate) struct Navigator<const D: usize, R: Real> {
     streams: Vec<CaseStream>,
     std: [SVector<R, D>; 2],
@@ -236,8 +215,6 @@ pub(crate) struct Navigator<const D: usize, R: Real> {
     // the acceleration the filter predicts with over the coming period
     acceleration: SVector<R, D>,
     dt: f64,
-    /// What the law reads at the coming instant.
-    pub(crate) view: LawInput<D, R>,
     sum_sq: [R; 2],
     instants: R,
     error: [SVector<R, D>; 2],
@@ -247,33 +224,13 @@ fn splat<const D: usize, R: Real>(v: &SVector<f64, D>) -> SVector<R, D> {
     SVector::from_fn(|i, _| R::splat(v[i]))
 }
 
-/// The law's input at (t, x) seen through the estimate `[q_hat, q'_hat]`: the input at the
-/// state with its coordinates replaced (so the drift and inertia are the plant's there).
-fn seen<const D: usize, R: Real, P: Plant<R, D>>(
-    plant: &P,
-    reference: &Reference<D, R>,
-    t: f64,
-    dt: f64,
-    x: &P::State,
-    estimate: &[SVector<R, D>; 2],
-) -> LawInput<D, R> {
-    let (qc, vc) = plant.coordinate_components();
-    let mut at = *x;
-    for i in 0..D {
-        at.set_component(qc[i], estimate[0][i]);
-        at.set_component(vc[i], estimate[1][i]);
-    }
-    law_input(plant, reference, t, dt, &at)
-}
-
 impl<const D: usize, R: Real> Navigator<D, R> {
-    /// The navigation of the block whose lane i is case `cases[i]`, at t = 0 in state `x0`.
-    pub(crate) fn start<P: Plant<R, D>>(
+    /// The navigation of the block whose lane i is case `cases[i]`, at t = 0 where the true
+    /// coordinates and rates are `(q, v)`: the first measurement taken, the error there counted.
+    pub(crate) fn start(
         nav: &Navigation<D>,
-        plant: &P,
-        reference: &Reference<D, R>,
         (seed, cases, dt): (u64, &[u64], f64),
-        x0: &P::State,
+        (q, v): (&SVector<R, D>, &SVector<R, D>),
     ) -> Self {
         let zero = crate::lanes::zeros();
         let root_dt = dt.sqrt();
@@ -306,20 +263,18 @@ impl<const D: usize, R: Real> Navigator<D, R> {
             estimate: [zero; 2],
             acceleration: zero,
             dt,
-            view: seen(plant, reference, 0.0, dt, x0, &[zero; 2]),
             sum_sq: [R::zero(); 2],
             instants: R::zero(),
             error: [zero; 2],
         };
-        let y = n.measure(0, plant, x0);
-        n.estimate = y;
-        n.view = seen(plant, reference, 0.0, dt, x0, &n.estimate);
+        n.estimate = n.measure(0, q, v);
+        n.count(R::Mask::splat(true), q, v);
         n
     }
 
-    /// The measurement at instant k of the state `x`; advances the walk to instant k + 1.
-    fn measure<P: Plant<R, D>>(&mut self, k: u64, plant: &P, x: &P::State) -> [SVector<R, D>; 2] {
-        let (q, v) = plant.coordinates(x);
+    /// The measurement at instant k of the coordinates and rates `(q, v)`; advances the walk
+    /// to instant k + 1.
+    fn measure(&mut self, k: u64, q: &SVector<R, D>, v: &SVector<R, D>) -> [SVector<R, D>; 2] {
         // 4 D normals per instant: the white noise of [q, q'], then the walk's steps
         let mut white: [SVector<R, D>; 2] = [crate::lanes::zeros(); 2];
         let mut steps = white;
@@ -336,7 +291,7 @@ impl<const D: usize, R: Real> Navigator<D, R> {
                 steps[1][i].set_lane(lane, z(3 * D + i));
             }
         }
-        let truth = [q, v];
+        let truth = [*q, *v];
         let mut y = truth;
         for c in 0..2 {
             for i in 0..D {
@@ -348,11 +303,17 @@ impl<const D: usize, R: Real> Navigator<D, R> {
         y
     }
 
-    /// Holds the command applied at the period's start (`u`, in actuator units) for the
-    /// filter's prediction over the period.
+    /// Holds the acceleration the filter predicts with over the coming period: the command
+    /// applied at its start (`u`, in actuator units) over the inertia, plus the modelled
+    /// acceleration, both as the law saw them.
     #[inline]
-    pub(crate) fn hold(&mut self, u: &SVector<R, D>) {
-        self.acceleration = add(&div(u, &self.view.inertia), &self.view.drift);
+    pub(crate) fn hold(
+        &mut self,
+        u: &SVector<R, D>,
+        inertia: &SVector<R, D>,
+        drift: &SVector<R, D>,
+    ) {
+        self.acceleration = add(&div(u, inertia), drift);
     }
 
     /// Counts the navigation error at the instant just measured, in the lanes `live`.
@@ -365,23 +326,16 @@ impl<const D: usize, R: Real> Navigator<D, R> {
         self.instants = R::select(live, self.instants + R::one(), self.instants);
     }
 
-    /// Counts the error at t = 0 (called once, after [`Navigator::start`]).
-    pub(crate) fn count_start<P: Plant<R, D>>(&mut self, live: R::Mask, plant: &P, x: &P::State) {
-        let (q, v) = plant.coordinates(x);
-        self.count(live, &q, &v);
-    }
-
-    /// Instant k + 1 at time t in state `x`: the measurement, the filter's prediction and
-    /// update (or the measurement as it is), the law's view and the error counted in `live`.
-    pub(crate) fn advance<P: Plant<R, D>>(
+    /// Control instant k, where the true coordinates and rates are `(q, v)`: the measurement,
+    /// the filter's prediction and update (or the measurement as it is), and the error counted
+    /// in the lanes `live`.
+    pub(crate) fn advance(
         &mut self,
-        (k, t): (u64, f64),
-        plant: &P,
-        reference: &Reference<D, R>,
-        x: &P::State,
+        k: u64,
+        (q, v): (&SVector<R, D>, &SVector<R, D>),
         live: R::Mask,
     ) {
-        let y = self.measure(k, plant, x);
+        let y = self.measure(k, q, v);
         self.estimate = match self.filter.as_mut() {
             None => y,
             Some((q, p)) => {
@@ -425,9 +379,7 @@ impl<const D: usize, R: Real> Navigator<D, R> {
                 [xq, xv]
             }
         };
-        self.view = seen(plant, reference, t, self.dt, x, &self.estimate);
-        let (q, v) = plant.coordinates(x);
-        self.count(live, &q, &v);
+        self.count(live, q, v);
     }
 
     /// The estimate the law reads at the coming instant, `[q_hat, q'_hat]`.

@@ -443,7 +443,7 @@ pub(crate) struct Cancelled;
 
 /// Builds what the law sees at (t, x).
 #[inline(always)]
-pub(crate) fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
+fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
     plant: &P,
     reference: &Reference<D, R>,
     t: f64,
@@ -461,6 +461,31 @@ pub(crate) fn law_input<const D: usize, R: Real, P: Plant<R, D>>(
         drift: plant.modelled_acceleration(t, x),
         inertia: plant.inertia(x),
     }
+}
+
+/// A block's navigation ([`crate::navigation`]) and what the law reads through it.
+struct Sensed<const D: usize, R: Real> {
+    nav: Navigator<D, R>,
+    view: LawInput<D, R>,
+}
+
+/// The law's input at (t, x) seen through the estimate `[q_hat, q'_hat]`: the input at the
+/// state with its coordinates replaced, so that the drift and inertia are the plant's there
+/// (the other components, a lander's mass, are known to the law).
+fn seen<const D: usize, R: Real, P: Plant<R, D>>(
+    plant: &P,
+    reference: &Reference<D, R>,
+    (t, dt): (f64, f64),
+    x: &P::State,
+    estimate: &[SVector<R, D>; 2],
+) -> LawInput<D, R> {
+    let (qc, vc) = plant.coordinate_components();
+    let mut at = *x;
+    for i in 0..D {
+        at.set_component(qc[i], estimate[0][i]);
+        at.set_component(vc[i], estimate[1][i]);
+    }
+    law_input(plant, reference, t, dt, &at)
 }
 
 /// Writes record `slot` of the live lanes: the state, the applied command and the law's
@@ -563,7 +588,7 @@ pub(crate) struct Block<const D: usize, R: Real, P: Plant<R, D>> {
     actuator: Option<Box<Actuator<D, R>>>,
     // the sensor and filter, when the plant has them: the law reads their view, the metrics
     // and the physics `input`, the truth
-    nav: Option<Box<Navigator<D, R>>>,
+    nav: Option<Box<Sensed<D, R>>>,
     used: usize,
 }
 
@@ -586,10 +611,10 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         };
         let m0 = set.plant.mass(x0);
         let nav = set.plant.navigation().map(|n| {
-            let mut nav =
-                Navigator::start(n, set.plant, set.reference, (cfg.seed, cases, cfg.dt), x0);
-            nav.count_start(R::Mask::splat(true), set.plant, x0);
-            Box::new(nav)
+            let (q, v) = set.plant.coordinates(x0);
+            let nav = Navigator::start(n, (cfg.seed, cases, cfg.dt), (&q, &v));
+            let view = seen(set.plant, set.reference, (0.0, cfg.dt), x0, nav.estimate());
+            Box::new(Sensed { nav, view })
         });
         Self {
             rng: cases
@@ -631,7 +656,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
     pub(crate) fn input(&self) -> &LawInput<D, R> {
         match &self.nav {
             None => &self.input,
-            Some(nav) => &nav.view,
+            Some(sensed) => &sensed.view,
         }
     }
 
@@ -731,8 +756,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         let (plant, cfg) = (set.plant, set.cfg);
         let t = k as f64 * cfg.dt;
         let (u, lag) = self.applied(plant, k, t, a);
-        if let Some(nav) = self.nav.as_deref_mut() {
-            nav.hold(&u);
+        if let Some(Sensed { nav, view }) = self.nav.as_deref_mut() {
+            nav.hold(&u, &view.inertia, &view.drift);
         }
         let bad = bad_command(self.live, &u, t, &mut self.stops);
         if bad.any() {
@@ -752,7 +777,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 plant.state_dim(),
                 &self.x,
                 &u,
-                (diag, self.nav.as_ref().map(|n| n.estimate())),
+                (diag, self.nav.as_ref().map(|n| n.nav.estimate())),
             );
             self.slot += 1;
             self.next_record += cfg.record_every;
@@ -890,8 +915,16 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         let cfg = set.cfg;
         let t = (k + 1) as f64 * cfg.dt;
         self.input = law_input(set.plant, set.reference, t, cfg.dt, &self.x);
-        if let Some(nav) = self.nav.as_deref_mut() {
-            nav.advance((k + 1, t), set.plant, set.reference, &self.x, self.live);
+        if let Some(Sensed { nav, view }) = self.nav.as_deref_mut() {
+            let (q, v) = set.plant.coordinates(&self.x);
+            nav.advance(k + 1, (&q, &v), self.live);
+            *view = seen(
+                set.plant,
+                set.reference,
+                (t, cfg.dt),
+                &self.x,
+                nav.estimate(),
+            );
         }
     }
 
@@ -922,7 +955,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                     plant.state_dim(),
                     &self.x,
                     &u,
-                    (diag, self.nav.as_ref().map(|n| n.estimate())),
+                    (diag, self.nav.as_ref().map(|n| n.nav.estimate())),
                 );
             }
         }
@@ -940,7 +973,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             let m = &mut out.metrics[i];
             *m = CaseMetrics::new();
             self.stats.finish_lane(i, m);
-            m.navigation = self.nav.as_ref().map(|n| n.metrics(i));
+            m.navigation = self.nav.as_ref().map(|n| n.nav.metrics(i));
             if self.touched.lane(i) {
                 m.touchdown = Some(Touchdown {
                     time: self.td_time.lane(i),

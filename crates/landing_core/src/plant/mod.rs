@@ -59,6 +59,12 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
         None
     }
 
+    /// Diagnostic columns a run records beside the law's: with a sensor, the estimate the law
+    /// read (q_hat, then q'_hat, D each).
+    fn navigation_width(&self) -> usize {
+        self.navigation().map_or(0, |_| 2 * D)
+    }
+
     /// The actuator's limits imposed on a command in actuator units: what `actuate` applies
     /// after scaling, so that `actuate(x, a) == limit(scaled a)`. The lag's output passes it
     /// at every stage. No limits by default.
