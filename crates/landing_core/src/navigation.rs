@@ -92,33 +92,50 @@ pub struct Navigation<const D: usize> {
     pub process_noise: Option<SVector<f64, D>>,
 }
 
-/// `values` (one, or one per component of `[q, q']`) as the q and q' parts.
-fn split<const D: usize>(p: &Param, values: &[f64]) -> Result<[SVector<f64, D>; 2], ReadError> {
-    let at = |c: usize| {
-        if values.len() == 1 {
-            values[0]
-        } else {
-            values[c]
-        }
-    };
-    if values.len() != 1 && values.len() != 2 * D {
+/// `values` checked against `p`'s rule (finite; >= 0 when it has a rule) and spread to `N`
+/// values (a single one serves all): `what` says what the N are, for the message, and
+/// `first` is the index a refusal names for `values[0]`.
+fn spread<const N: usize>(
+    p: &Param,
+    values: &[f64],
+    (what, first): (&str, usize),
+) -> Result<SVector<f64, N>, ReadError> {
+    let n = values.len();
+    if n != 1 && n != N {
         return Err(ReadError::value(format!(
-            "{} has {} values; it takes one, or {} (the {D} coordinates, then their rates)",
-            p.name,
-            values.len(),
-            2 * D
+            "{} has {n} values; it takes one, or {N} ({what})",
+            p.name
         )));
     }
     for (c, &v) in values.iter().enumerate() {
         if !v.is_finite() || (!p.rule.is_empty() && v < 0.0) {
             let rule = if p.rule.is_empty() { "finite" } else { p.rule };
-            return Err(ParamError::new(p.name, v, rule).on_axis(c).into());
+            return Err(ParamError::new(p.name, v, rule).on_axis(first + c).into());
         }
     }
-    Ok([
-        SVector::from_fn(|i, _| at(i)),
-        SVector::from_fn(|i, _| at(D + i)),
-    ])
+    Ok(SVector::from_fn(|i, _| values[if n == 1 { 0 } else { i }]))
+}
+
+/// `values` (one, or one per component of `[q, q']`) as the q and q' parts.
+fn split<const D: usize>(p: &Param, values: &[f64]) -> Result<[SVector<f64, D>; 2], ReadError> {
+    let what = format!("the {D} coordinates, then their rates");
+    // 2 D values: a const generic 2 D is not expressible, so the two halves are read apart
+    if values.len() == 2 * D {
+        Ok([
+            spread(p, &values[..D], (&what, 0))?,
+            spread(p, &values[D..], (&what, D))?,
+        ])
+    } else if values.len() == 1 {
+        let v = spread(p, values, (&what, 0))?;
+        Ok([v, v])
+    } else {
+        Err(ReadError::value(format!(
+            "{} has {} values; it takes one, or {} ({what})",
+            p.name,
+            values.len(),
+            2 * D
+        )))
+    }
 }
 
 impl<const D: usize> Navigation<D> {
@@ -138,21 +155,7 @@ impl<const D: usize> Navigation<D> {
             f.components(&PROCESS_NOISE)
         })?;
         let filter = filter
-            .map(|v| {
-                let n = v.len();
-                if n != 1 && n != D {
-                    return Err(ReadError::value(format!(
-                        "process_noise has {n} values; it takes one, or one per axis ({D})"
-                    )));
-                }
-                for (i, &s) in v.iter().enumerate() {
-                    if !(s.is_finite() && s >= 0.0) {
-                        let e = ParamError::new(PROCESS_NOISE.name, s, PROCESS_NOISE.rule);
-                        return Err(e.on_axis(i).into());
-                    }
-                }
-                Ok(SVector::from_fn(|i, _| if n == 1 { v[0] } else { v[i] }))
-            })
+            .map(|v| spread::<D>(&PROCESS_NOISE, &v, ("one per axis", 0)))
             .transpose()
             .map_err(|e| e.context(FILTER.name))?;
         let sensor = sensor
