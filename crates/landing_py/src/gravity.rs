@@ -73,8 +73,7 @@ impl Gravity {
         })
     }
 
-    /// The numeric parameter `name` as the field reads it: (cases, axes) per axis, (cases,)
-    /// for a scalar (cases = 1 when shared).
+    /// The numeric parameter `name` as the field reads it (see `output::parameter`).
     fn parameter<'py>(
         &self,
         py: Python<'py>,
@@ -82,11 +81,8 @@ impl Gravity {
         axes: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
-            let v = self
-                .table
-                .values::<GravityKind>(name, axes)
-                .map_err(|e| InputError::from(e).context(self.fields.get(0).kind().name()))?;
-            output::values(py, v)
+            let owner = self.fields.get(0).kind().name();
+            output::parameter(py, self.table.values::<GravityKind>(name, axes), owner)
         })
     }
 }

@@ -56,20 +56,13 @@ impl Law {
         })
     }
 
-    /// The numeric parameter `name` as the law reads it for `axes` axes: (cases, axes) per
-    /// axis, (cases,) for a scalar (cases = 1 when shared).
+    /// The numeric parameter `name` as the law reads it for `axes` axes (see `output::parameter`).
     fn parameter<'py>(
         &self,
         py: Python<'py>,
         name: &str,
         axes: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
-        guard(|| {
-            let v = self
-                .table
-                .values::<LawKind>(name, axes)
-                .map_err(|e| InputError::from(e).context(&self.kind))?;
-            output::values(py, v)
-        })
+        guard(|| output::parameter(py, self.table.values::<LawKind>(name, axes), &self.kind))
     }
 }

@@ -6,8 +6,11 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use landing_core::BatchOutput;
+use landing_core::error::ReadError;
 use landing_core::metrics::{CaseMetrics, ColumnValues};
 use landing_core::params::Values;
+
+use crate::errors::InputError;
 
 fn array1<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_vec(py, v)
@@ -50,8 +53,14 @@ fn metrics<'py, const D: usize>(
     Ok(d)
 }
 
-/// A numeric parameter as the core reads it: (cases, axes) per axis, (cases,) for a scalar.
-pub fn values<'py>(py: Python<'py>, v: Values) -> PyResult<Bound<'py, PyAny>> {
+/// A handle's numeric parameter as the core reads it (`values`, read by the handle's owner):
+/// (cases, axes) per axis, (cases,) for a scalar (cases = 1 when shared).
+pub fn parameter<'py>(
+    py: Python<'py>,
+    values: Result<Values, ReadError>,
+    owner: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let v = values.map_err(|e| InputError::from(e).context(owner))?;
     if v.per_axis {
         shaped(py, v.data, [v.cases, v.width])
     } else {

@@ -122,20 +122,13 @@ impl Plant {
         })
     }
 
-    /// The numeric parameter `name` as the plant reads it: (cases, axes) per axis, (cases,)
-    /// for a scalar (cases = 1 when shared).
+    /// The numeric parameter `name` as the plant reads it (see `output::parameter`).
     fn parameter<'py>(
         &self,
         py: Python<'py>,
         name: &str,
         axes: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
-        guard(|| {
-            let v = self
-                .table
-                .values::<PlantKind>(name, axes)
-                .map_err(|e| InputError::from(e).context(&self.kind))?;
-            output::values(py, v)
-        })
+        guard(|| output::parameter(py, self.table.values::<PlantKind>(name, axes), &self.kind))
     }
 }

@@ -60,8 +60,7 @@ impl Reference {
         })
     }
 
-    /// The numeric parameter `name` as the reference reads it for `axes` axes: (cases, axes)
-    /// per axis, (cases,) for a scalar (cases = 1 when shared).
+    /// The numeric parameter `name` as the reference reads it (see `output::parameter`).
     fn parameter<'py>(
         &self,
         py: Python<'py>,
@@ -69,11 +68,11 @@ impl Reference {
         axes: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
-            let v = self
-                .table
-                .values::<ReferenceKind>(name, axes)
-                .map_err(|e| InputError::from(e).context("reference"))?;
-            output::values(py, v)
+            output::parameter(
+                py,
+                self.table.values::<ReferenceKind>(name, axes),
+                "reference",
+            )
         })
     }
 }
@@ -142,8 +141,7 @@ impl Disturbance {
         })
     }
 
-    /// The numeric parameter `name` of the component that has it, as read for `axes` axes:
-    /// (cases, axes) per axis, (cases,) for a scalar (cases = 1 when shared).
+    /// The numeric parameter `name` of the component that has it (see `output::parameter`).
     fn parameter<'py>(
         &self,
         py: Python<'py>,
@@ -151,9 +149,8 @@ impl Disturbance {
         axes: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
-            let v = component_values(&self.components, name, axes)
-                .map_err(|e| InputError::from(e).context("disturbance"))?;
-            output::values(py, v)
+            let values = component_values(&self.components, name, axes);
+            output::parameter(py, values, "disturbance")
         })
     }
 }
