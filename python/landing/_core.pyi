@@ -141,8 +141,9 @@ class Dispersion:
     def __new__(cls, table: _Table) -> Dispersion: ...
     @property
     def dim(self) -> int: ...
-    def sample(self, seed: int, first_case: int, n: int) -> _Array:
-        """Cases first_case .. first_case + n, shape (n, components)."""
+    def sample(self, seed: int, first_case: int, n: int, key: Optional[str] = None) -> _Array:
+        """Cases first_case .. first_case + n, shape (n, components), of the initial states'
+        stream or of the stream of the parameter named ``key``."""
 
 #: The former name of :class:`Dispersion`.
 DispersionHandle = Dispersion

@@ -461,6 +461,15 @@ class SimulationResult:
         key = _case_key(start, stop)
         return self._map(lambda a: a[key])
 
+    def with_metrics(self, columns: Mapping[str, np.ndarray]) -> SimulationResult:
+        """This result with more per-case metric columns (one row per case each): a campaign's
+        draws of its dispersed parameters, ``param.<path>``."""
+        for name, v in columns.items():
+            if np.shape(v)[:1] != (self.n_cases,):
+                raise ParameterError(f"metric column {name!r} has shape {np.shape(v)}; it takes one row per case "
+                                     f"({self.n_cases})")
+        return dataclasses.replace(self, metrics=Metrics({**self.metrics, **columns}))
+
     def keeping(self, signals: Sequence[str]) -> SimulationResult:
         """This result with only the recorded signals named in ``signals`` (of :data:`SIGNALS`);
         the final states and the metrics are always kept."""

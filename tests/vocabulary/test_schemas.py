@@ -44,6 +44,8 @@ EXAMPLES.update({type(obj): obj for obj in (
     disturbances.CommandNoise(fraction=0.01),
     dispersions.Normal(mean=[0.0, 1.0], std=[1.0, 2.0]),
     dispersions.Uniform(low=[0.0, 1.0], high=[1.0, 2.0]),
+    dispersions.TruncatedNormal(mean=[0.0, 1.0], std=[1.0, 2.0], low=[-1.0, 0.0], high=[1.0, 3.0]),
+    dispersions.LogNormal(mu=[0.0, 1.0], sigma=[0.1, 0.2]),
     fuzzy.variable_rate_system(),
     sensors.Noise(std=[1.0, 1.0, 1.0, 0.1, 0.1, 0.1], bias=0.5, random_walk=0.01),
     sensors.KalmanFilter(process_noise=[0.1, 0.1, 0.2]),

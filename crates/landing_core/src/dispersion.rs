@@ -1,12 +1,15 @@
-//! Dispersions of initial states: the random part of a Monte Carlo campaign.
+//! Dispersions of initial states and of parameters: the random part of a Monte Carlo campaign.
 //!
-//! Case i's sample depends only on (seed, i): component j takes draw j of the case's
-//! dispersion stream, so a campaign gives the same cases whatever the batch
-//! size, chunking or thread count.
+//! Case i's sample depends only on (seed, stream, i): component j takes draw j of the case's
+//! stream, so a campaign gives the same cases whatever the batch size, chunking or thread
+//! count. The initial states draw from the dispersion stream; a dispersed parameter from its
+//! own stream, keyed by its name ([`parameter_stream`]), so that its draws do not depend on
+//! which other parameters are dispersed.
 
 use crate::error::{ParamError, ReadError, check};
 use crate::params::{FromParams, Param, ParamSource, Schema};
 use crate::rng::{CaseStream, streams};
+use crate::special::{normal_cdf, normal_quantile};
 
 const MEAN: Param = Param::components("mean")
     .unit("units of the component")
@@ -22,12 +25,23 @@ const HIGH: Param = Param::components("high")
     .unit("units of the component")
     .rule("high >= low")
     .doc("upper end of each component's range (high = low fixes the value)");
+const MU: Param = Param::components("mu")
+    .unit("log of the component's units")
+    .doc("mean of the logarithm of each component");
+const SIGMA: Param = Param::components("sigma")
+    .unit("1")
+    .rule("sigma >= 0")
+    .doc("standard deviation of the logarithm of each component (0 fixes the value at exp(mu))");
+/// The bounds of a truncated normal: the window must hold some of the normal's probability.
+const WINDOW: &str = "low <= high and a window of probability > 0 (mean within it when std = 0)";
 
 crate::named! {
     /// The distributions' kinds at the Python boundary.
     pub enum DispersionKind in "dispersion" {
         Normal => "normal": Schema::new(&[MEAN, STD]),
         Uniform => "uniform": Schema::new(&[LOW, HIGH]),
+        TruncatedNormal => "truncated_normal": Schema::new(&[MEAN, STD, LOW, HIGH]),
+        LogNormal => "lognormal": Schema::new(&[MU, SIGMA]),
     }
 }
 
@@ -38,6 +52,17 @@ pub enum Component {
     Normal { mean: f64, std: f64 },
     /// Uniform on [low, high] (low = high for a fixed value).
     Uniform { low: f64, high: f64 },
+    /// Normal(mean, std) conditioned on [low, high], drawn by inverting its distribution
+    /// function (exact in the tails, where rejection would loop).
+    TruncatedNormal {
+        mean: f64,
+        std: f64,
+        low: f64,
+        high: f64,
+    },
+    /// exp(N(mu, sigma)): positive, for quantities dispersed by a factor (numpy's and
+    /// scipy's `lognorm(s=sigma, scale=exp(mu))` parametrisation).
+    LogNormal { mu: f64, sigma: f64 },
 }
 
 impl Component {
@@ -51,6 +76,48 @@ impl Component {
                 check(&LOW, low, |_| true)?;
                 check(&HIGH, high, |h| h >= low)
             }
+            Component::TruncatedNormal {
+                mean,
+                std,
+                low,
+                high,
+            } => {
+                check(&STD, std, |s| s >= 0.0)?;
+                let held = if std == 0.0 {
+                    (low..=high).contains(&mean)
+                } else {
+                    let (a, b, _) = standard_window(mean, std, low, high);
+                    high >= low && normal_cdf(b) - normal_cdf(a) > 0.0
+                };
+                if !held {
+                    return Err(ParamError::new("high", high, WINDOW));
+                }
+                Ok(())
+            }
+            Component::LogNormal { sigma, .. } => check(&SIGMA, sigma, |s| s >= 0.0),
+        }
+    }
+
+    /// The component's value for the uniform `u` in [0, 1) and the normal `z` of the same
+    /// draw (each kind uses one of them).
+    fn draw(&self, z: f64, u: f64) -> f64 {
+        match *self {
+            Component::Normal { mean, std } => mean + std * z,
+            Component::Uniform { low, high } => low + (high - low) * u,
+            Component::TruncatedNormal { std: 0.0, mean, .. } => mean,
+            Component::TruncatedNormal {
+                mean,
+                std,
+                low,
+                high,
+            } => {
+                let (a, b, sign) = standard_window(mean, std, low, high);
+                let (pa, pb) = (normal_cdf(a), normal_cdf(b));
+                let x = normal_quantile(pa + u * (pb - pa)).clamp(a, b);
+                // rounding may leave the window by an ulp: the bounds hold exactly
+                (mean + sign * std * x).clamp(low, high)
+            }
+            Component::LogNormal { mu, sigma } => (mu + sigma * z).exp(),
         }
     }
 
@@ -59,8 +126,46 @@ impl Component {
         match *self {
             Component::Normal { mean, std } => (mean, std),
             Component::Uniform { low, high } => (0.5 * (low + high), (high - low) / 12f64.sqrt()),
+            Component::TruncatedNormal { std: 0.0, mean, .. } => (mean, 0.0),
+            Component::TruncatedNormal {
+                mean,
+                std,
+                low,
+                high,
+            } => {
+                // the standard truncated normal's moments, from the density at the ends
+                let (a, b, sign) = standard_window(mean, std, low, high);
+                let pdf = |x: f64| (-0.5 * x * x).exp() / (2.0 * std::f64::consts::PI).sqrt();
+                let z = normal_cdf(b) - normal_cdf(a);
+                let m = (pdf(a) - pdf(b)) / z;
+                let v = 1.0 + (a * pdf(a) - b * pdf(b)) / z - m * m;
+                (mean + sign * std * m, std * v.max(0.0).sqrt())
+            }
+            Component::LogNormal { mu, sigma } => {
+                let m = (mu + 0.5 * sigma * sigma).exp();
+                (m, m * (sigma * sigma).exp_m1().sqrt())
+            }
         }
     }
+}
+
+/// The window [low, high] of N(mean, std) in standard units, mirrored into the lower half when
+/// it lies in the upper one (the distribution function is accurate there, where 1 - Phi is
+/// not), and the sign that undoes the mirror.
+fn standard_window(mean: f64, std: f64, low: f64, high: f64) -> (f64, f64, f64) {
+    let (a, b) = ((low - mean) / std, (high - mean) / std);
+    if a > 0.0 { (-b, -a, -1.0) } else { (a, b, 1.0) }
+}
+
+/// The stream of the dispersed parameter `name` (`"plant.isp"`): its FNV-1a hash with the top
+/// bit set, so that it is none of the fixed streams of [`streams`], and a case's draw of one
+/// parameter does not depend on the other parameters dispersed.
+pub fn parameter_stream(name: &str) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in name.bytes() {
+        h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+    }
+    h | 1 << 63
 }
 
 /// Independent components, one per state component.
@@ -81,9 +186,9 @@ impl Dispersion {
         self.components.len()
     }
 
-    /// The sample of global case `case` into `out` (length `dim`).
-    pub fn sample_into(&self, seed: u64, case: u64, out: &mut [f64]) {
-        let rng = CaseStream::new(seed, streams::DISPERSION, case);
+    /// The sample of global case `case` from `stream` into `out` (length `dim`).
+    pub fn sample_into(&self, seed: u64, stream: u64, case: u64, out: &mut [f64]) {
+        let rng = CaseStream::new(seed, stream, case);
         let n = self.dim();
         let mut z = vec![0.0; n];
         let mut u = vec![0.0; n];
@@ -91,55 +196,80 @@ impl Dispersion {
         rng.fill_normals(0, &mut z);
         rng.fill_uniforms(0, &mut u);
         for (j, c) in self.components.iter().enumerate() {
-            out[j] = match *c {
-                Component::Normal { mean, std } => mean + std * z[j],
-                Component::Uniform { low, high } => low + (high - low) * u[j],
-            };
+            out[j] = c.draw(z[j], u[j]);
         }
     }
 
-    /// Cases `first_case .. first_case + n`, row-major (n x dim).
+    /// Cases `first_case .. first_case + n` of the initial states' stream, row-major (n x dim).
     pub fn sample(&self, seed: u64, first_case: u64, n: usize) -> Vec<f64> {
+        self.sample_stream(seed, streams::DISPERSION, first_case, n)
+    }
+
+    /// Cases `first_case .. first_case + n` of `stream` ([`parameter_stream`] for a parameter).
+    pub fn sample_stream(&self, seed: u64, stream: u64, first_case: u64, n: usize) -> Vec<f64> {
         let d = self.dim();
         let mut out = vec![0.0; n * d];
         for (i, row) in out.chunks_mut(d.max(1)).enumerate().take(n) {
-            self.sample_into(seed, first_case + i as u64, row);
+            self.sample_into(seed, stream, first_case + i as u64, row);
         }
         out
     }
 }
 
 impl FromParams for Dispersion {
-    /// `normal` (mean, std) or `uniform` (low, high), each a scalar or one value per
-    /// component (a scalar serves every component), validated.
+    /// `normal` (mean, std), `uniform` (low, high), `truncated_normal` (mean, std, low, high)
+    /// or `lognormal` (mu, sigma), each a scalar or one value per component (a scalar serves
+    /// every component), validated.
     fn from_params<S: ParamSource>(p: &mut S) -> Result<Self, ReadError> {
         let kind = p.kind::<DispersionKind>()?;
-        let (a, b) = match kind {
-            DispersionKind::Normal => (&MEAN, &STD),
-            DispersionKind::Uniform => (&LOW, &HIGH),
+        let params: &[Param] = match kind {
+            DispersionKind::Normal => &[MEAN, STD],
+            DispersionKind::Uniform => &[LOW, HIGH],
+            DispersionKind::TruncatedNormal => &[MEAN, STD, LOW, HIGH],
+            DispersionKind::LogNormal => &[MU, SIGMA],
         };
-        let first = p.components(a)?;
-        let second = p.components(b)?;
-        if first.len() != second.len() && first.len() != 1 && second.len() != 1 {
+        let values = params
+            .iter()
+            .map(|q| p.components(q))
+            .collect::<Result<Vec<_>, _>>()?;
+        let dim = values.iter().map(Vec::len).max().unwrap_or(1);
+        if let Some((q, v)) = params
+            .iter()
+            .zip(&values)
+            .find(|(_, v)| v.len() != 1 && v.len() != dim)
+        {
             return Err(ReadError::value(format!(
-                "{} has {} components and {} has {}",
-                a.name,
-                first.len(),
-                b.name,
-                second.len()
+                "{} has {} components and another parameter {dim}",
+                q.name,
+                v.len()
             )));
         }
-        let pick = |v: &[f64], j: usize| v[if v.len() == 1 { 0 } else { j }];
-        let components = (0..first.len().max(second.len()))
-            .map(|j| match kind {
-                DispersionKind::Normal => Component::Normal {
-                    mean: pick(&first, j),
-                    std: pick(&second, j),
-                },
-                DispersionKind::Uniform => Component::Uniform {
-                    low: pick(&first, j),
-                    high: pick(&second, j),
-                },
+        let components = (0..dim)
+            .map(|j| {
+                let v: Vec<f64> = values
+                    .iter()
+                    .map(|v| v[if v.len() == 1 { 0 } else { j }])
+                    .collect();
+                match kind {
+                    DispersionKind::Normal => Component::Normal {
+                        mean: v[0],
+                        std: v[1],
+                    },
+                    DispersionKind::Uniform => Component::Uniform {
+                        low: v[0],
+                        high: v[1],
+                    },
+                    DispersionKind::TruncatedNormal => Component::TruncatedNormal {
+                        mean: v[0],
+                        std: v[1],
+                        low: v[2],
+                        high: v[3],
+                    },
+                    DispersionKind::LogNormal => Component::LogNormal {
+                        mu: v[0],
+                        sigma: v[1],
+                    },
+                }
             })
             .collect();
         let d = Dispersion { components };

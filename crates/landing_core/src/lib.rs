@@ -33,6 +33,7 @@ pub mod reference;
 pub mod registry;
 pub mod rng;
 pub mod rollout;
+pub mod special;
 pub mod state;
 pub mod theory;
 #[cfg(feature = "workloads")]

@@ -68,7 +68,10 @@ def monte_carlo(
 
     A parameter of the plant, law, reference or disturbance given per case has one row per
     case of the campaign (``n`` rows; another number is refused, naming it); each chunk runs
-    its own rows (:meth:`Scenario.cases`), so the result does not depend on the chunking.
+    its own rows (:meth:`Scenario.cases`), so the result does not depend on the chunking. A
+    dispersed parameter (:meth:`Scenario.disperse`) is drawn for each chunk's cases from a
+    stream keyed by (seed, case, its path), and recorded as the metric column
+    ``param.<path>`` (:meth:`Scenario.simulate_cases`).
 
     Parameters
     ----------
@@ -150,8 +153,8 @@ def monte_carlo(
         nonlocal diverged_warnings
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", DivergenceWarning)
-            part = scenario.cases(start, stop, n).simulate_batch(x0[start:stop], seed=seed, first_case=start,
-                                                                 threads=threads, record_every=every)
+            part = scenario.simulate_cases(x0[start:stop], start, n, seed=seed, threads=threads,
+                                           record_every=every)
         diverged_warnings += sum(issubclass(w.category, DivergenceWarning) for w in caught)
         return part
 

@@ -153,14 +153,14 @@ def run_chunk(
             f"this worker runs landing {__version__}, the client {version}: install the same version "
             "on every worker (the same bits need the same code)"
         )
-    # the chunk's own rows of the parameters given per case
-    scenario = _scenario_on_worker(payload).cases(start, start + len(x0), n)
+    scenario = _scenario_on_worker(payload)
     # an array received over the network may be read-only or misaligned: the core wants its own
     x0 = np.array(x0, dtype=np.float64, order="C", copy=True)
     with warnings.catch_warnings():
         # the client warns once for the whole campaign
         warnings.simplefilter("ignore", DivergenceWarning)
-        part = scenario.simulate_batch(x0, seed=seed, first_case=start, threads=threads, record_every=record_every)
+        # the chunk's own rows of the parameters given per case, and its draws of the dispersed ones
+        part = scenario.simulate_cases(x0, start, n, seed=seed, threads=threads, record_every=record_every)
     return part.keeping(keep)
 
 

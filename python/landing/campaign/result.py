@@ -207,6 +207,20 @@ class MonteCarloResult:
         err = np.abs(self.metrics["final_error"])
         return np.all(err <= np.asarray(self.bounds.s1_radius), axis=-1)
 
+    def _dispersed_lines(self) -> list[str]:
+        """The dispersed parameters: each one's dispersion and the statistics of its draws
+        (the metric columns ``param.<path>``; per axis, each axis)."""
+        if not self.scenario.dispersions:
+            return []
+        lines = ["  dispersed parameters (their draws: mean, std, min, max):"]
+        for name, d in self.scenario.dispersions.items():
+            v = np.asarray(self.metrics[f"param.{name}"], dtype=float)
+            cols = v.reshape(len(v), -1).T
+            stats = "; ".join(f"{c.mean():.6g}, {c.std(ddof=1) if c.size > 1 else 0.0:.6g}, {c.min():.6g}, "
+                              f"{c.max():.6g}" for c in cols)
+            lines.append(f"    {name} ~ {d!r}: {stats}")
+        return lines
+
     def report(self) -> str:
         m = self.metrics
         n = self.n_cases
@@ -223,6 +237,7 @@ class MonteCarloResult:
         )
         touched = np.isfinite(m["touchdown_time"])
         lines.append(f"  touched down (rz crossed 0): {int(touched.sum())} of {n}")
+        lines.extend(self._dispersed_lines())
         if self.bounds is not None:
             b = self.bounds
             lines.append("  theory (seed 001 Theorem 4), per axis:")

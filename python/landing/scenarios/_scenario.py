@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar, Optional
 
@@ -18,6 +19,7 @@ from landing.errors import LandingError, ParameterError, ParameterTypeError
 from landing.plants import Plant
 from landing.reference import Reference
 from landing.results import SimulationResult
+from landing.scenarios._dispersed import apply_draws, checked_dispersions
 from landing.simulation import RunOptions, simulate, simulate_batch
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -31,7 +33,8 @@ class Scenario:
     """Everything a run needs but the number of cases and the seed.
 
     ``x0`` is the nominal initial state; ``dispersion`` (if any) draws the initial states of
-    a Monte Carlo campaign. ``theta`` holds the splitting constants (theta1, theta2) of seed
+    a Monte Carlo campaign, and ``dispersions`` (parameter path -> dispersion, see
+    :meth:`disperse`) draws its dispersed parameters. ``theta`` holds the splitting constants (theta1, theta2) of seed
     001's practical fixed-time analysis, for the bounds a campaign is checked against.
     ``options`` is the :class:`~landing.simulation.RunOptions` of ``t_final``, ``dt``,
     ``integrator``, ``substeps``, ``record_every``, ``settle_tolerance``, ``chatter_cutoff``
@@ -64,6 +67,7 @@ class Scenario:
     stop_at: Optional[str] = None
     theta: Optional[tuple[float, float]] = None
     description: str = ""
+    dispersions: Mapping[str, Dispersion] = field(default_factory=dict)
     options: RunOptions = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -100,6 +104,52 @@ class Scenario:
                     raise ParameterError(f"{owner}: theta[{i}] = {t:g} violates 0 < theta < 1")
         if not isinstance(self.description, str):
             raise ParameterTypeError(f"{owner}: description must be a string, got {short(self.description)}")
+        try:
+            object.__setattr__(self, "dispersions", checked_dispersions(self, self.dispersions))
+        except LandingError as exc:
+            raise type(exc)(f"{owner}: {exc}") from None
+
+    def disperse(self, dispersions: Mapping[str, Dispersion]) -> Scenario:
+        """A copy whose campaigns draw the parameters ``dispersions`` names, case by case:
+        ``s.disperse({"plant.isp": Normal(225, 5), "controller.alpha1": Uniform(4, 6)})``.
+
+        A key is a parameter's path, as :meth:`case_rows` prints them: the scenario's part
+        (``plant``, ``controller``, ``reference``, ``disturbance``), a nested configuration's
+        field (``plant.sensor``, ``disturbance.parts[1]``), then the parameter. Any numeric
+        parameter (a scalar, or per axis: one component draws one value for every axis, one
+        per axis draws each axis) of a built-in part, or any ``params`` entry of a law or plant
+        written in Python. Case i's draw of a parameter depends only on (seed, i, the path): not
+        on the chunking, the threads or the other parameters dispersed. The draws replace the
+        parameter's value in each case; :func:`~landing.monte_carlo` records them as the metric
+        columns ``param.<path>``. These dispersions add to (or replace, key by key) the
+        scenario's own."""
+        return self.replace(dispersions={**self.dispersions, **dict(dispersions)})
+
+    def parameter_draws(self, start: int, stop: int, seed: int) -> dict[str, np.ndarray]:
+        """The draws of the dispersed parameters for cases ``start .. stop``, each ``(cases,
+        components)``, by path."""
+        return {name: d.sample(stop - start, seed=seed, first_case=start, key=name)
+                for name, d in self.dispersions.items()}
+
+    def with_draws(self, draws: Mapping[str, np.ndarray]) -> Scenario:
+        """This scenario with each dispersed parameter given values per case: ``draws[path]``,
+        ``(cases, components)`` (as :meth:`parameter_draws` gives them)."""
+        return apply_draws(self, draws) if draws else self
+
+    def simulate_cases(self, x0: Any, start: int, n: int, *, seed: int, **overrides: Any) -> SimulationResult:
+        """Cases ``start .. start + len(x0)`` of an ``n``-case campaign from their initial
+        states ``x0``: the parameters given per case keep these cases' rows (:meth:`cases`), the
+        dispersed ones take these cases' draws (their metric columns ``param.<path>``), and
+        ``seed`` and ``first_case = start`` key the random disturbances, as in the campaign."""
+        x0 = np.asarray(x0, dtype=float)
+        stop = start + x0.shape[0]
+        scenario = self.cases(start, stop, n)
+        draws = self.parameter_draws(start, stop, seed)
+        scenario = scenario.with_draws(draws)
+        part = scenario.simulate_batch(x0, seed=seed, first_case=start, **overrides)
+        if draws:
+            part = part.with_metrics({f"param.{k}": (v[:, 0] if v.shape[1] == 1 else v) for k, v in draws.items()})
+        return part
 
     def replace(self, **changes: Any) -> Scenario:
         """A copy with some fields changed: ``s.replace(dt=1e-2)``. A dict given for a part
@@ -114,7 +164,7 @@ class Scenario:
             )
         for key, value in changes.items():
             current = getattr(self, key)
-            if isinstance(value, dict) and hasattr(current, "replace"):
+            if isinstance(value, dict) and hasattr(current, "replace") and key != "dispersions":
                 changes[key] = current.replace(**value)
         return dataclasses.replace(self, **changes)
 

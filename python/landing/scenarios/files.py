@@ -178,6 +178,8 @@ def scenario_to_dict(scenario: Scenario) -> dict[str, Any]:
         out["reference"] = _encode_table(scenario.reference)
     if scenario.dispersion is not None:
         out["dispersion"] = _encode_table(scenario.dispersion)
+    if scenario.dispersions:
+        out["dispersions"] = {name: _encode_table(d) for name, d in scenario.dispersions.items()}
     d = scenario.disturbance
     if d is not None:
         parts = d.components() if isinstance(d, disturbances.Disturbance) else list(d)
@@ -370,6 +372,40 @@ def _decode_table(table: Any, module: ModuleType, source: str, path: str) -> Tab
         raise FileError(f"{_where(source, path)}: {exc}") from None
 
 
+#: The short form of a parameter's dispersion: ``{ normal = [mean, std] }`` and the like.
+SHORT_DISPERSIONS: dict[str, type] = {
+    "normal": dispersions.Normal, "uniform": dispersions.Uniform,
+    "truncated_normal": dispersions.TruncatedNormal, "lognormal": dispersions.LogNormal,
+}
+
+
+def _decode_dispersions(table: Any, source: str) -> dict[str, Any]:
+    """The ``[dispersions]`` table: parameter path -> a dispersion's table (``kind = "Normal"``,
+    its fields), or its short form ``{ normal = [225.0, 5.0] }`` (the fields in order)."""
+    if not isinstance(table, Mapping):
+        raise FileError(f"{source}: dispersions must be a table of parameter paths ('plant.isp') to dispersions")
+    out = {}
+    for name, spec in table.items():
+        path = f"dispersions.{_key(name)}"
+        short = [k for k in SHORT_DISPERSIONS if isinstance(spec, Mapping) and k in spec]
+        if isinstance(spec, Mapping) and "kind" not in spec and len(spec) == 1 and short:
+            cls = SHORT_DISPERSIONS[short[0]]
+            values = spec[short[0]]
+            fields = [f.name for f in dataclasses.fields(cls) if f.init]
+            if not isinstance(values, list) or len(values) != len(fields):
+                raise FileError(f"{_where(source, path + '.' + short[0])} = {values!r} must list {fields}")
+            try:
+                out[name] = cls(*values)
+            except LandingError as exc:
+                raise FileError(f"{_where(source, path)}: {exc}") from None
+        elif isinstance(spec, Mapping) and "kind" not in spec:
+            raise FileError(f"{_where(source, path)} = {spec!r} must be a dispersion's table (kind = \"Normal\", "
+                            f"...) or one of {sorted(SHORT_DISPERSIONS)} with its fields in order")
+        else:
+            out[name] = _decode_table(spec, dispersions, source, path)
+    return out
+
+
 def _check_settings(d: Mapping[str, Any], source: str) -> None:
     """The scenario's own settings: what a TOML value must be (a string, an integer), then the
     run options' rules (:class:`~landing.simulation.RunOptions`), each refusal naming the file."""
@@ -394,7 +430,7 @@ def _check_settings(d: Mapping[str, Any], source: str) -> None:
 def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Scenario:
     """A :class:`~landing.scenarios.Scenario` from the nested dict of a file; ``source`` names
     the file in error messages."""
-    allowed = set(_SETTINGS) | set(SECTIONS)
+    allowed = set(_SETTINGS) | set(SECTIONS) | {"dispersions"}
     for key in d:
         if key not in allowed:
             raise FileError(f"{source}: {key}: unknown key (a scenario takes {sorted(allowed)})")
@@ -421,10 +457,15 @@ def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Scen
             f"{source}: x0 = {d['x0']!r} violates x0 a list of {plant.state_dim} finite numbers "
             f"({', '.join(plant.state_names)})"
         )
+    if "dispersions" in d:
+        parts["dispersions"] = _decode_dispersions(d["dispersions"], source)
     settings = {k: d[k] for k in _SETTINGS if k in d and k not in ("x0", "theta")}
     if "theta" in d:
         settings["theta"] = tuple(float(v) for v in d["theta"])
     for key in ("t_final", "dt", "settle_tolerance", "chatter_cutoff"):
         if key in settings:
             settings[key] = float(settings[key])
-    return Scenario(x0=x0, **settings, **parts)
+    try:
+        return Scenario(x0=x0, **settings, **parts)
+    except LandingError as exc:  # what only the whole scenario can check (a dispersed parameter's path)
+        raise FileError(f"{source}: {exc}") from None

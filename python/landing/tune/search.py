@@ -206,6 +206,12 @@ def tune(
     # every set-up's run options, with nothing recorded but the metrics, checked once
     run = {label: s.options.replace(record_every=0, threads=threads) for label, s in setups.items()}
     specs = _parse_gains(gains, first.controller)
+    for label, s in setups.items():
+        both = [g.name for g in specs if f"controller.{g.name}" in s.dispersions]
+        if both:
+            where = f"scenario[{label!r}]" if label else "the scenario"
+            raise ParameterError(f"gains: {both[0]!r} is tuned and {where} disperses it (controller.{both[0]}): "
+                                 "tune it or disperse it")
     mss = isinstance(first.controller, controllers.FixedTimeMSS)
 
     metric_names: list[str] = []
@@ -387,14 +393,19 @@ def _evaluate(scenario: Scenario, specs: tuple[GainSpec, ...], G: np.ndarray, x0
               seed: int, options: RunOptions) -> list[Metrics]:
     """Every candidate (row of G) on the K cases of one set-up: one Metrics per candidate."""
     P = G.shape[0]
+    # the dispersed parameters' draws for the K cases, the same for every candidate
+    draws = scenario.parameter_draws(0, K, seed)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DivergenceWarning)
         if _is_random(scenario.disturbance):
+            scenario = scenario.with_draws(draws)
             out = []
             for i in range(P):
                 law = scenario.controller.replace(**{s.name: float(G[i, j]) for j, s in enumerate(specs)})
                 out.append(_run(scenario, law, x0_cases, seed, options).metrics)
             return out
+        # one batch of P x K cases: candidate i's are rows i K .. (i + 1) K, each with the K draws
+        scenario = scenario.with_draws({k: np.tile(v, (P, 1)) for k, v in draws.items()})
         law = scenario.controller.replace(
             **{s.name: _per_case(np.repeat(G[:, j], K), _column_shape(scenario.controller, s.name))
                for j, s in enumerate(specs)})
