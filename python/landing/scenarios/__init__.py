@@ -9,6 +9,7 @@ reproduce the seeds' experiments and ship as TOML files, which :meth:`Scenario.l
 from landing.scenarios._presets import (
     MARS_FIXED_TIME_GAINS,
     MARS_NOMINAL_STATE,
+    MARS_REALISTIC_DISPERSIONS,
     MARS_REALISTIC_ENGINE,
     MARS_REALISTIC_GAINS,
     MARS_SUPER_TWISTING_C,
@@ -60,6 +61,7 @@ __all__ = [
     "write_preset_files",
     "MARS_FIXED_TIME_GAINS",
     "MARS_NOMINAL_STATE",
+    "MARS_REALISTIC_DISPERSIONS",
     "MARS_REALISTIC_ENGINE",
     "MARS_REALISTIC_GAINS",
     "MARS_SUPER_TWISTING_C",

@@ -36,6 +36,7 @@ __all__ = [
     "mars_super_twisting",
     "mars_monte_carlo",
     "mars_thrust_limited",
+    "MARS_REALISTIC_DISPERSIONS",
     "MARS_REALISTIC_ENGINE",
     "MARS_REALISTIC_GAINS",
     "mars_realistic",
@@ -149,6 +150,18 @@ MARS_REALISTIC_ENGINE: dict[str, Any] = dict(
     control_delay=2.0,
 )
 
+#: The realistic loop's parameter dispersions (docs/parameters.md, "mars_realistic"): the
+#: engine's Isp and thrust 1 % (1 sigma, truncated at 3 sigma), its time constant anywhere in
+#: 0.05 to 0.15 s, the drag coefficient by a factor exp(N(0, 0.2)).
+MARS_REALISTIC_DISPERSIONS: dict[str, Any] = {
+    "plant.isp": dispersions.TruncatedNormal(225.0, 2.25, 225.0 - 6.75, 225.0 + 6.75),
+    "plant.thrust_magnitude_limit": dispersions.TruncatedNormal(
+        MARS_REALISTIC_ENGINE["thrust_magnitude_limit"], 0.01 * MARS_REALISTIC_ENGINE["thrust_magnitude_limit"],
+        0.97 * MARS_REALISTIC_ENGINE["thrust_magnitude_limit"], 1.03 * MARS_REALISTIC_ENGINE["thrust_magnitude_limit"]),
+    "plant.engine_time_constant": dispersions.Uniform(0.05, 0.15),
+    "plant.drag_coefficient": dispersions.LogNormal(float(np.log(0.699)), 0.2),
+}
+
 #: Fixed-time MSS gains for the realistic loop, found by landing.tune (examples/mars_realistic.py
 #: --tune prints the search; docs/parameters.md, "mars_realistic").
 MARS_REALISTIC_GAINS: dict[str, Any] = dict(
@@ -163,7 +176,8 @@ MARS_REALISTIC_TERMINAL = (5.0, 0.5, 40.0)
 def mars_realistic(**overrides: Any) -> Scenario:
     """The Mars lander in a GNC-realistic loop: a real engine (magnitude limit, minimum
     throttle, pointing cone, lag, a two-period delay), a noisy sensor read through a Kalman
-    filter, Table II dispersions, engine-thrust and gust disturbances, a reference with a
+    filter, Table II dispersions and dispersed engine and drag parameters
+    (:data:`MARS_REALISTIC_DISPERSIONS`), engine-thrust and gust disturbances, a reference with a
     terminal constant-velocity phase, and each case ending at touchdown; run it with
     ``landing.monte_carlo(scenario, 1000)``. The library's soft landing beside the paper
     reproductions (docs/parameters.md, "mars_realistic", for every choice and its source)."""
@@ -190,6 +204,7 @@ def mars_realistic(**overrides: Any) -> Scenario:
         record_every=10,
         settle_tolerance=1.0,
         stop_at="touchdown",
+        dispersions=dict(MARS_REALISTIC_DISPERSIONS),
     )
     return s.replace(**overrides)
 
