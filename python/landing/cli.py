@@ -106,6 +106,14 @@ def cmd_report(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def cmd_verify(args: argparse.Namespace) -> int:
+    """A stored campaign against a requirement: exit 0 when it shows the requirement met for at
+    least p of cases with the confidence, 1 when it does not."""
+    v = load(args.store).verify(args.requirement, args.p, args.confidence)
+    print(v)
+    return EXIT_OK if v.met else EXIT_FAILURE
+
+
 def cmd_bounds(args: argparse.Namespace) -> int:
     scenario = _scenario(args.scenario)
     law = scenario.controller
@@ -231,6 +239,15 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("store", metavar="DIR")
     p.add_argument("--out", default=None, help="folder for the figures (default DIR/figures); '' for none")
     p.set_defaults(run=cmd_report)
+
+    p = sub.add_parser("verify", help="a stored campaign against a requirement, with a confidence "
+                                      "(exit 1 when not shown)")
+    p.add_argument("store", metavar="DIR")
+    p.add_argument("requirement", metavar="REQUIREMENT",
+                   help='each case\'s pass or fail, e.g. "touchdown_speed <= 1 and max(abs(touchdown_position)) <= 5"')
+    p.add_argument("--p", type=float, default=0.9973, help="the fraction of cases to show it for (default 0.9973)")
+    p.add_argument("--confidence", type=float, default=0.9, help="the confidence (default 0.9)")
+    p.set_defaults(run=cmd_verify)
 
     p = sub.add_parser("bounds", help="the theory's bounds for a scenario's law")
     p.add_argument("scenario", metavar="SCENARIO")

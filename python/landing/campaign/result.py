@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
+from landing.campaign.verify import Verification, tolerance_bound, verify
 from landing.errors import ParameterError
 from landing.results import SIGNALS, Metrics, SimulationResult, describe_diverged, diverged_cases, result_dataset
 from landing.scenarios import Scenario
@@ -155,6 +156,28 @@ class MonteCarloResult:
     def summary(self) -> Summary:
         return summarize(self.metrics)
 
+    def verify(self, requirement: str, p: float = 0.9973, confidence: float = 0.9) -> Verification:
+        """The requirement checked case by case, and whether the campaign shows it met for at
+        least ``p`` of cases with ``confidence`` (Clopper-Pearson; :mod:`landing.campaign.verify`):
+        ``mc.verify("touchdown_speed <= 1 and max(abs(touchdown_position)) <= 5")`` in the
+        grammar of the tuner's expressions, each case's pass or fail (``and``, ``or``, ``not``;
+        an aggregate reduces the case's own axes). A case with a NaN metric (diverged, never
+        touched down) fails."""
+        return verify(self.metrics, requirement, p, confidence)
+
+    def tolerance_bound(self, metric: str, p: float = 0.9973, confidence: float = 0.9,
+                        side: str = "upper") -> float:
+        """A value of ``metric`` that at least ``p`` of cases stay below (``side="upper"``) or
+        above (``"lower"``) with ``confidence``: the order statistic of Wilks' distribution-free
+        bound (:func:`landing.campaign.verify.tolerance_bound`). A per-axis metric is refused:
+        give a scalar one."""
+        if metric not in self.metrics:
+            raise ParameterError(f"metric = {metric!r} is not one of the campaign's metrics ({sorted(self.metrics)})")
+        values = np.asarray(self.metrics[metric], dtype=float)
+        if values.ndim != 1:
+            raise ParameterError(f"metric = {metric!r} is per axis; a tolerance bound takes a scalar metric")
+        return tolerance_bound(values, p, confidence, side)
+
     def bands(self, signal: str, percentiles: Sequence[float] = (5, 50, 95)) -> Bands:
         """Per-instant percentiles over the cases of a recorded signal: a state or control
         component by name (``"rz"``, ``"Fz"``) or a diagnostic (``"s1"``, per axis). NaN-aware:
@@ -221,7 +244,9 @@ class MonteCarloResult:
             lines.append(f"    {name} ~ {d!r}: {stats}")
         return lines
 
-    def report(self) -> str:
+    def report(self, requirement: Optional[str] = None, p: float = 0.9973, confidence: float = 0.9) -> str:
+        """The campaign in words: its statistics, landings, dispersed parameters, the theory's
+        checks, and with ``requirement`` its verification (:meth:`verify`)."""
         m = self.metrics
         n = self.n_cases
         lines = [
@@ -238,6 +263,8 @@ class MonteCarloResult:
         touched = np.isfinite(m["touchdown_time"])
         lines.append(f"  touched down (rz crossed 0): {int(touched.sum())} of {n}")
         lines.extend(self._dispersed_lines())
+        if requirement is not None:
+            lines.extend("  " + row for row in str(self.verify(requirement, p, confidence)).splitlines())
         if self.bounds is not None:
             b = self.bounds
             lines.append("  theory (seed 001 Theorem 4), per axis:")

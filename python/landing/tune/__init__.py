@@ -43,7 +43,7 @@ Several objectives: CMA-ES ranks by non-dominated sorting; the result's front is
 front of all feasible evaluations, not the output of a dedicated multi-objective algorithm.
 """
 
-from landing.tune.expression import BOUND_NAMES, Expression
+from landing._internal.expression import BOUND_NAMES, Expression
 from landing.tune.pareto import pareto_front
 from landing.tune.result import GainSpec, TuneResult
 from landing.tune.search import tune

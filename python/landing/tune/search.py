@@ -7,7 +7,7 @@ import dataclasses
 import math
 import time
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Optional, Union
 
@@ -15,15 +15,19 @@ import numpy as np
 
 from landing import controllers, theory
 from landing._internal.args import integer, real
+from landing._internal.expression import BOUND_NAMES, Expression, UserFunction
 from landing._internal.progress import ProgressBar
 from landing._internal.table import Parameter
 from landing.errors import DivergenceWarning, ParameterError
 from landing.results import Metrics, SimulationResult
 from landing.scenarios import Scenario
 from landing.simulation import RunOptions, simulate_batch
-from landing.tune.expression import BOUND_NAMES, Expression, ObjectiveLike, UserFunction
 from landing.tune.pareto import best_and_front, ranks
 from landing.tune.result import GainSpec, TuneResult
+
+#: An objective or constraint: an expression of the grammar (``landing._internal.expression``),
+#: or a callable ``f(metrics, bounds) -> float``.
+ObjectiveLike = Union[str, Callable[[Metrics, Optional[Mapping[str, float]]], float]]
 
 __all__ = ["tune"]
 

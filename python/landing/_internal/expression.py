@@ -1,20 +1,27 @@
-"""The objective and constraint grammar of :func:`landing.tune` (see :mod:`landing.tune`):
-parsed with :mod:`ast`, checked node by node, then evaluated on a candidate's metrics and
-bounds; nothing is ``eval``-ed."""
+"""One expression grammar on a campaign's metrics: the objectives and constraints of
+:func:`landing.tune` (see :mod:`landing.tune`) and the requirements a campaign is verified
+against (:meth:`MonteCarloResult.verify <landing.MonteCarloResult.verify>`). Parsed with
+:mod:`ast`, checked node by node, then evaluated on the metrics (and the theory's bounds);
+nothing is ``eval``-ed.
+
+An objective reduces the metrics of all the cases to one number (``mean(fuel_used)``); a
+constraint compares two such numbers. A requirement is one case's pass or fail: comparisons
+joined by ``and``, ``or`` and ``not``, where an aggregate reduces over the case's own values
+(its axes), so ``max(abs(touchdown_position)) <= 10`` asks every coordinate of each case's
+touchdown to be within 10 m. A case whose metric is NaN (diverged, or no touchdown) fails."""
 
 from __future__ import annotations
 
 import ast
 import math
 from collections.abc import Mapping, Sequence
-from typing import Any, Callable, Optional, Union
+from typing import Any, Callable, Optional
 
 import numpy as np
 
 from landing.errors import ParameterError
-from landing.results import Metrics
 
-__all__ = ["BOUND_NAMES", "Expression", "ObjectiveLike", "UserFunction"]
+__all__ = ["BOUND_NAMES", "Expression", "UserFunction"]
 
 #: Bound names an expression may use (FixedTimeMSS laws).
 BOUND_NAMES = ("t1", "t2", "s1_radius", "s1_time", "s2_radius", "s2_time", "settle_bound")
@@ -22,7 +29,7 @@ BOUND_NAMES = ("t1", "t2", "s1_radius", "s1_time", "s2_radius", "s2_time", "sett
 _ELEMENTWISE: dict[str, Callable[[Any], Any]] = {
     "abs": np.abs, "sqrt": np.sqrt, "log": np.log, "log10": np.log10, "exp": np.exp,
 }
-_AGGREGATES: dict[str, Callable[[Any], Any]] = {
+_AGGREGATES: dict[str, Callable[..., Any]] = {
     "mean": np.mean, "max": np.max, "min": np.min, "std": np.std, "median": np.median,
     "sum": np.sum, "all": np.all, "any": np.any,
 }
@@ -34,15 +41,14 @@ _CMPOPS: dict[type, tuple[str, Callable[[Any, Any], Any]]] = {
     ast.GtE: (">=", np.greater_equal),
 }
 
-ObjectiveLike = Union[str, Callable[[Metrics, Optional[Mapping[str, float]]], float]]
-
 
 class Expression:
-    """An objective or constraint parsed from the grammar of this module.
+    """An objective, constraint or requirement parsed from the grammar of this module.
 
     ``Expression(text, metric_names, bound_names, kind)`` refuses (ParameterError naming the
     expression) unknown names, anything outside the grammar, an objective that does not reduce
-    to one number, and a constraint that is not one comparison."""
+    to one number, a constraint that is not one comparison, and a requirement that is not
+    comparisons joined by ``and``, ``or`` and ``not``."""
 
     def __init__(self, text: str, metric_names: Sequence[str], bound_names: Sequence[str] = (),
                  kind: str = "objective"):
@@ -58,6 +64,10 @@ class Expression:
             raise ParameterError(f"{kind} = {text!r} is not a valid expression ({exc.msg})") from None
         self.names: set[str] = set()
         body = tree.body
+        if kind == "requirement":
+            self._check_requirement(body)
+            self.body = body
+            return
         if kind == "constraint":
             if not (isinstance(body, ast.Compare) and len(body.ops) == 1 and type(body.ops[0]) in _CMPOPS):
                 raise ParameterError(
@@ -79,6 +89,66 @@ class Expression:
                     f"per-case metrics with mean, max, min, percentile...)"
                 )
             self.body = body
+
+    def _check_requirement(self, node: ast.AST) -> None:
+        """A requirement: comparisons joined by and, or and not (each side per case)."""
+        if isinstance(node, ast.BoolOp):
+            for v in node.values:
+                self._check_requirement(v)
+        elif isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not):
+            self._check_requirement(node.operand)
+        elif isinstance(node, ast.Compare):
+            self._check(node)
+        else:
+            raise ParameterError(
+                f"requirement = {self.text!r} violates the rule: comparisons (<, <=, > or >=) joined by and, or "
+                f"and not, each case's pass or fail (at {ast.unparse(node)!r})")
+
+    def holds(self, columns: Mapping[str, Any]) -> np.ndarray:
+        """A requirement's pass (True) or fail per case, on the metric columns ``columns``
+        (each (N,) or (N, D)); NaN fails."""
+        if self.kind != "requirement":
+            raise ParameterError(f"{self.kind} = {self.text!r} is not a requirement")
+        n = len(np.asarray(columns["diverged"]))
+        with np.errstate(all="ignore"):
+            out = np.asarray(self._per_case(self.body, columns), dtype=bool)
+        return np.broadcast_to(out, (n,)).copy()
+
+    def _per_case(self, node: ast.AST, env: Mapping[str, Any]) -> Any:
+        """A requirement's node for every case at once: an aggregate reduces each case's own
+        values (its row), not the cases."""
+        if isinstance(node, ast.BoolOp):
+            parts = [self._per_case(v, env) for v in node.values]
+            join = np.logical_and if isinstance(node.op, ast.And) else np.logical_or
+            out = parts[0]
+            for p in parts[1:]:
+                out = join(out, p)
+            return out
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not):
+            return np.logical_not(self._per_case(node.operand, env))
+        if isinstance(node, ast.Compare):
+            left, right = self._per_case(node.left, env), self._per_case(node.comparators[0], env)
+            return _CMPOPS[type(node.ops[0])][1](left, right)
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and (
+                node.func.id in _AGGREGATES or node.func.id == "percentile"):
+            x = np.asarray(self._per_case(node.args[0], env), dtype=float)
+            rows = x.reshape(x.shape[0], -1) if x.ndim >= 1 else x.reshape(1, 1)
+            f = node.func.id
+            if f == "percentile":
+                q = node.args[1]
+                assert isinstance(q, ast.Constant) and isinstance(q.value, (int, float))  # (_check)
+                out = np.percentile(rows, float(q.value), axis=1)
+            else:
+                out = _AGGREGATES[f](rows, axis=1)
+            return out if x.ndim >= 1 else out[0]
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+            return _ELEMENTWISE[node.func.id](np.asarray(self._per_case(node.args[0], env), dtype=float))
+        if isinstance(node, ast.BinOp):
+            return _BINOPS[type(node.op)](self._per_case(node.left, env), self._per_case(node.right, env))
+        if isinstance(node, ast.UnaryOp):
+            v = self._per_case(node.operand, env)
+            return np.negative(v) if isinstance(node.op, ast.USub) else v
+        return self._eval(node, env)
 
     def _refuse(self, node: ast.AST, why: str) -> ParameterError:
         return ParameterError(f"{self.kind} = {self.text!r}: {why} (at {ast.unparse(node)!r})")
