@@ -270,8 +270,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     args = parser().parse_args(argv)  # exits with 2 on a bad command line
     try:
         return args.run(args)
-    except KeyboardInterrupt:
-        print("landing: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as exc:
+        # a campaign says what it kept and how to resume
+        print(f"landing: interrupted{': ' + str(exc) if str(exc) else ''}", file=sys.stderr)
         return 130
     except BrokenPipeError:
         # the reader went away (`landing list | head`): not an error of ours

@@ -90,10 +90,10 @@ def assemble_campaign(
             part = run_chunk(start, stop)
             if store is not None:
                 write_chunk(store, scenario, seed, x0, index, start, stop, part)
+            if bar:  # the cases computed now (a resumed campaign's bar counts only those)
+                bar.update(stop - start)
         out.put(start, part)
         del part
-        if bar:
-            bar.update(stop - start)
     return finish_campaign(scenario, seed, x0, out.result(), keep, store, check_bounds)
 
 

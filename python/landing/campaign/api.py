@@ -4,17 +4,20 @@ reads a stored one back."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import warnings
 from collections.abc import Sequence
 from typing import Any, Optional, Union
 
+import numpy as np
+
 from landing._internal.args import boolean, integer
 from landing._internal.limits import require_memory
 from landing._internal.progress import ProgressBar
-from landing.campaign._assembly import assemble_campaign
+from landing.campaign._assembly import Assembly, assemble_campaign, finish_campaign
 from landing.campaign.result import MonteCarloResult
-from landing.campaign.store import default_chunk_size, open_campaign_store, read_campaign_store
+from landing.campaign.store import CampaignStore, default_chunk_size, open_campaign_store, read_campaign_store
 from landing.errors import DivergenceWarning, ParameterError
 from landing.results import SIGNALS, SimulationResult, describe_diverged
 from landing.scenarios import Scenario
@@ -159,7 +162,10 @@ def monte_carlo(
         return part
 
     try:
-        bar = ProgressBar(n, label=scenario.name) if progress else None
+        # a resumed campaign counts the cases it computes, and says how many the store holds
+        kept = 0 if campaign_store is None else sum(c["stop"] - c["start"] for c in campaign_store.completed.values())
+        label = scenario.name if not kept else f"{scenario.name} (resumed: {kept} of {n} cases in the store)"
+        bar = ProgressBar(n - kept, label=label) if progress and kept < n else None
         if client is not None:
             mc = cluster.run_campaign(client, scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
                               record_every=every, threads=threads, store=campaign_store,
@@ -168,6 +174,8 @@ def monte_carlo(
             mc = assemble_campaign(scenario, n=n, seed=seed, x0=x0, chunk_size=chunk_size, keep=keep,
                                    run_chunk=run_chunk, store=campaign_store, check_bounds=check_bounds,
                                    bar=bar)
+    except KeyboardInterrupt:
+        raise KeyboardInterrupt(_interrupted(campaign_store, n)) from None
     finally:
         if bar:
             bar.close()
@@ -183,18 +191,46 @@ def monte_carlo(
     return mc
 
 
-def load(path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None) -> MonteCarloResult:
+def _interrupted(store: Optional[CampaignStore], n: int) -> str:
+    """What an interrupted campaign kept, and how to go on."""
+    if store is None:
+        return (f"the campaign of {n} cases was interrupted; nothing is kept (with store=DIR the completed chunks "
+                "are, and the same call resumes it)")
+    kept = sum(c["stop"] - c["start"] for c in store.completed.values())
+    return (f"the campaign was interrupted: {kept} of {n} cases ({len(store.completed)} of {store.n_chunks} "
+            f"chunks) are kept in '{store.path}'; the same monte_carlo(..., store='{store.path}') call (or landing "
+            f"mc ... --store {store.path}) resumes it, landing.load('{store.path}', partial=True) reads them")
+
+
+def load(path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None,
+         partial: bool = False) -> MonteCarloResult:
     """The campaign stored at ``path`` (by ``landing.monte_carlo(..., store=path)``), bit for bit
     the result of the run that wrote it.
 
     ``scenario`` is the campaign's scenario; it is checked against the stored one. Without it
     the scenario is rebuilt from the stored text when it is a preset's. A store whose run was
-    interrupted is refused (re-run ``monte_carlo`` with the same ``store`` to complete it).
-    Needs ``pip install "landing[io]"``.
+    interrupted is refused (re-run ``monte_carlo`` with the same ``store`` to complete it),
+    unless ``partial``: then the result holds the completed chunks' cases only, in case order,
+    ``mc.cases`` their indices in the campaign and ``mc.planned`` its size, and its report says
+    so. Needs ``pip install "landing[io]"``.
     """
-    store, scenario, x0, check_bounds = read_campaign_store(path, scenario=scenario)
+    partial = boolean("partial", partial)
+    store, scenario, x0, check_bounds = read_campaign_store(path, scenario=scenario, partial=partial)
     key = store.key
-    return assemble_campaign(
-        scenario, n=key.n, seed=key.seed, x0=x0, chunk_size=key.chunk_size, keep=key.keep,
-        run_chunk=None, store=store, check_bounds=check_bounds,
-    )
+    if len(store.completed) == store.n_chunks:
+        return assemble_campaign(
+            scenario, n=key.n, seed=key.seed, x0=x0, chunk_size=key.chunk_size, keep=key.keep,
+            run_chunk=None, store=store, check_bounds=check_bounds,
+        )
+    chunks = sorted(store.completed)
+    if not chunks:
+        raise ParameterError(f"the campaign at '{path}' has no completed chunk yet: nothing to load")
+    index = np.concatenate([np.arange(store.completed[i]["start"], store.completed[i]["stop"]) for i in chunks])
+    out = Assembly(index.size, key.keep)
+    row = 0
+    for i in chunks:
+        part = store.read_chunk(i)
+        out.put(row, part)
+        row += part.n_cases
+    mc = finish_campaign(scenario, key.seed, x0[index], out.result(), key.keep, store, check_bounds)
+    return dataclasses.replace(mc, cases=index, planned=key.n)

@@ -231,8 +231,6 @@ def run_campaign(
             part = store.read_chunk(index)
             out.put(start, part)
             del part
-            if bar:
-                bar.update(stop - start)
         else:
             todo.append((index, start, stop))
 

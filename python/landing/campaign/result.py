@@ -10,8 +10,9 @@ from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
+from landing._internal.args import integer
 from landing.campaign.verify import Verification, tolerance_bound, verify
-from landing.errors import ParameterError
+from landing.errors import ParameterError, ParameterTypeError
 from landing.results import SIGNALS, Metrics, SimulationResult, describe_diverged, diverged_cases, result_dataset
 from landing.scenarios import Scenario
 from landing.theory import BoundCheck, MSSBounds
@@ -127,6 +128,58 @@ class MonteCarloResult:
     keep: tuple[str, ...] = SIGNALS
     #: The directory the campaign is stored in, if any.
     store: Optional[str] = None
+    #: The campaign's case index of each row, when this is part of a campaign (a partial store's
+    #: completed cases, ``landing.load(path, partial=True)``); None when the rows are cases 0..n-1.
+    cases: Optional[np.ndarray] = None
+    #: The number of cases the campaign was planned with, when this is part of it.
+    planned: Optional[int] = None
+
+    @property
+    def partial(self) -> bool:
+        """Whether this holds only some of the campaign's cases (an interrupted store's)."""
+        return self.cases is not None
+
+    def case_index(self, row: int) -> int:
+        """The campaign's index of row ``row`` (the same unless :attr:`partial`)."""
+        row = integer("case", row, minimum=-self.n_cases, maximum=self.n_cases - 1)
+        row %= self.n_cases
+        return int(self.cases[row]) if self.cases is not None else row
+
+    def __len__(self) -> int:
+        return self.n_cases
+
+    def __getitem__(self, case: int) -> SimulationResult:
+        """Row ``case`` (case ``case`` of the campaign unless :attr:`partial`) alone, its
+        recorded signals and metrics, the case axis dropped."""
+        if isinstance(case, (bool, np.bool_)) or not isinstance(case, (int, np.integer)):
+            raise ParameterTypeError(f"a campaign is indexed by a case number, got {type(case).__name__} "
+                                     "(several cases: mc.result.cases(a, b))")
+        self.case_index(int(case))  # the range check
+        return self.result[int(case)]
+
+    def worst(self, metric: str, k: int = 5, *, largest: bool = True) -> np.ndarray:
+        """The rows of the ``k`` worst cases by the scalar ``metric``, worst first: the largest
+        values (``largest=False``: the smallest), a case whose value is NaN (diverged, no event)
+        before any finite one. Index the campaign with them (``mc[i]``) or re-run them
+        (:meth:`rerun`)."""
+        if metric not in self.metrics:
+            raise ParameterError(f"metric = {metric!r} is not one of the campaign's metrics ({sorted(self.metrics)})")
+        v = np.asarray(self.metrics[metric], dtype=float)
+        if v.ndim != 1:
+            raise ParameterError(f"metric = {metric!r} is per axis; rank the cases by a scalar metric")
+        k = integer("k", k, minimum=0)
+        key = np.where(np.isnan(v), -np.inf, -v if largest else v)  # NaN first, then worst first
+        return np.argsort(key, kind="stable")[:k]
+
+    def rerun(self, case: int, **overrides: Any) -> SimulationResult:
+        """Row ``case`` simulated again, alone, as the campaign ran it (its initial state, its
+        rows of the parameters given per case, its draws of the dispersed ones and of the random
+        disturbances): bit for bit the campaign's case, with other run options if given, such
+        as ``record_every=1`` to record every instant of a failed case."""
+        i = self.case_index(case)
+        row = int(case) % self.n_cases
+        n = self.planned if self.planned is not None else self.n_cases
+        return self.scenario.simulate_cases(self.x0[row:row + 1], i, n, seed=self.seed, **overrides)
 
     @property
     def n_cases(self) -> int:
@@ -252,6 +305,8 @@ class MonteCarloResult:
         lines = [
             f"{self.scenario.name}: {n} cases, seed {self.seed}, {self.scenario.t_final:g} s at dt = "
             f"{self.scenario.dt:g} s ({self.scenario.integrator})",
+            *([f"  partial: {n} of the campaign's {self.planned} cases (its completed chunks; resume it with "
+               f"monte_carlo(..., store={self.store!r}))"] if self.partial else []),
             f"  diverged: {describe_diverged(m)}",
             str(self.summary()),
         ]

@@ -499,7 +499,12 @@ class CampaignStore:
         self._note_kernel(part.kernel)
         self.completed[index] = {"index": index, "start": start, "stop": stop, "kernel": part.kernel,
                                  "written": _now()}
-        self._write_manifest()
+        try:
+            self._write_manifest()
+        except BaseException:
+            # not in the manifest, so not kept: what an interruption reports is what a resume finds
+            del self.completed[index]
+            raise
 
     def read_metrics(self, index: int) -> dict[str, np.ndarray]:
         """Chunk ``index``'s metric columns, put back together (dtypes as written)."""
@@ -589,12 +594,14 @@ def _column(table: Any, name: str, dtype: str) -> np.ndarray:
 
 
 def read_campaign_store(
-    path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None
+    path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None, partial: bool = False
 ) -> tuple[CampaignStore, Scenario, np.ndarray, bool]:
-    """The complete campaign stored at ``path``, open for reading: its store, its scenario (the
-    one given, checked against the stored text, or rebuilt from that text), its initial states
-    (checked against the provenance record) and whether its run checked the bounds. An
-    interrupted campaign is refused. What :func:`landing.load` assembles the result from."""
+    """The campaign stored at ``path``, open for reading: its store, its scenario (the one
+    given, checked against the stored text, or rebuilt from that text), its initial states
+    (checked against the provenance record; with ``partial``, the completed chunks' rows
+    against the scenario's draws, the others NaN) and whether its run checked the bounds. An
+    interrupted campaign is refused unless ``partial``. What :func:`landing.load` assembles the
+    result from."""
     require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="landing.load")
     path = Path(path)
     prov_path = path / PROVENANCE
@@ -617,13 +624,20 @@ def read_campaign_store(
         )
     manifest = json.loads((path / MANIFEST).read_text())
     store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]}, manifest.get("layout", {}))
-    if len(store.completed) != store.n_chunks:
+    complete = len(store.completed) == store.n_chunks
+    if not complete and not partial:
         raise ParameterError(
             f"the campaign at '{path}' is incomplete ({manifest['completed_cases']} of {key.n} cases in "
             f"{len(store.completed)} of {store.n_chunks} chunks); re-run landing.monte_carlo with "
-            "store= this path to complete it"
+            "store= this path to complete it, or load the completed cases: landing.load(path, partial=True)"
         )
     x0 = store.read_initial()
+    if not complete:
+        done = np.isfinite(x0).all(axis=1)
+        drawn = scenario.initial_states(key.n, seed=key.seed)
+        if not np.array_equal(x0[done], drawn[done]):
+            raise ParameterError(f"the initial states stored at '{path}' are not its scenario's draws")
+        return store, scenario, x0, bool(prov.get("check_bounds", True))
     expected = CampaignKey.of(scenario, seed=key.seed, n=key.n, chunk_size=key.chunk_size,
                               record_every=key.record_every, keep=key.keep, x0=x0)
     if expected.x0_sha256 != key.x0_sha256:
