@@ -84,3 +84,27 @@ def test_mc_writes_a_store_that_report_reads_back(tmp_path, capsys):
     report = first[first.index("mars_monte_carlo: 6 cases"):]
     assert again.startswith(report.split("\n")[0]) and report.splitlines()[:12] == again.splitlines()[:12]
     assert (tmp_path / "figs" / "landing_sites.png").exists()
+
+
+@pytest.mark.io
+def test_mc_takes_record_every_and_keep_as_monte_carlo_does(tmp_path, capsys):
+    pytest.importorskip("pyarrow")
+    import numpy as np
+
+    import landing
+
+    text = preset("mars_monte_carlo").to_toml().replace("t_final = 60.0", "t_final = 1.0")
+    path = write_file(tmp_path, text)
+    store = tmp_path / "c"
+    args = ["mc", str(path), "--cases", "4", "--seed", "2", "--store", str(store), "--record-every", "100",
+            "--keep", "states,controls", "--out", ""]
+    assert cli.main(args) == 0
+    mc = landing.load(store)
+    assert mc.keep == ("states", "controls") and mc.diagnostics == {}
+    same = landing.monte_carlo(landing.scenarios.Scenario.load(str(path)), 4, seed=2, record_every=100,
+                               keep=("states", "controls"))
+    assert mc.t.size == same.t.size == 11 and np.array_equal(mc.states, same.states)
+    assert cli.main(["mc", str(path), "--cases", "4", "--keep", "none", "--out", str(tmp_path / "f")]) == 0
+    assert "no figures: the states were not kept" in capsys.readouterr().out
+    assert cli.main(["mc", str(path), "--cases", "4", "--keep", "state", "--out", ""]) == 2
+    assert "'state' is not one of" in capsys.readouterr().err

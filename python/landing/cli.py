@@ -46,6 +46,9 @@ def _figures(result: Union[SimulationResult, MonteCarloResult], scenario: Scenar
     if out == "":
         return
     folder = Path(out or default)
+    if isinstance(result, MonteCarloResult) and "states" not in result.keep:
+        print("no figures: the states were not kept (--keep)")
+        return
     figs = plots.standard_figures(result, scenario.plant, scenario.reference)
     if not figs:
         print("no figures: nothing was recorded (record_every = 0)")
@@ -84,6 +87,10 @@ def cmd_mc(args: argparse.Namespace) -> int:
         kwargs["store"] = args.store
     if args.no_progress:
         kwargs["progress"] = False
+    if args.record_every is not None:
+        kwargs["record_every"] = args.record_every
+    if args.keep is not None:
+        kwargs["keep"] = [k for k in args.keep.split(",") if k] if args.keep != "none" else []
     client = None
     if args.scheduler is not None:
         client = kwargs["client"] = connect(args.scheduler)
@@ -232,6 +239,12 @@ def parser() -> argparse.ArgumentParser:
                    help="run the chunks on the Dask cluster of this scheduler (tcp://host:8786), "
                         "--threads threads each on a worker; needs landing[dask]")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--record-every", type=int, default=None, metavar="K",
+                   help="keep every K-th control instant of the trajectories (default: the scenario's); "
+                        "0 keeps final states and metrics only")
+    p.add_argument("--keep", default=None, metavar="SIGNALS",
+                   help="the recorded signals kept, comma-separated among states, controls, diagnostics "
+                        "(default all), or none")
     p.add_argument("--out", default=None, help=figures_help)
     p.set_defaults(run=cmd_mc)
 
