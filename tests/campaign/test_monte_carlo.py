@@ -133,3 +133,32 @@ def test_progress_reaches_logs_as_lines(capsys):
     err = capsys.readouterr().err
     lines = [line for line in err.splitlines() if "mars_monte_carlo" in line]
     assert lines and "40/40" in lines[-1] and "\r" not in err
+
+
+def test_an_address_space_limit_is_honoured_up_front_and_the_refusal_names_what_fits(tmp_path):
+    # a child process under ulimit -v: the core's measure of what it can take is bounded by the
+    # limit less its virtual size, and a campaign too large for it is refused before it starts,
+    # saying which record_every or keep would fit
+    import subprocess
+    import sys
+    import textwrap
+
+    code = textwrap.dedent('''
+        import resource
+        import landing
+        from landing import _core
+        with open("/proc/self/status") as f:
+            size = next(int(l.split()[1]) * 1024 for l in f if l.startswith("VmSize:"))
+        limit = size + 400 * 2**20
+        resource.setrlimit(resource.RLIMIT_AS, (limit, resource.RLIM_INFINITY))
+        room = _core.available_memory()
+        assert room is not None and room <= 400 * 2**20, room
+        s = landing.scenarios.mars_monte_carlo(record_every=1)
+        try:
+            landing.monte_carlo(s, 2000, seed=1, progress=False)
+        except MemoryError as exc:
+            print("REFUSED", exc)
+    ''')
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert "REFUSED" in out.stdout and "what fits: record_every=" in out.stdout, out.stdout

@@ -24,8 +24,9 @@ LIMITS: Mapping[str, int] = MappingProxyType({str(k): int(v) for k, v in dict(_c
 
 def available_memory() -> Optional[int]:
     """Bytes a new allocation can count on, as the core measures it for its own batches
-    (``landing_core::memory``: ``MemAvailable`` on Linux, or the room under the cgroup's memory
-    limit when smaller), else the total physical memory (``os.sysconf``); None when unknown."""
+    (``landing_core::memory``: ``MemAvailable`` on Linux, or less where the cgroup's memory
+    limit or the address-space limit, ``ulimit -v``, leaves less room), else the total
+    physical memory (``os.sysconf``); None when unknown."""
     measured = _core.available_memory()
     if measured is not None:
         return int(measured)
@@ -48,15 +49,16 @@ def format_bytes(n: float) -> str:
     raise AssertionError("unreachable")  # pragma: no cover
 
 
-def require_memory(what: str, nbytes: int, *, available: Optional[int] = None) -> None:
+def require_memory(what: str, nbytes: int, *, available: Optional[int] = None,
+                   hint: str = "ask for fewer cases or components") -> None:
     """Refuses, before anything is allocated, a request for ``nbytes`` that cannot fit in the
     memory available (``available`` overrides the measurement, for tests): a MemoryError that
-    names what needed it, its size and the memory available."""
+    names what needed it, its size, the memory available and ``hint``, what would fit."""
     if nbytes < 0:
         raise ValueError(f"nbytes = {nbytes} violates nbytes >= 0")
     free = available_memory() if available is None else available
     if free is not None and nbytes > free:
         raise MemoryError(
             f"{what} needs {format_bytes(nbytes)} ({nbytes} bytes) but only {format_bytes(free)} "
-            "of memory is available; ask for fewer cases or components"
+            f"of memory is available; {hint}"
         )

@@ -13,7 +13,7 @@ from typing import Any, Optional, Union
 import numpy as np
 
 from landing._internal.args import boolean, integer
-from landing._internal.limits import require_memory
+from landing._internal.limits import available_memory, format_bytes, require_memory
 from landing._internal.progress import ProgressBar
 from landing.campaign._assembly import Assembly, assemble_campaign, finish_campaign
 from landing.campaign.result import MonteCarloResult
@@ -33,10 +33,12 @@ def _keep(keep: Union[str, Sequence[str]]) -> tuple[str, ...]:
     return tuple(k for k in SIGNALS if k in items)  # canonical order, no repeats
 
 
-def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int) -> int:
-    """Bytes a campaign's results take: the recorded states, commands and diagnostics of the
-    ``n`` cases plus their final states and metrics, in the output allocated once, plus one
-    chunk's batch output before it is copied in. An estimate from above."""
+def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int,
+                   keep: Sequence[str] = SIGNALS) -> int:
+    """Bytes a campaign's results take: the kept recorded signals (states, commands,
+    diagnostics) of the ``n`` cases plus their final states and metrics, in the output
+    allocated once, plus one chunk's batch output (every signal) before it is copied in. An
+    estimate from above."""
     steps = round(scenario.t_final / scenario.dt)
     if record_every == 0:
         instants = 0
@@ -44,10 +46,35 @@ def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int)
         instants = steps // record_every + 1 + (steps % record_every != 0)
     axes = scenario.plant.axes
     widths = sum(w for _, w in scenario.controller.diagnostic_layout(axes))
-    per_instant = scenario.plant.state_dim + axes + widths
-    # final state plus about 40 metric columns, some per axis
-    per_case = instants * per_instant + scenario.plant.state_dim + 40 * (axes + 1)
-    return 8 * (n + (min(chunk, n) if chunk < n else 0)) * per_case
+    sizes = {"states": scenario.plant.state_dim, "controls": axes, "diagnostics": widths}
+    # final state plus about 40 metric columns, some per axis, and the dispersed parameters
+    fixed = scenario.plant.state_dim + 40 * (axes + 1) + len(scenario.dispersions) * axes
+    kept = instants * sum(v for k, v in sizes.items() if k in keep) + fixed
+    batch = instants * sum(sizes.values()) + fixed
+    # one chunk holding every case and every signal is the output itself; otherwise a chunk's
+    # batch lives beside the output it is copied into
+    whole = chunk >= n and set(keep) >= set(SIGNALS)
+    return 8 * (n * kept + (0 if whole else min(chunk, n) * batch))
+
+
+def _what_fits(scenario: Scenario, n: int, every: int, chunk: int, keep: tuple[str, ...]) -> str:
+    """The options that would fit in the memory available, for the refusal's message."""
+    free = available_memory() or 0
+    steps = max(1, round(scenario.t_final / scenario.dt))
+    options = []
+    for k in sorted({every * f for f in (2, 5, 10, 100, 1000) if every} | {steps}):
+        if campaign_bytes(scenario, n, k, chunk=chunk, keep=keep) <= free:
+            options.append(f"record_every={k} ({format_bytes(campaign_bytes(scenario, n, k, chunk=chunk, keep=keep))} "
+                           "in all)")
+            break
+    for fewer in (("states",), ()):
+        if set(fewer) < set(keep) and campaign_bytes(scenario, n, every, chunk=chunk, keep=fewer) <= free:
+            options.append(f"keep={fewer!r}")
+            break
+    if campaign_bytes(scenario, n, 0, chunk=chunk, keep=()) <= free:
+        options.append("record_every=0 (final states and metrics only)")
+    fits = "; ".join(options) if options else "nothing of these cases fits: ask for fewer cases"
+    return f"what fits: {fits}; or fewer cases"
 
 
 def monte_carlo(
@@ -136,7 +163,8 @@ def monte_carlo(
     # the campaign's output and one chunk's batch: refused up front if they cannot fit
     require_memory(
         f"monte_carlo({scenario.name!r}, n={n}): the recorded runs",
-        campaign_bytes(scenario, n, every, chunk=chunk_size),
+        campaign_bytes(scenario, n, every, chunk=chunk_size, keep=_keep(keep)),
+        hint=_what_fits(scenario, n, every, chunk_size, _keep(keep)),
     )
 
     keep = _keep(keep)
