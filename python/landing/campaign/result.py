@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any, Optional
 import numpy as np
 
 from landing._internal.args import integer
+from landing.campaign.sensitivity import RankCorrelations, dispersed_quantities, flat_columns, rank_correlations
 from landing.campaign.verify import Verification, tolerance_bound, verify
 from landing.errors import ParameterError, ParameterTypeError
 from landing.results import SIGNALS, Metrics, SimulationResult, describe_diverged, diverged_cases, result_dataset
@@ -209,6 +210,13 @@ class MonteCarloResult:
     def summary(self) -> Summary:
         return summarize(self.metrics)
 
+    def sensitivity(self, metrics: Optional[Sequence[str]] = None) -> RankCorrelations:
+        """Spearman's and the partial rank correlation of each metric (default: every one that
+        varies, per axis split) with each dispersed quantity (the initial-state components that
+        vary, the dispersed parameters): :func:`landing.campaign.sensitivity.rank_correlations`;
+        ``landing.plots.tornado(mc, metric)`` draws one metric's."""
+        return rank_correlations(self.result, self.x0, metrics)
+
     def verify(self, requirement: str, p: float = 0.9973, confidence: float = 0.9) -> Verification:
         """The requirement checked case by case, and whether the campaign shows it met for at
         least ``p`` of cases with ``confidence`` (Clopper-Pearson; :mod:`landing.campaign.verify`):
@@ -283,6 +291,23 @@ class MonteCarloResult:
         err = np.abs(self.metrics["final_error"])
         return np.all(err <= np.asarray(self.bounds.s1_radius), axis=-1)
 
+    def _driver_lines(self) -> list[str]:
+        """The summary metrics' three strongest drivers among the dispersed quantities (partial
+        rank correlations), when the campaign has enough cases to tell."""
+        if self.n_cases < 30:
+            return []
+        cols = flat_columns(self.metrics, self.result.axis_names)
+        shown = [m for m, v in cols.items() if (m in SUMMARY_COLUMNS or m.startswith("touchdown_position_"))
+                 and np.isfinite(v).sum() > 2 and np.nanstd(v) > 0]
+        if not shown or not dispersed_quantities(self.result, self.x0):
+            return []
+        corr = self.sensitivity(shown)
+        lines = ["  what drives the metrics (partial rank correlation with the dispersed quantities; "
+                 "mc.sensitivity()):"]
+        for m in shown:
+            lines.append(f"    {m:<24} " + ", ".join(f"{name} {p:+.2f}" for name, p, _ in corr.drivers(m, 3)))
+        return lines
+
     def _dispersed_lines(self) -> list[str]:
         """The dispersed parameters: each one's dispersion and the statistics of its draws
         (the metric columns ``param.<path>``; per axis, each axis)."""
@@ -318,6 +343,7 @@ class MonteCarloResult:
         touched = np.isfinite(m["touchdown_time"])
         lines.append(f"  touched down (rz crossed 0): {int(touched.sum())} of {n}")
         lines.extend(self._dispersed_lines())
+        lines.extend(self._driver_lines())
         if requirement is not None:
             lines.extend("  " + row for row in str(self.verify(requirement, p, confidence)).splitlines())
         if self.bounds is not None:

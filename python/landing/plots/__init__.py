@@ -27,11 +27,13 @@ from landing.plots.mars import (
     thrust,
     trajectories_3d,
 )
+from landing.plots.sensitivity import tornado
 from landing.plots.standard import save_all, standard_figures
 from landing.plots.tether import tether_angles, tether_commands, tether_fixed_time, tether_rates
 from landing.plots.tuning import tuning_convergence, tuning_front
 
 __all__ = [
+    "tornado",
     "trajectories_3d",
     "landing_sites",
     "final_velocities",
