@@ -64,7 +64,7 @@ def main() -> None:
         mc = mars_realistic.run(realistic, args.realistic_cases, args.seed, args.threads)
         mars_realistic.summary(mc)
         out = Path(args.out).parent / "mars_realistic"
-        written = landing.plots.save_all(mc, out)
+        written = mars_realistic.figures(mc, out)
         print(f"\nfigures written to {out}/: " + ", ".join(p.name for p in written))
 
 

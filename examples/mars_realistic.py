@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -91,7 +92,7 @@ def main() -> None:
     summary(mc)
     if engine:
         return
-    written = landing.plots.save_all(mc, args.out)
+    written = figures(mc, args.out)
     print(f"\nfigures written to {args.out}/: " + ", ".join(p.name for p in written))
 
 
@@ -101,6 +102,14 @@ def run(scenario: landing.scenarios.Scenario, cases: int, seed: int, threads: in
     mc = landing.monte_carlo(scenario, cases, seed=seed, threads=threads)
     print(f"\n{cases} cases at dt = {scenario.dt:g} s in {time.perf_counter() - start:.2f} s\n")
     return mc
+
+
+def figures(mc: landing.MonteCarloResult, out: str | Path) -> list[Path]:
+    """The standard figures, the landing sites with the requirement's 5 m circle (also written
+    by the main job, mars_monte_carlo.py)."""
+    written = landing.plots.save_all(mc, out)
+    landing.plots.save_figures({"landing_sites": landing.plots.landing_sites(mc, requirement_radius=5.0)}, out)
+    return written
 
 
 def summary(mc: landing.MonteCarloResult) -> None:

@@ -66,12 +66,24 @@ def _radius_box(ax: Axes, r: Optional[float]) -> None:
                                label=f"theory: |s1| <= {r:.4g} m"))
 
 
-def landing_sites(result: Result) -> Figure:
+def dispersion_ellipse(points: np.ndarray, k: float, samples: int = 181) -> np.ndarray:
+    """The k-sigma ellipse of 2-D ``points`` (n, 2): the curve at Mahalanobis distance k from
+    their mean under their sample covariance, (samples, 2). For a 2-D normal it holds
+    1 - exp(-k^2 / 2) of the cases (39.3, 86.5 and 98.9 % at k = 1, 2, 3)."""
+    mean = points.mean(axis=0)
+    w, v = np.linalg.eigh(np.cov(points, rowvar=False))
+    a = np.linspace(0.0, 2.0 * np.pi, samples)
+    circle = np.stack([np.cos(a), np.sin(a)], axis=1)
+    return mean + k * (circle * np.sqrt(np.maximum(w, 0.0))) @ v.T
+
+
+def landing_sites(result: Result, requirement_radius: Optional[float] = None) -> Figure:
     """Touchdown sites: where each case first crosses rz = 0 from above (the ``touchdown_position``
-    metric, interpolated within the integrator step), on the XOY plane, with the theoretical s1
-    neighbourhood when the result carries bounds; and the touchdown speeds (seed 001 Fig. 8(a),
-    (c) read at touchdown). Cases that never touch the ground are counted in the title; the state
-    at t_final is not drawn (the lander flies on after touchdown, the simulator does not stop)."""
+    metric, interpolated within the integrator step), on the XOY plane, with their 1, 2 and 3
+    sigma dispersion ellipses (of the sites' 2-D covariance), the requirement's circle about the
+    target when ``requirement_radius`` is given, and the theoretical s1 neighbourhood when the
+    result carries bounds; and the touchdown speeds (seed 001 Fig. 8(a), (c) read at touchdown).
+    Cases that never touch the ground are counted in the title."""
     res, bounds = result_and_bounds(result)
     m = res.metrics
     r = np.atleast_2d(np.asarray(m["touchdown_position"], dtype=float))[:, :3]
@@ -80,20 +92,34 @@ def landing_sites(result: Result) -> Figure:
     radius = None if bounds is None else float(np.max(bounds.s1_radius))
     fig = new_figure(figsize=(11, 5), layout="constrained")
     ax = fig.add_subplot(1, 2, 1)
-    ax.scatter(r[touched, 0], r[touched, 1], s=8)
+    ax.scatter(r[touched, 0], r[touched, 1], s=8, color="tab:blue", label="touchdown sites")
     ax.axhline(0, color="0.7", lw=0.5)
     ax.axvline(0, color="0.7", lw=0.5)
     ax.set_xlabel("x at touchdown (m)")
     ax.set_ylabel("y at touchdown (m)")
     ax.set_title(f"Touchdown sites (first rz = 0 crossing), XOY plane\n"
                  f"{int(touched.sum())} of {touched.size} cases touched down")
-    if touched.any():
-        span = max(float(np.nanmax(np.abs(r[touched][:, :2]))), 1e-6) * 1.3
+    sites = r[touched, :2]
+    extent = [np.abs(sites)] if touched.any() else []
+    if sites.shape[0] >= 3 and np.linalg.matrix_rank(np.cov(sites, rowvar=False)) == 2:
+        for k, style in ((1, "-"), (2, "--"), (3, ":")):
+            e = dispersion_ellipse(sites, k)
+            ax.plot(e[:, 0], e[:, 1], style, color="tab:orange", lw=1.2,
+                    label=f"{k} sigma ({100 * (1 - np.exp(-k * k / 2)):.1f} % of a 2-D normal)")
+            extent.append(np.abs(e))
+    if requirement_radius is not None:
+        a = np.linspace(0.0, 2.0 * np.pi, 361)
+        ax.plot(requirement_radius * np.cos(a), requirement_radius * np.sin(a), color="tab:red", lw=1.5,
+                label=f"requirement: within {requirement_radius:g} m")
+        extent.append(np.array([[requirement_radius, requirement_radius]]))
+    if extent:
+        span = max(float(np.max(np.concatenate(extent))), 1e-6) * 1.3
         if radius is not None and radius < 20 * span:
             _radius_box(ax, radius)
-            ax.legend(loc="upper right")
         elif radius is not None:
             ax.text(0.02, 0.02, f"theory: |s1| <= {radius:.4g} m (off the plot)", transform=ax.transAxes, fontsize=8)
+    if touched.any():
+        ax.legend(loc="upper right", fontsize="small")
     ax.set_aspect("equal", adjustable="datalim")
     ax = fig.add_subplot(1, 2, 2)
     if np.isfinite(speed).any():
@@ -105,18 +131,29 @@ def landing_sites(result: Result) -> Figure:
 
 
 def final_velocities(result: Result) -> Figure:
-    """Final velocities on the XOZ and XOY planes (seed 001 Fig. 8(c), (d))."""
+    """Velocities at touchdown (the ``touchdown_velocity`` metric, at the first rz = 0 crossing)
+    on the XOZ and XOY planes (seed 001 Fig. 8(c), (d)); the final states' velocities only for
+    the cases that never touch down (a case that hovers at its target until t_final would show
+    one dot at zero)."""
     res, _ = result_and_bounds(result)
-    v = batched(res.final_state, 2)[:, 3:6]
-    fig = new_figure(figsize=(11, 5))
+    v_end = batched(res.final_state, 2)[:, 3:6]
+    v_td = np.atleast_2d(np.asarray(res.metrics["touchdown_velocity"], dtype=float))[:, :3]
+    touched = np.all(np.isfinite(v_td), axis=1)
+    fig = new_figure(figsize=(11, 5), layout="constrained")
     for k, (j, name) in enumerate(((2, "z"), (1, "y"))):
         ax = fig.add_subplot(1, 2, k + 1)
-        ax.scatter(v[:, 0], v[:, j], s=8, color="tab:green")
+        if touched.any():
+            ax.scatter(v_td[touched, 0], v_td[touched, j], s=8, color="tab:green",
+                       label=f"at touchdown ({int(touched.sum())} cases)")
+        if (~touched).any():
+            ax.scatter(v_end[~touched, 0], v_end[~touched, j], s=8, marker="x", color="tab:gray",
+                       label=f"at t_final, never touched down ({int((~touched).sum())})")
         ax.axhline(0, color="0.7", lw=0.5)
         ax.axvline(0, color="0.7", lw=0.5)
         ax.set_xlabel("vx (m/s)")
         ax.set_ylabel(f"v{name} (m/s)")
-        ax.set_title(f"Final velocities, XO{name.upper()} plane")
+        ax.set_title(f"Velocities at touchdown, XO{name.upper()} plane")
+        ax.legend(loc="best", fontsize="small")
     return fig
 
 
