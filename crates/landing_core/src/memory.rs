@@ -89,7 +89,10 @@ mod tests {
         assert_eq!(parse_address_limit(limits), Some(1 << 32));
         let open = limits.replace("4294967296 ", "unlimited  ");
         assert_eq!(parse_address_limit(&open), None);
-        assert_eq!(parse_vm_size("Name: x\nVmSize:\t  2048 kB\n"), Some(2048 * 1024));
+        assert_eq!(
+            parse_vm_size("Name: x\nVmSize:\t  2048 kB\n"),
+            Some(2048 * 1024)
+        );
     }
 
     #[test]
