@@ -73,7 +73,7 @@ def test_initial_state_dispersions_are_quantities_too():
 def test_per_axis_columns_split_by_axis_and_components_by_index():
     cols = flat_columns({"e": np.ones((4, 3)), "param.p": np.ones((4, 3)), "diverged": np.zeros(4, bool)},
                         ("x", "y", "z"))
-    assert list(cols) == ["e_x", "e_y", "e_z", "param.p[0]", "param.p[1]", "param.p[2]"]
+    assert list(cols) == ["e_x", "e_y", "e_z", "param.p_x", "param.p_y", "param.p_z"]
 
 
 @pytest.mark.slow

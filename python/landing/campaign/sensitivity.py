@@ -5,7 +5,7 @@ sampling design run as one batch.
 
 The dispersed quantities of a campaign are the components of its initial-state dispersion that
 vary and its dispersed parameters (the metric columns ``param.<path>``, per component). A
-per-axis metric counts per axis (``final_error_x``). Cases whose value is not finite (diverged,
+per-axis metric or parameter counts per axis (``final_error_x``). Cases whose value is not finite (diverged,
 no touchdown) are left out of each metric's correlations.
 """
 
@@ -21,6 +21,7 @@ from landing._internal.args import integer
 from landing.dispersions import LogNormal, Normal, TruncatedNormal, Uniform
 from landing.errors import ParameterError
 from landing.results import SimulationResult
+from landing.results import flat_columns as result_columns
 from landing.scenarios import Scenario
 
 __all__ = ["RankCorrelations", "SobolIndices", "flat_columns", "rank_correlations", "ranks", "sobol"]
@@ -41,21 +42,10 @@ def ranks(x: np.ndarray) -> np.ndarray:
 
 
 def flat_columns(columns: Mapping[str, Any], axis_names: Sequence[str]) -> dict[str, np.ndarray]:
-    """Numeric per-case columns, a per-axis or per-component one split into ``name_axis`` (or
-    ``name[j]``) columns."""
-    out: dict[str, np.ndarray] = {}
-    for k, v in columns.items():
-        a = np.asarray(v)
-        if a.dtype.kind != "f":  # not the flag, nor the divergence reason's code
-            continue
-        a = a.astype(float)
-        if a.ndim == 1:
-            out[k] = a
-        elif a.ndim == 2:
-            names = axis_names if len(axis_names) == a.shape[1] and not k.startswith("param.") else None
-            for j in range(a.shape[1]):
-                out[f"{k}_{names[j]}" if names else f"{k}[{j}]"] = a[:, j]
-    return out
+    """The real-valued per-case columns, a per-axis one split into ``name_<axis>`` as the store
+    writes them (:func:`landing.results.flat_columns`); the flag and the divergence reason's
+    code are left out."""
+    return {k: v for k, v in result_columns(columns, axis_names).items() if v.dtype.kind == "f"}
 
 
 @dataclass(frozen=True)
