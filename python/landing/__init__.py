@@ -36,6 +36,7 @@ from landing.errors import (
     ParameterTypeError,
     SimulationError,
     StoreError,
+    StoreWarning,
 )
 from landing.results import DIVERGENCE_REASONS, Metrics, SimulationResult
 from landing.simulation import MAX_COMMAND, RunOptions, kernel_levels, simulate, simulate_batch
@@ -75,6 +76,7 @@ __all__ = [
     "ParameterTypeError",
     "SimulationError",
     "StoreError",
+    "StoreWarning",
     "DivergenceWarning",
 ]
 

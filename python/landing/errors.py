@@ -15,6 +15,7 @@ __all__ = [
     "SimulationError",
     "UserFunctionError",
     "StoreError",
+    "StoreWarning",
     "DivergenceWarning",
 ]
 
@@ -45,6 +46,10 @@ class UserFunctionError(LandingError, RuntimeError):
 class StoreError(LandingError, RuntimeError):
     """A campaign store cannot be used as asked (another process is writing it): the message
     names the store, the reason and the remedy."""
+
+
+class StoreWarning(RuntimeWarning):
+    """A campaign store needed repair while it was resumed (a damaged chunk run again)."""
 
 
 class DivergenceWarning(RuntimeWarning):

@@ -46,7 +46,7 @@ from landing._internal.progress import ProgressBar
 from landing.campaign._assembly import Assembly, finish_campaign, write_chunk
 from landing.campaign.result import MonteCarloResult
 from landing.campaign.store import CampaignStore, default_chunk_size
-from landing.errors import DivergenceWarning, LandingError, ParameterError, ParameterTypeError
+from landing.errors import DivergenceWarning, LandingError, ParameterError, ParameterTypeError, StoreError, StoreWarning
 from landing.results import SimulationResult
 from landing.scenarios import Scenario, files
 
@@ -228,7 +228,13 @@ def run_campaign(
     for index, start in enumerate(range(0, n, chunk_size)):
         stop = min(n, start + chunk_size)
         if store is not None and store.is_complete(index):
-            part = store.read_chunk(index)
+            try:
+                part = store.read_chunk(index)
+            except StoreError as exc:  # damaged: run again on the cluster, and rewritten
+                warnings.warn(f"{exc}: running it again", StoreWarning, stacklevel=3)
+                store.forget(index)
+                todo.append((index, start, stop))
+                continue
             out.put(start, part)
             del part
         else:

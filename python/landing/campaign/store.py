@@ -7,7 +7,9 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
                               size, record settings, and per session the machine, threads,
                               date and kernel level
       manifest.json           the completed chunks (replaced atomically after each chunk's
-                              files are on disk) and the layout of the metric columns
+                              files are on disk), each with the SHA-256 of its metrics, its
+                              initial states and its trajectories (of their content), and the
+                              layout of the metric columns
       chunks/metrics/part-000000.parquet   per-case metrics of chunk 0 (index ``case``;
                               per-axis columns split with the axis names: final_error_x ...)
       chunks/initial/part-000000.parquet   the chunk's initial states (x0_<state>) and
@@ -24,6 +26,12 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
 "metrics")`` read it without this package; :func:`read_campaign_store` opens it for the
 campaign's assembly, which gives back the
 :class:`~landing.campaign.MonteCarloResult` bit for bit (:func:`landing.load`).
+
+Every chunk read back is checked against the manifest: its Parquet parts readable and holding
+its cases, its Zarr region extending over them, and each content's checksum the one written (a
+deleted Zarr chunk reads as NaN fill, which its checksum tells from data). A damaged chunk is a
+:class:`~landing.errors.StoreError` naming it, its file and the remedy; a resumed campaign runs
+the damaged chunks again (a :class:`~landing.errors.StoreWarning` says which) and rewrites them.
 
 Parquet, Zarr, xarray and pandas are the optional extra ``landing[io]``; nothing here imports
 them until a store or a conversion is asked for.
@@ -378,6 +386,12 @@ class CampaignStore:
     def is_complete(self, index: int) -> bool:
         return index in self.completed
 
+    def forget(self, index: int) -> None:
+        """Chunk ``index`` no longer complete (found damaged): the manifest stops naming it, so
+        that it is run and written again."""
+        self.completed.pop(index, None)
+        self._write_manifest()
+
     def _write_manifest(self) -> None:
         chunks = [self.completed[i] for i in sorted(self.completed)]
         _write_json_atomic(self.path / MANIFEST, {
@@ -497,8 +511,10 @@ class CampaignStore:
         for folder in (METRICS_DIR, INITIAL_DIR):
             _fsync_dir(self.path / folder)
         self._note_kernel(part.kernel)
+        digests = {"metrics": _digest(metrics), "initial": _digest(initial),
+                   "trajectories": _digest({name: signals[name] for name in self.layout["arrays"]})}
         self.completed[index] = {"index": index, "start": start, "stop": stop, "kernel": part.kernel,
-                                 "written": _now()}
+                                 "written": _now(), "sha256": digests}
         try:
             self._write_manifest()
         except BaseException:
@@ -506,10 +522,34 @@ class CampaignStore:
             del self.completed[index]
             raise
 
-    def read_metrics(self, index: int) -> dict[str, np.ndarray]:
-        """Chunk ``index``'s metric columns, put back together (dtypes as written)."""
+    def _damaged(self, index: int, what: str, file: Path, why: str) -> StoreError:
+        c = self.completed[index]
+        return StoreError(
+            f"store = '{self.path}': chunk {index} (cases {c['start']}..{c['stop'] - 1}) is damaged: its {what} "
+            f"({file}) {why}; monte_carlo(..., store='{self.path}') re-runs the damaged chunks")
+
+    def _table(self, index: int, folder: Path, what: str) -> Any:
+        """Chunk ``index``'s Parquet table in ``folder``, checked against the manifest: readable,
+        its ``case`` column the chunk's cases, its content's checksum the one written."""
         pq = require_io("pyarrow.parquet", what="the campaign store")
-        table = pq.read_table(str(self.path / METRICS_DIR / _part(index)))
+        file = self.path / folder / _part(index)
+        c = self.completed[index]
+        try:
+            table = pq.read_table(str(file))
+            columns = {name: table.column(name).to_numpy() for name in table.schema.names}
+        except Exception as exc:  # noqa: BLE001 - any failure to read it is damage, named
+            raise self._damaged(index, what, file, f"cannot be read ({type(exc).__name__}: {exc})") from None
+        case = columns.get("case")
+        if case is None or not np.array_equal(case, np.arange(c["start"], c["stop"])):
+            raise self._damaged(index, what, file, "does not hold the chunk's cases (its 'case' column)")
+        expected = c.get("sha256", {}).get(what)
+        if expected is not None and _digest(columns) != expected:
+            raise self._damaged(index, what, file, "does not match its checksum in the manifest")
+        return table
+
+    def read_metrics(self, index: int) -> dict[str, np.ndarray]:
+        """Chunk ``index``'s metric columns, put back together (dtypes as written), checked."""
+        table = self._table(index, METRICS_DIR, "metrics")
         out = {}
         for name, dtype, parts in self.layout["metrics"]:
             if parts is None:
@@ -522,10 +562,22 @@ class CampaignStore:
         """A completed chunk as the batch result it was (what was not kept is None/empty)."""
         c = self.completed[index]
         start, stop = c["start"], c["stop"]
-        group = self._zarr_group("r")
-        arrays = {name: group[name][start:stop] for name in self.layout["arrays"]}
+        self._table(index, INITIAL_DIR, "initial")  # its initial states too: damage anywhere is named
+        root = self.path / TRAJECTORIES
+        try:
+            group = self._zarr_group("r")
+            arrays = {name: group[name][start:stop] for name in self.layout["arrays"]}
+            t = group["time"][:]
+        except Exception as exc:  # noqa: BLE001 - any failure to read them is damage, named
+            raise self._damaged(index, "trajectories", root, f"cannot be read ({type(exc).__name__}: {exc})") from None
+        if any(a.shape[0] != stop - start for a in arrays.values()):
+            raise self._damaged(index, "trajectories", root, "do not extend over the chunk's cases")
+        expected = c.get("sha256", {}).get("trajectories")
+        if expected is not None and _digest(arrays) != expected:
+            # a chunk file deleted reads as its fill value: damage, never fill
+            raise self._damaged(index, "trajectories", root, "do not match their checksum in the manifest")
         return SimulationResult(
-            t=group["time"][:],
+            t=t,
             states=arrays.get("states"),
             controls=arrays.get("controls"),
             final_state=arrays["final_state"],
@@ -538,11 +590,10 @@ class CampaignStore:
 
     def read_initial(self) -> np.ndarray:
         """The initial states of every completed chunk, (n, n_state), in case order."""
-        pq = require_io("pyarrow.parquet", what="the campaign store")
         names = [f"x0_{s}" for s in self.layout["state_names"]]
         x0 = np.full((self.key.n, len(names)), np.nan)
         for index, c in self.completed.items():
-            table = pq.read_table(str(self.path / INITIAL_DIR / _part(index)), columns=names)
+            table = self._table(index, INITIAL_DIR, "initial")
             for j, name in enumerate(names):
                 x0[c["start"]:c["stop"], j] = _column(table, name, "<f8")
         return x0
@@ -584,6 +635,20 @@ def open_campaign_store(
     key = CampaignKey.of(scenario, seed=seed, n=n, chunk_size=chunk_size, record_every=record_every,
                          keep=keep, x0=x0)
     return CampaignStore.open(path, key, threads=threads, check_bounds=check_bounds, record_every=record_every)
+
+
+def _digest(columns: Mapping[str, Any]) -> str:
+    """SHA-256 of named arrays' content: each name, dtype, shape and C-order bytes, in order.
+    Of what a chunk holds, not of its files' bytes: the same whatever the compression."""
+    h = hashlib.sha256()
+    for name, v in columns.items():
+        a = np.ascontiguousarray(v)
+        if a.dtype.kind == "f":
+            # one NaN: a Zarr chunk that was all NaN is not written and reads back as the fill value
+            a = np.where(np.isnan(a), np.nan, a)
+        h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
+        h.update(a.tobytes())
+    return h.hexdigest()
 
 
 def _column(table: Any, name: str, dtype: str) -> np.ndarray:

@@ -1,0 +1,113 @@
+"""A store never returns wrong data: each kind of damage to a chunk's files (a flipped byte, a
+truncated or deleted file, Parquet parts swapped) is named by ``load`` and ``landing report``,
+never read as data or as fill, and a resume re-runs exactly the damaged chunks, after which the
+campaign is the uninterrupted run's bit for bit."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import landing
+from _cases import assert_same_campaign
+from landing import scenarios
+from landing.errors import StoreError, StoreWarning
+
+pytest.importorskip("pyarrow")
+pytest.importorskip("zarr")
+
+pytestmark = pytest.mark.io
+
+N, CHUNK = 20, 5
+
+
+def small():
+    return scenarios.mars_monte_carlo(t_final=5.0, dt=2e-3, record_every=25)
+
+
+@pytest.fixture(scope="module")
+def whole() -> landing.MonteCarloResult:
+    return landing.monte_carlo(small(), N, seed=3)
+
+
+@pytest.fixture()
+def store(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("s") / "c"
+    landing.monte_carlo(small(), N, seed=3, chunk_size=CHUNK, store=path)
+    return path
+
+
+def flip(file: Path, at: float = 0.5) -> None:
+    data = bytearray(file.read_bytes())
+    data[int(len(data) * at)] ^= 0xFF
+    file.write_bytes(bytes(data))
+
+
+def zarr_chunk(store: Path, array: str, index: int) -> Path:
+    files = sorted((store / "trajectories.zarr" / array).glob(f"{index}.*"))
+    assert files, f"no Zarr chunk {index} of {array}"
+    return files[0]
+
+
+DAMAGE = {
+    "a flipped byte in a Zarr chunk": lambda s: flip(zarr_chunk(s, "states", 2)),
+    "a deleted Zarr chunk": lambda s: zarr_chunk(s, "controls", 2).unlink(),
+    "a flipped byte in a metrics part": lambda s: flip(s / "chunks" / "metrics" / "part-000002.parquet", 0.3),
+    "a truncated initial-state part": lambda s: (s / "chunks" / "initial" / "part-000002.parquet").write_bytes(
+        (s / "chunks" / "initial" / "part-000002.parquet").read_bytes()[:100]),
+    "a deleted metrics part": lambda s: (s / "chunks" / "metrics" / "part-000002.parquet").unlink(),
+    "metrics parts swapped": lambda s: swap(s / "chunks" / "metrics" / "part-000002.parquet",
+                                           s / "chunks" / "metrics" / "part-000001.parquet"),
+}
+
+
+def swap(a: Path, b: Path) -> None:
+    tmp = a.with_suffix(".tmp")
+    shutil.move(a, tmp)
+    shutil.move(b, a)
+    shutil.move(tmp, b)
+
+
+@pytest.mark.parametrize("kind", list(DAMAGE))
+def test_damage_is_named_by_load_and_report_and_resume_runs_the_chunk_again(kind, store, whole, capsys):
+    DAMAGE[kind](store)
+    with pytest.raises(StoreError, match=r"chunk (1|2) \(cases (5\.\.9|10\.\.14)\) is damaged") as info:
+        landing.load(store)
+    assert str(store) in str(info.value) and "re-runs the damaged chunks" in str(info.value)
+    from landing.cli import main
+
+    assert main(["report", str(store), "--out", ""]) == 2
+    assert "is damaged" in capsys.readouterr().err
+    # the resume: the damaged chunk(s) run again, then everything reads back as the whole run
+    with pytest.warns(StoreWarning, match="running it again"):
+        resumed = landing.monte_carlo(small(), N, seed=3, store=store)
+    assert_same_campaign(resumed, whole)
+    assert_same_campaign(landing.load(store), whole)
+
+
+def test_an_undamaged_store_reads_without_warning(store, whole):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", StoreWarning)
+        assert_same_campaign(landing.monte_carlo(small(), N, seed=3, store=store), whole)
+
+
+def test_the_manifest_holds_a_checksum_of_every_part_of_every_chunk(store):
+    import json
+
+    manifest = json.loads((store / "manifest.json").read_text())
+    assert len(manifest["chunks"]) == N // CHUNK
+    for c in manifest["chunks"]:
+        assert set(c["sha256"]) == {"metrics", "initial", "trajectories"}
+        assert all(len(h) == 64 and int(h, 16) >= 0 for h in c["sha256"].values())
+    # the checksum is of the content: a NaN's payload does not change it
+    from landing.campaign.store import _digest
+
+    a = np.array([1.0, np.nan])
+    b = a.copy()
+    b.view(np.uint64)[1] |= 1  # another NaN
+    assert _digest({"x": a}) == _digest({"x": b}) != _digest({"x": np.array([1.0, 2.0])})
