@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
+from landing._internal.extras import import_extra
 from landing.campaign import MonteCarloResult
 from landing.errors import ParameterError
 from landing.results import SimulationResult
@@ -33,9 +34,8 @@ Runs = Union[SimulationResult, Mapping[str, SimulationResult]]
 def new_figure(**kw: Any) -> Figure:
     """A figure of its own, not pyplot's: pyplot keeps figures alive until closed, a Figure
     built directly is freed with the result it shows."""
-    from matplotlib.figure import Figure
-
-    return Figure(**kw)
+    figure = import_extra("matplotlib.figure", "pip install matplotlib")
+    return figure.Figure(**kw)
 
 
 def result_and_bounds(result: Result) -> tuple[SimulationResult, Optional[MSSBounds]]:
@@ -66,8 +66,7 @@ def need_records(res: SimulationResult) -> None:
 
 def save_figures(figures: Mapping[str, Figure], folder: Union[str, Path], dpi: int = 120) -> list[Path]:
     """Writes figures (name -> Figure) as ``folder/name.png`` and closes them."""
-    import matplotlib.pyplot as plt
-
+    plt = import_extra("matplotlib.pyplot", "pip install matplotlib")
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     written = []

@@ -16,6 +16,7 @@ import numpy as np
 from landing import controllers, theory
 from landing._internal.args import integer, real
 from landing._internal.expression import BOUND_NAMES, Expression, UserFunction
+from landing._internal.extras import import_extra
 from landing._internal.progress import ProgressBar
 from landing._internal.table import Parameter
 from landing.errors import DivergenceWarning, ParameterError
@@ -195,10 +196,8 @@ def tune(
     first = next(iter(setups.values()))
     if optimizer != "cma":
         raise ParameterError(f"optimizer = {optimizer!r} is not one of ('cma',)")
-    try:
-        import cma
-    except ImportError:  # pragma: no cover - depends on the installation
-        raise ImportError("landing.tune needs the cma package: pip install cma (or landing[tune])") from None
+    # before any long work, and so that an interrupt during the import leaves the process able to tune
+    cma = import_extra("cma", 'landing.tune needs the cma package: pip install "landing[tune]"')
     cases = integer("cases", cases, minimum=1, cap="max_cases")
     budget = integer("budget", budget, minimum=1)
     seed = integer("seed", seed, minimum=0, maximum=2**32 - 1)  # CMA-ES's own seed is seed + 1
