@@ -321,3 +321,24 @@ def test_a_worker_killed_mid_run_costs_only_its_chunks(client, tmp_path):
     assert_same_campaign(mc, reference)
     assert completed() == n_chunks
     assert_same_campaign(landing.load(path), reference)
+
+
+@pytest.mark.dask
+def test_a_cluster_without_workers_is_an_error_after_the_timeout_not_a_wait_for_ever(monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    import time
+
+    from landing.errors import SimulationError
+
+    monkeypatch.setenv("LANDING_NO_WORKER_TIMEOUT", "2")
+    with distributed.LocalCluster(n_workers=0, processes=True, host="127.0.0.1", dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        start = time.monotonic()
+        with pytest.raises(SimulationError, match="no worker for 2 s"):
+            landing.monte_carlo(small(), 8, seed=1, client=client, chunk_size=4, check_bounds=False)
+        assert time.monotonic() - start < 30
+    monkeypatch.setenv("LANDING_NO_WORKER_TIMEOUT", "soon")
+    from landing.campaign.dask import no_worker_timeout
+
+    with pytest.raises(landing.ParameterError, match="LANDING_NO_WORKER_TIMEOUT"):
+        no_worker_timeout()

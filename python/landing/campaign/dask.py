@@ -33,7 +33,9 @@ from __future__ import annotations
 
 import hashlib
 import importlib
+import os
 import pickle
+import threading
 import time
 import uuid
 import warnings
@@ -46,7 +48,15 @@ from landing._internal.progress import ProgressBar
 from landing.campaign._assembly import Assembly, finish_campaign, write_chunk
 from landing.campaign.result import MonteCarloResult
 from landing.campaign.store import CampaignStore, default_chunk_size
-from landing.errors import DivergenceWarning, LandingError, ParameterError, ParameterTypeError, StoreError, StoreWarning
+from landing.errors import (
+    DivergenceWarning,
+    LandingError,
+    ParameterError,
+    ParameterTypeError,
+    SimulationError,
+    StoreError,
+    StoreWarning,
+)
 from landing.results import SimulationResult
 from landing.scenarios import Scenario, files
 
@@ -54,6 +64,54 @@ __all__ = ["require_dask", "connect", "default_chunk_size", "run_chunk", "run_ca
 
 #: Prefix of the chunks' task keys (as the Dask dashboard shows them).
 KEY_PREFIX = "landing-chunk"
+#: Seconds a campaign waits on a cluster with no worker before it gives up (the environment
+#: variable LANDING_NO_WORKER_TIMEOUT overrides it): a cluster whose workers all died, or were
+#: never started, would otherwise be waited on for ever.
+NO_WORKER_TIMEOUT = 300.0
+
+
+def no_worker_timeout() -> float:
+    """The no-worker timeout in seconds (:data:`NO_WORKER_TIMEOUT`, or the environment's)."""
+    text = os.environ.get("LANDING_NO_WORKER_TIMEOUT")
+    if text is None:
+        return NO_WORKER_TIMEOUT
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not value > 0:
+        raise ParameterError(f"LANDING_NO_WORKER_TIMEOUT = {text!r} violates a number of seconds > 0")
+    return value
+
+
+class _Watchdog(threading.Thread):
+    """Watches the cluster's workers while a campaign waits on it: after ``timeout`` seconds
+    with none, it cancels the campaign's outstanding chunks (which ends the wait) and says so."""
+
+    def __init__(self, client: Any, timeout: float, outstanding: dict[str, Any]):
+        super().__init__(name="landing-dask-watchdog", daemon=True)
+        self.client, self.timeout, self.outstanding = client, timeout, outstanding
+        self.fired = False
+        self.done = threading.Event()
+
+    def run(self) -> None:
+        since: Optional[float] = None
+        while not self.done.wait(min(1.0, self.timeout / 4)):
+            try:
+                workers = len(self.client.scheduler_info().get("workers", {}))
+            except Exception:  # noqa: BLE001 - a scheduler that does not answer has no worker for us
+                workers = 0
+            if workers:
+                since = None
+                continue
+            since = time.monotonic() if since is None else since
+            if time.monotonic() - since >= self.timeout:
+                self.fired = True
+                try:
+                    self.client.cancel(list(self.outstanding.values()))
+                except Exception:  # noqa: BLE001 - the campaign reports the timeout either way
+                    pass
+                return
 #: Chunks in flight per thread of the cluster (at least MIN_IN_FLIGHT in all).
 IN_FLIGHT_PER_THREAD = 2
 MIN_IN_FLIGHT = 8
@@ -259,8 +317,21 @@ def run_campaign(
     first = [submit(c) for _, c in zip(range(in_flight()), pending)]
     completed = distributed.as_completed(first)
     del first
+    timeout = no_worker_timeout()
+    watchdog = _Watchdog(client, timeout, outstanding)
+    watchdog.start()
+
+    def no_worker() -> SimulationError:
+        kept = "" if store is None else f"; the completed chunks are in the store '{store.path}'"
+        return SimulationError(
+            f"the Dask cluster has had no worker for {timeout:g} s (LANDING_NO_WORKER_TIMEOUT), so the campaign "
+            f"stopped with {len(outstanding)} chunks left{kept}: start workers and run it again"
+            + (" to resume" if store is not None else ""))
+
     try:
         for future in completed:
+            if watchdog.fired:
+                raise no_worker()
             index, start, stop = chunk_of.pop(future.key)
             _clear_cancelled_gather(client)
             part = future.result()  # waits if the worker holding it was lost and it is re-run
@@ -277,7 +348,9 @@ def run_campaign(
                 if chunk is None:
                     break
                 completed.add(submit(chunk))
-    except BaseException:
+    except BaseException as exc:
+        if watchdog.fired and not isinstance(exc, SimulationError):
+            raise no_worker() from None
         # Ctrl-C or a failed chunk: stop the rest; the completed chunks are in the store
         if outstanding:
             try:
@@ -285,6 +358,10 @@ def run_campaign(
             except Exception:  # noqa: BLE001 - the original error matters more
                 pass
         raise
+    finally:
+        watchdog.done.set()
+    if watchdog.fired:  # the wait ended because the watchdog cancelled what was left
+        raise no_worker()
     if out.out is None:  # pragma: no cover - n >= 1 gives at least one chunk
         raise ParameterError(f"n = {n} gave no chunk")
     return finish_campaign(scenario, seed, x0, out.result(), keep, store, check_bounds)
