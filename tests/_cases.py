@@ -161,3 +161,20 @@ def assert_within_engine_limits(u, t_max, throttle, pointing, *, cone_binds=True
     if cone_binds:
         assert np.isclose(angle[live], per(pointing), atol=1e-9).any()
     return live
+
+
+def crash_after_chunks(monkeypatch, chunks: int) -> None:
+    """Makes the campaigns run under ``monkeypatch`` raise KeyboardInterrupt when a store's
+    manifest is about to record chunk ``chunks`` as complete (its files written, the manifest
+    not): the first ``chunks`` chunks are kept, as after a Ctrl-C or a kill at that moment."""
+    from landing.campaign.store import CampaignStore
+
+    original, calls = CampaignStore._write_manifest, []
+
+    def write(self):
+        calls.append(1)
+        if len(calls) == chunks + 2:  # the empty manifest, then one per completed chunk
+            raise KeyboardInterrupt
+        original(self)
+
+    monkeypatch.setattr(CampaignStore, "_write_manifest", write)

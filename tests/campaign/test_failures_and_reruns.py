@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import landing
-from _cases import small_campaign
+from _cases import crash_after_chunks, small_campaign
 from landing.dispersions import Normal
 from landing.errors import ParameterError, ParameterTypeError
 from landing.scenarios import mars_realistic
@@ -71,21 +71,11 @@ def test_a_rerun_is_the_campaigns_case_bit_for_bit_with_every_instant_recorded(r
 @pytest.mark.io
 def test_a_partial_store_loads_its_completed_cases_and_says_so(tmp_path, monkeypatch):
     pytest.importorskip("pyarrow")
-    from landing.campaign.store import CampaignStore
-
     s = small_campaign().disperse({"plant.isp": Normal(225.0, 5.0)})
     whole = landing.monte_carlo(s, N, seed=4, progress=False, check_bounds=False)
     path = tmp_path / "c"
-    original, calls = CampaignStore._write_manifest, []
-
-    def crash_after_two_chunks(self):
-        calls.append(1)
-        if len(calls) == 4:  # the empty manifest, chunks 0 and 1; then a crash before chunk 2's
-            raise KeyboardInterrupt
-        original(self)
-
     with monkeypatch.context() as m:
-        m.setattr(CampaignStore, "_write_manifest", crash_after_two_chunks)
+        crash_after_chunks(m, 2)
         with pytest.raises(KeyboardInterrupt, match=r"10 of 24 cases \(2 of 5 chunks\) are kept in .* resumes it"):
             landing.monte_carlo(s, N, seed=4, chunk_size=5, store=path, progress=False, check_bounds=False)
     with pytest.raises(ParameterError, match=r"incomplete .* partial=True"):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import landing
-from _cases import assert_same_campaign, small_campaign
+from _cases import assert_same_campaign, crash_after_chunks, small_campaign
 from _user_laws import pd
 from landing import controllers as C
 from landing import disturbances as W
@@ -116,21 +116,11 @@ def test_chunks_and_threads_give_the_whole_batch_bit_for_bit():
 @pytest.mark.io
 def test_a_stored_campaign_resumes_and_loads_with_its_draws(tmp_path, monkeypatch):
     pytest.importorskip("pyarrow")
-    from landing.campaign.store import CampaignStore
-
     s = dispersed_mars()
     whole = landing.monte_carlo(s, N, seed=4, progress=False, check_bounds=False)
     path = tmp_path / "c"
-    original, calls = CampaignStore._write_manifest, []
-
-    def crash_after_the_first_chunk(self):
-        calls.append(1)
-        if len(calls) == 3:
-            raise KeyboardInterrupt
-        original(self)
-
     with monkeypatch.context() as m:
-        m.setattr(CampaignStore, "_write_manifest", crash_after_the_first_chunk)
+        crash_after_chunks(m, 1)
         with pytest.raises(KeyboardInterrupt):
             landing.monte_carlo(s, N, seed=4, chunk_size=5, store=path, progress=False, check_bounds=False)
     resumed = landing.monte_carlo(s, N, seed=4, store=path, progress=False, check_bounds=False)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import landing
-from _cases import assert_same_campaign, small_campaign
+from _cases import assert_same_campaign, crash_after_chunks, small_campaign
 from _user_laws import pd
 from landing import controllers as C
 from landing import disturbances as W
@@ -94,21 +94,11 @@ def test_a_campaign_of_another_size_than_the_rows_is_refused_naming_the_paramete
 @pytest.mark.io
 def test_a_stored_campaign_resumes_with_its_rows(tmp_path, monkeypatch):
     pytest.importorskip("pyarrow")
-    from landing.campaign.store import CampaignStore
-
     scenario = CASES["built-in law gain per case"](ROWS)
     whole = landing.monte_carlo(scenario, N, seed=4, progress=False, check_bounds=False)
     path = tmp_path / "c"
-    original, calls = CampaignStore._write_manifest, []
-
-    def crash_after_the_first_chunk(self):
-        calls.append(1)
-        if len(calls) == 3:  # the empty manifest, chunk 0's; then a crash before chunk 1's
-            raise KeyboardInterrupt
-        original(self)
-
     with monkeypatch.context() as m:
-        m.setattr(CampaignStore, "_write_manifest", crash_after_the_first_chunk)
+        crash_after_chunks(m, 1)
         with pytest.raises(KeyboardInterrupt):
             landing.monte_carlo(scenario, N, seed=4, chunk_size=5, store=path, progress=False, check_bounds=False)
     # the chunks left are run on resume, each with its own rows
