@@ -111,3 +111,34 @@ def test_the_manifest_holds_a_checksum_of_every_part_of_every_chunk(store):
     b = a.copy()
     b.view(np.uint64)[1] |= 1  # another NaN
     assert _digest({"x": a}) == _digest({"x": b}) != _digest({"x": np.array([1.0, 2.0])})
+
+
+def edit(path: Path, change) -> None:
+    import json
+
+    d = json.loads(path.read_text())
+    change(d)
+    path.write_text(json.dumps(d))
+
+
+PROVENANCE_EDITS = {
+    "the seed": lambda d: d["key"].update(seed=d["key"]["seed"] + 1),
+    "the scenario's text": lambda d: d["key"].update(scenario=d["key"]["scenario"].replace("isp = 225.0",
+                                                                                           "isp = 230.0")),
+    "keep": lambda d: d["key"].update(keep=["states"]),
+    "record_every": lambda d: d["key"].update(record_every=50),
+}
+
+
+@pytest.mark.parametrize("what", list(PROVENANCE_EDITS))
+def test_a_provenance_edited_against_its_data_is_refused(what, store):
+    edit(store / "provenance.json", PROVENANCE_EDITS[what])
+    with pytest.raises(landing.LandingError) as info:
+        landing.load(store)
+    assert str(store) in str(info.value) or "store" in str(info.value)
+
+
+def test_a_store_of_an_unknown_format_is_refused(store):
+    edit(store / "manifest.json", lambda d: d.update(format=99))
+    with pytest.raises(StoreError, match="format 99 is not this version's"):
+        landing.load(store)

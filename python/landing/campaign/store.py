@@ -27,7 +27,11 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
 campaign's assembly, which gives back the
 :class:`~landing.campaign.MonteCarloResult` bit for bit (:func:`landing.load`).
 
-Every chunk read back is checked against the manifest: its Parquet parts readable and holding
+Reading a store checks its provenance against its data: the stored initial states must be the
+draws of the recorded scenario and seed, the kept arrays the recorded ``keep``, the time grid
+the scenario's at the recorded ``record_every``, and the first case, run again, must end where
+the stored one does; an unknown format is refused. Every chunk read back is checked against
+the manifest: its Parquet parts readable and holding
 its cases, its Zarr region extending over them, and each content's checksum the one written (a
 deleted Zarr chunk reads as NaN fill, which its checksum tells from data). A damaged chunk is a
 :class:`~landing.errors.StoreError` naming it, its file and the remedy; a resumed campaign runs
@@ -522,6 +526,42 @@ class CampaignStore:
             del self.completed[index]
             raise
 
+    def check_layout(self, scenario: Scenario) -> None:
+        """The trajectories' layout against the provenance: the kept signals are the arrays
+        present, and the time grid is the scenario's instants at ``record_every``."""
+        if not self.layout or not self.completed:
+            return
+        present = set(self.layout["arrays"]) - {"final_state"} - set(self.layout["diagnostics"])
+        kept = {k for k in self.key.keep if k != "diagnostics"}
+        if present != kept or (bool(self.layout["diagnostics"]) and "diagnostics" not in self.key.keep):
+            raise StoreError(f"store = '{self.path}': it keeps {sorted(self.layout['arrays'])} but its provenance "
+                             f"says keep = {list(self.key.keep)}: the record or the data was changed")
+        t = self._zarr_group("r")["time"][:]
+        steps = round(scenario.t_final / scenario.dt)
+        every = self.key.record_every
+        k = np.arange(0, steps + 1, every) if every else np.zeros(0, dtype=np.int64)
+        if k.size and k[-1] != steps:
+            k = np.append(k, steps)  # the last instant is recorded too
+        expected = k * scenario.dt
+        if t.shape != expected.shape or not np.allclose(t, expected, rtol=1e-12, atol=1e-12 * scenario.t_final):
+            raise StoreError(f"store = '{self.path}': its time grid ({t.size} instants) is not the scenario's at "
+                             f"record_every = {every} ({expected.size} instants of t_final = {scenario.t_final:g} s, "
+                             f"dt = {scenario.dt:g} s): the record or the data was changed")
+
+    def check_a_case(self, scenario: Scenario, x0: np.ndarray) -> None:
+        """The first completed case run again from the provenance's scenario and seed: its
+        final state must be the stored one, bit for bit (a scenario text edited after the run,
+        in a way the initial states do not show, is found here). One case: milliseconds."""
+        if not self.completed:
+            return
+        c = self.completed[min(self.completed)]
+        i = int(c["start"])
+        stored = self._zarr_group("r")["final_state"][i]
+        again = scenario.simulate_cases(x0[i:i + 1], i, self.key.n, seed=self.key.seed, record_every=0)
+        if np.asarray(again.final_state[0]).tobytes() != np.asarray(stored).tobytes():
+            raise StoreError(f"store = '{self.path}': case {i} run again from the scenario and seed its provenance "
+                             "records does not end where the stored one does: the record or the data was changed")
+
     def _damaged(self, index: int, what: str, file: Path, why: str) -> StoreError:
         c = self.completed[index]
         return StoreError(
@@ -688,6 +728,9 @@ def read_campaign_store(
             + _indent(text) + "\n  the one given is\n" + _indent(_scenario_text(scenario))
         )
     manifest = json.loads((path / MANIFEST).read_text())
+    if manifest.get("format") != STORE_FORMAT or prov.get("format", STORE_FORMAT) != STORE_FORMAT:
+        raise StoreError(f"store = '{path}': format {manifest.get('format')!r} is not this version's "
+                         f"({STORE_FORMAT}); read it with the landing version that wrote it ({key.version})")
     store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]}, manifest.get("layout", {}))
     complete = len(store.completed) == store.n_chunks
     if not complete and not partial:
@@ -697,14 +740,17 @@ def read_campaign_store(
             "store= this path to complete it, or load the completed cases: landing.load(path, partial=True)"
         )
     x0 = store.read_initial()
-    if not complete:
-        done = np.isfinite(x0).all(axis=1)
-        drawn = scenario.initial_states(key.n, seed=key.seed)
-        if not np.array_equal(x0[done], drawn[done]):
-            raise ParameterError(f"the initial states stored at '{path}' are not its scenario's draws")
-        return store, scenario, x0, bool(prov.get("check_bounds", True))
-    expected = CampaignKey.of(scenario, seed=key.seed, n=key.n, chunk_size=key.chunk_size,
-                              record_every=key.record_every, keep=key.keep, x0=x0)
-    if expected.x0_sha256 != key.x0_sha256:
-        raise ParameterError(f"the initial states stored at '{path}' do not match its provenance record")
+    # the provenance against the data: its labels are believed only where the data agree
+    done = np.isfinite(x0).all(axis=1)
+    drawn = scenario.initial_states(key.n, seed=key.seed)
+    if not np.array_equal(x0[done], drawn[done]):
+        raise StoreError(f"store = '{path}': its initial states are not the draws of the scenario and seed "
+                         f"({key.seed}) its provenance records: the record or the data was changed")
+    if complete:
+        expected = CampaignKey.of(scenario, seed=key.seed, n=key.n, chunk_size=key.chunk_size,
+                                  record_every=key.record_every, keep=key.keep, x0=x0)
+        if expected.x0_sha256 != key.x0_sha256:
+            raise StoreError(f"store = '{path}': its initial states do not match its provenance record")
+    store.check_layout(scenario)
+    store.check_a_case(scenario, x0)
     return store, scenario, x0, bool(prov.get("check_bounds", True))
