@@ -142,3 +142,23 @@ def test_a_store_of_an_unknown_format_is_refused(store):
     edit(store / "manifest.json", lambda d: d.update(format=99))
     with pytest.raises(StoreError, match="format 99 is not this version's"):
         landing.load(store)
+
+
+def test_a_full_disk_is_a_store_error_naming_the_file_and_the_resume_completes(tmp_path, whole, monkeypatch):
+    import errno
+    import os
+
+    path = tmp_path / "c"
+    real, calls = os.replace, []
+
+    def full(src, dst, *args, **kwargs):
+        calls.append(dst)
+        if len(calls) == 5:  # a Parquet part of chunk 1
+            raise OSError(errno.ENOSPC, "No space left on device", str(dst))
+        return real(src, dst, *args, **kwargs)
+
+    with monkeypatch.context() as m:
+        m.setattr(os, "replace", full)
+        with pytest.raises(StoreError, match=r"writing chunk \d .* failed .*: No space left on device; free space"):
+            landing.monte_carlo(small(), N, seed=3, chunk_size=CHUNK, store=path)
+    assert_same_campaign(landing.monte_carlo(small(), N, seed=3, store=path), whole)

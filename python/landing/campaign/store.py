@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import dataclasses
 import datetime
+import errno
 import hashlib
 import importlib
 import json
@@ -475,7 +476,21 @@ class CampaignStore:
     def write_chunk(self, index: int, start: int, stop: int, part: SimulationResult, x0: np.ndarray,
                     draws: Optional[np.ndarray]) -> None:
         """Write chunk ``index`` (cases start..stop): Parquet files and the Zarr region, made
-        durable, then the manifest naming it complete."""
+        durable, then the manifest naming it complete. A failure of the file system (a full
+        disk, a permission) is a StoreError naming the file and the remedy; the chunk is then
+        not complete, and a resume writes it again."""
+        try:
+            self._write_chunk(index, start, stop, part, x0, draws)
+        except OSError as exc:
+            where = f" {exc.filename}" if getattr(exc, "filename", None) else ""
+            full = getattr(exc, "errno", None) == errno.ENOSPC or "No space left" in str(exc)
+            remedy = ("free space and run the same monte_carlo(..., store=...) call again to resume" if full
+                      else "fix it and run the same monte_carlo(..., store=...) call again to resume")
+            raise StoreError(f"store = '{self.path}': writing chunk {index} (cases {start}..{stop - 1}) failed"
+                             f"{where}: {exc.strerror or exc}; {remedy}") from exc
+
+    def _write_chunk(self, index: int, start: int, stop: int, part: SimulationResult, x0: np.ndarray,
+                     draws: Optional[np.ndarray]) -> None:
         pa, pq = require_io("pyarrow", "pyarrow.parquet", what="the campaign store")
         if not self.layout:
             self._create_trajectories(part)
