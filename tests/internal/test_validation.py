@@ -145,3 +145,13 @@ def test_recording_too_large_is_a_memory_error_not_a_crash():
     x0 = np.tile(NOMINAL, (10_000, 1))
     with pytest.raises(MemoryError, match="record fewer instants"):
         run(x0=x0, t_final=1e6, dt=1e-3)
+
+
+def test_overflowing_or_missing_inputs_are_parameter_errors_naming_them():
+    # reproducers of the reliability probe: an OverflowError and an AttributeError before
+    with pytest.raises(landing.ParameterError, match="chattering_band: .* exceeds the largest double"):
+        landing.theory.chattering_band(1e300, 0.5, 0.001)
+    with pytest.raises(landing.ParameterError, match="law = None is not one of"):
+        landing.scenarios.tether_comparison(law=None)
+    # and an ordinary band is the closed form (c1 dt)^(1/(1 - e1))
+    assert landing.theory.chattering_band(4.0, 0.5, 0.01) == pytest.approx(0.04**2, rel=1e-15)

@@ -391,13 +391,14 @@ def tether_law(law: str = "fntsmc") -> Controller:
 def tether_comparison(law: str = "fntsmc", fidelity: str = "flexible", **overrides: Any) -> Scenario:
     """Seed 003 section 4: 1 degree on both angles, at rest, to 0 under the 0.1 N limit, on the
     flexible plant; 100 s at dt = 0.01 s (the seed prints no step), every instant recorded."""
+    controller = tether_law(law)  # checks law first: it names the scenario
     plant = tether_plant(fidelity)
     dt = 0.01
     s = Scenario(
         name=f"tether_{law}_{fidelity}",
-        description=f"seed 003 comparison, {law.upper()} on the {fidelity} tethered satellite",
+        description=f"seed 003 comparison, {str(law).upper()} on the {fidelity} tethered satellite",
         plant=plant,
-        controller=tether_law(law),
+        controller=controller,
         x0=plant.initial_state(*TETHER_INITIAL_ANGLES),
         t_final=100.0,
         dt=dt,

@@ -6,6 +6,7 @@ with the printed eq. 42 and 47 for the record."""
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from typing import Any, Callable, Optional, Union
 
@@ -220,6 +221,10 @@ def chattering_band(c1: float, e1: float, dt: float) -> float:
     if not 0 < e1 < 1:
         raise ParameterError(f"chattering_band: e1 = {e1:g} violates 0 < e1 < 1")
     dt = real("dt", dt, positive=True, owner="chattering_band")
+    log_band = math.log(c1) + math.log(dt)
+    if log_band / (1.0 - e1) > math.log(sys.float_info.max):
+        raise ParameterError(f"chattering_band: (c1 dt)^(1/(1 - e1)) with c1 = {c1:g}, dt = {dt:g}, e1 = {e1:g} "
+                             "exceeds the largest double: no band to speak of (a smaller c1 dt)")
     return float((c1 * dt) ** (1.0 / (1.0 - e1)))
 
 
