@@ -114,10 +114,12 @@ def landing_sites(result: Result, requirement_radius: Optional[float] = None) ->
         extent.append(np.array([[requirement_radius, requirement_radius]]))
     if extent:
         span = max(float(np.max(np.concatenate(extent))), 1e-6) * 1.3
-        if radius is not None and radius < 20 * span:
+        if radius is not None and radius < 10 * span:
             _radius_box(ax, radius)
         elif radius is not None:
-            ax.text(0.02, 0.02, f"theory: |s1| <= {radius:.4g} m (off the plot)", transform=ax.transAxes, fontsize=8)
+            # a bound ten times beyond every site says nothing about them: drawn, it would hide them
+            ax.text(0.02, 0.02, f"theory: |s1| <= {radius:.4g} m, {radius / span:.0f} times the sites' extent: "
+                    "not informative here (not drawn)", transform=ax.transAxes, fontsize=8)
     if touched.any():
         ax.legend(loc="upper right", fontsize="small")
     ax.set_aspect("equal", adjustable="datalim")
