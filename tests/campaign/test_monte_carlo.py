@@ -162,3 +162,18 @@ def test_an_address_space_limit_is_honoured_up_front_and_the_refusal_names_what_
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert "REFUSED" in out.stdout and "what fits: record_every=" in out.stdout, out.stdout
+
+
+def test_a_check_that_cannot_fail_is_reported_as_not_informative():
+    # seed 001 part 2 over its 60 s: every final error is far inside the s1 radius (about 1954 m
+    # for errors of metres), so "300 of 300 within" says nothing; over 5 s the errors are of the
+    # radius's size and the check informs
+    long = landing.monte_carlo(scenarios.mars_monte_carlo(record_every=0, dt=2e-3), 20, seed=1, progress=False)
+    line = next(x for x in long.report().splitlines() if "within the s1 radius" in x)
+    assert "not informative: the radius is" in line
+    radius = float(np.min(long.bounds.s1_radius))
+    largest = float(np.max(np.abs(long.metrics["final_error"])))
+    assert radius / largest >= 10
+    short = landing.monte_carlo(scenarios.mars_monte_carlo(record_every=0, t_final=5.0, dt=2e-3), 20, seed=1,
+                                progress=False)
+    assert "not informative" not in next(x for x in short.report().splitlines() if "within the s1 radius" in x)

@@ -291,6 +291,17 @@ class MonteCarloResult:
         err = np.abs(self.metrics["final_error"])
         return np.all(err <= np.asarray(self.bounds.s1_radius), axis=-1)
 
+    @staticmethod
+    def _informative(radius: np.ndarray, errors: np.ndarray) -> str:
+        """A note for a check that cannot fail: a radius ten times (or more) the largest error
+        it is checked against, on every axis, says nothing about the errors."""
+        largest = np.nanmax(errors, axis=0) if errors.size else np.zeros(1)
+        ratio = float(np.min(np.asarray(radius) / np.maximum(largest, 1e-300)))
+        if ratio < 10:
+            return ""
+        return (f" (not informative: the radius is {ratio:.0f} times the largest error, "
+                f"{float(np.max(largest)):.4g} m)")
+
     def _driver_lines(self) -> list[str]:
         """The summary metrics' three strongest drivers among the dispersed quantities (partial
         rank correlations), when the campaign has enough cases to tell."""
@@ -352,7 +363,9 @@ class MonteCarloResult:
             lines.extend("    " + row for row in str(b).splitlines()[1:])
             end = self.within_radius_at_end()
             assert end is not None  # the bounds are known
-            lines.append(f"  final position error within the s1 radius: {int(end.sum())} of {n}")
+            lines.append(f"  final position error within the s1 radius: {int(end.sum())} of {n}"
+                         + self._informative(np.asarray(b.s1_radius, dtype=float),
+                                             np.abs(np.asarray(self.metrics["final_error"], dtype=float))))
             if self.checks:
                 for name, c in self.checks.items():
                     checkable = bool(np.all(c.extra["checkable"]))
