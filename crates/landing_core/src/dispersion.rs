@@ -168,7 +168,8 @@ pub fn parameter_stream(name: &str) -> u64 {
     h | 1 << 63
 }
 
-/// Independent components, one per state component.
+/// Independent components: one per state component (initial states), or per component of a
+/// dispersed parameter.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Dispersion {
     pub components: Vec<Component>,
@@ -304,6 +305,18 @@ mod tests {
                     mean: 1905.0,
                     std: 0.0,
                 },
+                // the moments of these two are closed forms of their own (the truncated
+                // normal's from the density at its ends): the sampler must meet them
+                Component::TruncatedNormal {
+                    mean: 225.0,
+                    std: 5.0,
+                    low: 215.0,
+                    high: 228.0,
+                },
+                Component::LogNormal {
+                    mu: 0.1,
+                    sigma: 0.2,
+                },
             ],
         };
         let n = 20_000;
@@ -312,7 +325,7 @@ mod tests {
         parts.extend(d.sample(3, 7, n - 7));
         assert_eq!(all, parts);
         for (j, c) in d.components.iter().enumerate() {
-            let col: Vec<f64> = all.iter().skip(j).step_by(3).copied().collect();
+            let col: Vec<f64> = all.iter().skip(j).step_by(d.dim()).copied().collect();
             let mean = col.iter().sum::<f64>() / n as f64;
             let sd = (col.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
             let (m, s) = c.moments();
@@ -322,7 +335,9 @@ mod tests {
             );
             assert!((sd - s).abs() <= 0.03 * s + 1e-12, "{j}: {sd} vs {s}");
         }
-        let u: Vec<f64> = all.iter().skip(1).step_by(3).copied().collect();
+        let u: Vec<f64> = all.iter().skip(1).step_by(d.dim()).copied().collect();
         assert!(u.iter().all(|&x| (-15.0..=45.0).contains(&x)));
+        let t: Vec<f64> = all.iter().skip(3).step_by(d.dim()).copied().collect();
+        assert!(t.iter().all(|&x| (215.0..=228.0).contains(&x)));
     }
 }

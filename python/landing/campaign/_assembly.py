@@ -5,7 +5,6 @@ or run and written to it, then the theory's bounds and their checks."""
 from __future__ import annotations
 
 import dataclasses
-import warnings
 from collections.abc import Iterable
 from typing import Callable, Optional
 
@@ -14,7 +13,7 @@ import numpy as np
 from landing._internal.progress import ProgressBar
 from landing.campaign.result import MonteCarloResult
 from landing.campaign.store import CampaignStore
-from landing.errors import ParameterError, StoreError, StoreWarning
+from landing.errors import ParameterError
 from landing.results import SimulationResult
 from landing.scenarios import Scenario
 from landing.theory import BoundCheck, MSSBounds, check_mss
@@ -83,16 +82,11 @@ def assemble_campaign(
     out = Assembly(n, keep)
     for index, start in enumerate(range(0, n, chunk_size)):
         stop = min(n, start + chunk_size)
-        part = None
-        if store is not None and store.is_complete(index):
-            try:
-                part = store.read_chunk(index)
-            except StoreError as exc:
-                if run_chunk is None:  # load(): a damaged store is named, never filled
-                    raise
-                # resume: the damaged chunk is run again and rewritten
-                warnings.warn(f"{exc}: running it again", StoreWarning, stacklevel=3)
-                store.forget(index)
+        part: Optional[SimulationResult]
+        if store is not None and run_chunk is None:
+            part = store.read_chunk(index)  # load(): a damaged chunk is named, never filled
+        else:
+            part = None if store is None else store.resume_chunk(index)
         if part is None:
             if run_chunk is None:  # pragma: no cover - load() checks completeness first
                 raise ParameterError(f"chunk {index} (cases {start}..{stop - 1}) is missing from the store")

@@ -63,9 +63,9 @@ def _what_fits(scenario: Scenario, n: int, every: int, chunk: int, keep: tuple[s
     steps = max(1, round(scenario.t_final / scenario.dt))
     options = []
     for k in sorted({every * f for f in (2, 5, 10, 100, 1000) if every} | {steps}):
-        if campaign_bytes(scenario, n, k, chunk=chunk, keep=keep) <= free:
-            options.append(f"record_every={k} ({format_bytes(campaign_bytes(scenario, n, k, chunk=chunk, keep=keep))} "
-                           "in all)")
+        size = campaign_bytes(scenario, n, k, chunk=chunk, keep=keep)
+        if size <= free:
+            options.append(f"record_every={k} ({format_bytes(size)} in all)")
             break
     for fewer in (("states",), ()):
         if set(fewer) < set(keep) and campaign_bytes(scenario, n, every, chunk=chunk, keep=fewer) <= free:
@@ -73,8 +73,7 @@ def _what_fits(scenario: Scenario, n: int, every: int, chunk: int, keep: tuple[s
             break
     if campaign_bytes(scenario, n, 0, chunk=chunk, keep=()) <= free:
         options.append("record_every=0 (final states and metrics only)")
-    fits = "; ".join(options) if options else "nothing of these cases fits: ask for fewer cases"
-    return f"what fits: {fits}; or fewer cases"
+    return f"what fits: {'; '.join(options)}; or fewer cases" if options else "ask for fewer cases"
 
 
 def monte_carlo(
@@ -191,7 +190,7 @@ def monte_carlo(
 
     try:
         # a resumed campaign counts the cases it computes, and says how many the store holds
-        kept = 0 if campaign_store is None else sum(c["stop"] - c["start"] for c in campaign_store.completed.values())
+        kept = 0 if campaign_store is None else campaign_store.completed_cases
         label = scenario.name if not kept else f"{scenario.name} (resumed: {kept} of {n} cases in the store)"
         bar = ProgressBar(n - kept, label=label) if progress and kept < n else None
         if client is not None:
@@ -224,7 +223,7 @@ def _interrupted(store: Optional[CampaignStore], n: int) -> str:
     if store is None:
         return (f"the campaign of {n} cases was interrupted; nothing is kept (with store=DIR the completed chunks "
                 "are, and the same call resumes it)")
-    kept = sum(c["stop"] - c["start"] for c in store.completed.values())
+    kept = store.completed_cases
     return (f"the campaign was interrupted: {kept} of {n} cases ({len(store.completed)} of {store.n_chunks} "
             f"chunks) are kept in '{store.path}'; the same monte_carlo(..., store='{store.path}') call (or landing "
             f"mc ... --store {store.path}) resumes it, landing.load('{store.path}', partial=True) reads them")

@@ -54,8 +54,6 @@ from landing.errors import (
     ParameterError,
     ParameterTypeError,
     SimulationError,
-    StoreError,
-    StoreWarning,
 )
 from landing.results import SimulationResult
 from landing.scenarios import Scenario, files
@@ -285,18 +283,12 @@ def run_campaign(
     todo: list[tuple[int, int, int]] = []
     for index, start in enumerate(range(0, n, chunk_size)):
         stop = min(n, start + chunk_size)
-        if store is not None and store.is_complete(index):
-            try:
-                part = store.read_chunk(index)
-            except StoreError as exc:  # damaged: run again on the cluster, and rewritten
-                warnings.warn(f"{exc}: running it again", StoreWarning, stacklevel=3)
-                store.forget(index)
-                todo.append((index, start, stop))
-                continue
+        part = None if store is None else store.resume_chunk(index)
+        if part is None:  # not in the store, or damaged there: run on the cluster
+            todo.append((index, start, stop))
+        else:
             out.put(start, part)
             del part
-        else:
-            todo.append((index, start, stop))
 
     run_id = uuid.uuid4().hex[:12]  # this call's keys: never those of a cancelled earlier call
     chunk_of: dict[str, tuple[int, int, int]] = {}

@@ -51,6 +51,7 @@ import importlib
 import json
 import os
 import platform
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -60,7 +61,7 @@ from typing import Any, Optional, Union
 import numpy as np
 
 from landing._core import __version__
-from landing.errors import LandingError, ParameterError, ParameterTypeError, StoreError
+from landing.errors import LandingError, ParameterError, ParameterTypeError, StoreError, StoreWarning
 from landing.results import Metrics, SimulationResult, dataset_coords, flat_columns, flat_metric_units, require_io
 from landing.scenarios import Scenario, files
 
@@ -302,6 +303,8 @@ class CampaignStore:
     layout: dict[str, Any] = field(default_factory=dict)
     #: Held from :meth:`open` to :meth:`close` (by the process writing the store).
     lock: Optional[WriterLock] = None
+    #: The (folder, chunk) Parquet parts already checked in this session (each is read once).
+    checked: set[tuple[str, int]] = field(default_factory=set, repr=False)
 
     # -- opening --
 
@@ -388,6 +391,11 @@ class CampaignStore:
     def n_chunks(self) -> int:
         return -(-self.key.n // self.key.chunk_size)
 
+    @property
+    def completed_cases(self) -> int:
+        """How many cases the completed chunks hold."""
+        return int(sum(c["stop"] - c["start"] for c in self.completed.values()))
+
     def is_complete(self, index: int) -> bool:
         return index in self.completed
 
@@ -395,7 +403,21 @@ class CampaignStore:
         """Chunk ``index`` no longer complete (found damaged): the manifest stops naming it, so
         that it is run and written again."""
         self.completed.pop(index, None)
+        self.checked = {k for k in self.checked if k[1] != index}
         self._write_manifest()
+
+    def resume_chunk(self, index: int) -> Optional[SimulationResult]:
+        """What a resumed campaign takes from the store for chunk ``index``: the chunk, or None
+        when it must run (not complete, or damaged: then forgotten, with a StoreWarning naming
+        the damage, and run and written again)."""
+        if not self.is_complete(index):
+            return None
+        try:
+            return self.read_chunk(index)
+        except StoreError as exc:
+            warnings.warn(f"{exc}: running it again", StoreWarning, stacklevel=4)
+            self.forget(index)
+            return None
 
     def _write_manifest(self) -> None:
         chunks = [self.completed[i] for i in sorted(self.completed)]
@@ -404,7 +426,7 @@ class CampaignStore:
             "n": self.key.n,
             "chunk_size": self.key.chunk_size,
             "n_chunks": self.n_chunks,
-            "completed_cases": int(sum(c["stop"] - c["start"] for c in chunks)),
+            "completed_cases": self.completed_cases,
             "complete": len(chunks) == self.n_chunks,
             "updated": _now(),
             "layout": self.layout,
@@ -601,6 +623,7 @@ class CampaignStore:
         expected = c.get("sha256", {}).get(what)
         if expected is not None and _digest(columns) != expected:
             raise self._damaged(index, what, file, "does not match its checksum in the manifest")
+        self.checked.add((str(folder), index))
         return table
 
     def read_metrics(self, index: int) -> dict[str, np.ndarray]:
@@ -618,7 +641,8 @@ class CampaignStore:
         """A completed chunk as the batch result it was (what was not kept is None/empty)."""
         c = self.completed[index]
         start, stop = c["start"], c["stop"]
-        self._table(index, INITIAL_DIR, "initial")  # its initial states too: damage anywhere is named
+        if (str(INITIAL_DIR), index) not in self.checked:  # its initial states too: damage anywhere is named
+            self._table(index, INITIAL_DIR, "initial")
         root = self.path / TRAJECTORIES
         try:
             group = self._zarr_group("r")

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -21,7 +20,7 @@ from landing.dispersions import Dispersion
 from landing.disturbances import Sum
 from landing.errors import ParameterError, ParameterTypeError
 
-__all__ = ["Target", "apply_draws", "checked_dispersions", "target"]
+__all__ = ["apply_draws", "checked_dispersions", "target"]
 
 #: The scenario's fields whose parameters may be dispersed.
 PARTS = ("plant", "controller", "reference", "disturbance")
@@ -29,15 +28,9 @@ PARTS = ("plant", "controller", "reference", "disturbance")
 _SEGMENT = re.compile(r"([A-Za-z_]\w*)((?:\[\d+\])*)")
 
 
-@dataclass(frozen=True)
-class Target:
-    """Where a dispersed parameter lives and how a case's draws are given to it: ``columns`` is
-    how many values a case reads (1 for a scalar, the axes for a per-axis one), ``form`` the
-    per-case shape it is given in (``"rows"``: ``(N,)``; ``"columns"``: ``(N, k)``)."""
-
-    name: str
-    columns: int
-    form: str
+#: How a case's draws are given to a dispersed parameter: ``"rows"``, one value per case
+#: ``(N,)``; ``"columns"``, ``(N, k)`` (a per-axis parameter, or a Python law's or plant's).
+Form = str
 
 
 def _segments(name: str) -> list[tuple[str, list[int]]]:
@@ -66,9 +59,9 @@ def _child(obj: Any, attr: str, index: list[int], name: str) -> Any:
     return value
 
 
-def _leaf(owner: Any, attr: str, name: str, axes: int, dim: int) -> Target:
-    """The declaration of parameter ``attr`` of ``owner``, and the per-case form of a
-    ``dim``-component dispersion of it."""
+def _leaf(owner: Any, attr: str, name: str, axes: int, dim: int) -> Form:
+    """The per-case form in which parameter ``attr`` of ``owner`` takes the draws of a
+    ``dim``-component dispersion, checked against the parameter's declaration."""
     if isinstance(owner, Sum):
         raise ParameterError(f"dispersions: {name!r}: a sum of disturbances holds its components in "
                              "'parts[i]' ('disturbance.parts[0].bound')")
@@ -80,7 +73,7 @@ def _leaf(owner: Any, attr: str, name: str, axes: int, dim: int) -> Target:
             raise ParameterError(f"dispersions: {name!r}: {type(owner).__name__} has no parameter {attr!r} "
                                  f"(its params: {sorted(params)})")
         plant = isinstance(owner, Table) and owner.family == "plant"
-        return Target(name, dim, "rows" if plant and dim == 1 else "columns")
+        return "rows" if plant and dim == 1 else "columns"
     declared = getattr(owner, "parameters", {})
     p = declared.get(getattr(owner, "_renamed", {}).get(attr, attr))
     if p is None:
@@ -92,15 +85,16 @@ def _leaf(owner: Any, attr: str, name: str, axes: int, dim: int) -> Target:
     if p.shape == "scalar":
         if dim != 1:
             raise ParameterError(f"dispersions: {name!r} is a scalar; its dispersion has {dim} components, not 1")
-        return Target(name, 1, "rows")
+        return "rows"
     if dim not in (1, axes):
         raise ParameterError(f"dispersions: {name!r} is per axis ({axes} axes); its dispersion has {dim} "
                              f"components: give 1 (one draw for every axis) or {axes} (one per axis)")
-    return Target(name, dim, "columns")
+    return "columns"
 
 
-def target(scenario: Any, name: str, dispersion: Any) -> Target:
-    """The parameter ``name`` of ``scenario`` that ``dispersion`` disperses, checked."""
+def target(scenario: Any, name: str, dispersion: Any) -> Form:
+    """How the parameter ``name`` of ``scenario``, which ``dispersion`` disperses, takes a
+    case's draws (checked: it exists, is numeric, and the components fit it)."""
     if not isinstance(name, str):
         raise ParameterTypeError(f"dispersions: a key must be a parameter's path (a string), got {name!r}")
     if not isinstance(dispersion, Dispersion):
@@ -150,7 +144,7 @@ def apply_draws(scenario: Any, draws: Mapping[str, np.ndarray]) -> Any:
     """``scenario`` with each dispersed parameter given its cases' draws (``(m, k)`` each, in
     the per-case form its declaration takes)."""
     for name, d in draws.items():
-        t = target(scenario, name, scenario.dispersions[name])
-        value = d[:, 0] if t.form == "rows" else d
+        form = target(scenario, name, scenario.dispersions[name])
+        value = d[:, 0] if form == "rows" else d
         scenario = _with(scenario, _segments(name), np.ascontiguousarray(value))
     return scenario
