@@ -20,7 +20,7 @@ use crate::event::Event;
 use crate::integrator::IntegratorKind;
 use crate::kernel::{self, LawCalls, Level, LevelError, LevelJob};
 use crate::lanes::{Gather, Real};
-use crate::limits::{MAX_SUBSTEPS, MAX_THREADS, within_cap};
+use crate::limits::{MAX_CASES, MAX_SUBSTEPS, MAX_THREADS, within_cap};
 use crate::memory::{available_bytes, gib};
 use crate::metrics::CaseMetrics;
 use crate::parallel::{self, Job};
@@ -67,6 +67,16 @@ impl<T> PerCase<T> {
 
     pub fn iter(&self) -> impl Iterator<Item = &T> {
         self.0.iter()
+    }
+
+    /// The value every case shares, or an error saying that `what` needs one.
+    pub fn single(&self, what: &str) -> Result<&T, ReadError> {
+        match self.0.as_slice() {
+            [value] => Ok(value),
+            _ => Err(ReadError::value(format!(
+                "{what} needs parameters shared by all cases"
+            ))),
+        }
     }
 }
 
@@ -489,18 +499,50 @@ pub(crate) fn check_cases<const D: usize, P: PlantModel<D>, L>(
     Ok(())
 }
 
-/// What runs the blocks: a level's lane kernel, or the width-1 instance of the same rollout.
+/// What runs the blocks: a level's lane kernel, or the width-1 instance of the same rollout. A
+/// type, not a value, so that the extension, which only ever runs the lanes, does not compile
+/// the width-1 rollout for every plant beside them (the Rust tests' [`run_scalar`] does).
+trait Kernel: Copy + Send + Sync {
+    /// Cases per block for blocks of width `B`.
+    fn width<B: kernel::Blocks>(self) -> usize;
+    /// The level the output reports.
+    fn level(self) -> Level;
+    fn run<const D: usize, J: LevelJob<D>>(self, job: J) -> J::Output;
+}
+
+impl Kernel for Level {
+    fn width<B: kernel::Blocks>(self) -> usize {
+        self.lanes::<B>()
+    }
+    fn level(self) -> Level {
+        self
+    }
+    fn run<const D: usize, J: LevelJob<D>>(self, job: J) -> J::Output {
+        kernel::dispatch(self, job)
+    }
+}
+
+/// The width-1 instance: one case per block, `f64` numbers.
 #[derive(Clone, Copy)]
-enum Kernel {
-    Lanes(Level),
-    Scalar,
+struct Scalar;
+
+impl Kernel for Scalar {
+    fn width<B: kernel::Blocks>(self) -> usize {
+        1
+    }
+    fn level(self) -> Level {
+        Level::Baseline
+    }
+    fn run<const D: usize, J: LevelJob<D>>(self, job: J) -> J::Output {
+        kernel::run_scalar(job)
+    }
 }
 
 /// Runs every case of the batch on the current rayon pool.
-fn run_here<const D: usize, P: PlantModel<D>>(
+fn run_here<const D: usize, P: PlantModel<D>, K: Kernel>(
     batch: &Batch<D, P>,
     cfg: &SimConfig,
-    kernel: Kernel,
+    kernel: K,
     cancel: &AtomicBool,
 ) -> Result<BatchOutput<D>, BatchError> {
     let n = batch.x0.len();
@@ -516,10 +558,7 @@ fn run_here<const D: usize, P: PlantModel<D>>(
         table: table.as_ref(),
         cancel,
     };
-    let (w, level) = match kernel {
-        Kernel::Lanes(level) => (level.lanes::<P::Blocks>(), level),
-        Kernel::Scalar => (1, Level::Baseline),
-    };
+    let (w, level) = (kernel.width::<P::Blocks>(), kernel.level());
     let shared = &shared;
     let jobs = o
         .blocks(w, nr, nx, nd)
@@ -532,10 +571,7 @@ fn run_here<const D: usize, P: PlantModel<D>>(
                 used: w.min(n - b * w),
                 out,
             };
-            Box::new(move || match kernel {
-                Kernel::Lanes(level) => kernel::dispatch(level, job),
-                Kernel::Scalar => kernel::run_scalar(job),
-            })
+            Box::new(move || kernel.run(job))
         })
         .collect();
     parallel::try_each(jobs).map_err(|Cancelled| BatchError::Cancelled)?;
@@ -645,6 +681,17 @@ pub(crate) fn shared_table<const D: usize, P: PlantModel<D>, L>(
     }
 }
 
+/// Checks that initial states of shape `[n, columns]` suit a plant of `width` state
+/// components: at least one case, at most the case cap.
+pub fn check_initial_states([n, columns]: [usize; 2], width: usize) -> Result<(), ReadError> {
+    if columns != width || n == 0 {
+        return Err(ReadError::value(format!(
+            "x0 has shape ({n}, {columns}); this plant takes (N, {width}), N >= 1"
+        )));
+    }
+    within_cap("x0 cases N", n as u64, "max_cases", MAX_CASES)
+}
+
 /// Runs every case of the batch.
 pub fn run<const D: usize, P: PlantModel<D>>(
     batch: &Batch<D, P>,
@@ -655,13 +702,13 @@ pub fn run<const D: usize, P: PlantModel<D>>(
     let level = Level::resolve(options.level)?;
     let never = AtomicBool::new(false);
     let cancel = options.cancel.unwrap_or(&never);
-    run_on(batch, cfg, Kernel::Lanes(level), options.threads, cancel)
+    run_on(batch, cfg, level, options.threads, cancel)
 }
 
-fn run_on<const D: usize, P: PlantModel<D>>(
+fn run_on<const D: usize, P: PlantModel<D>, K: Kernel>(
     batch: &Batch<D, P>,
     cfg: &SimConfig,
-    kernel: Kernel,
+    kernel: K,
     threads: Option<usize>,
     cancel: &AtomicBool,
 ) -> Result<BatchOutput<D>, BatchError> {
@@ -684,7 +731,7 @@ pub fn run_scalar<const D: usize, P: PlantModel<D>>(
     threads: Option<usize>,
 ) -> Result<BatchOutput<D>, BatchError> {
     check_shapes(batch, cfg)?;
-    run_on(batch, cfg, Kernel::Scalar, threads, &AtomicBool::new(false))
+    run_on(batch, cfg, Scalar, threads, &AtomicBool::new(false))
 }
 
 /// [`run`] with `threads` worker threads (`None`: all cores) at the best level.

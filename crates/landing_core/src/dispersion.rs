@@ -7,6 +7,7 @@
 //! which other parameters are dispersed.
 
 use crate::error::{ParamError, ReadError, check};
+use crate::limits::{MAX_CASES, within_cap};
 use crate::params::{FromParams, Param, ParamSource, Schema};
 use crate::rng::{CaseStream, streams};
 use crate::special::{normal_cdf, normal_quantile};
@@ -204,6 +205,24 @@ impl Dispersion {
     /// Cases `first_case .. first_case + n` of the initial states' stream, row-major (n x dim).
     pub fn sample(&self, seed: u64, first_case: u64, n: usize) -> Vec<f64> {
         self.sample_stream(seed, streams::DISPERSION, first_case, n)
+    }
+
+    /// [`Dispersion::sample_stream`] for cases a caller names: refused when `n` passes the
+    /// case cap or the cases run past the counter's 2^64.
+    pub fn sample_checked(
+        &self,
+        seed: u64,
+        stream: u64,
+        first_case: u64,
+        n: usize,
+    ) -> Result<Vec<f64>, ReadError> {
+        within_cap("n", n as u64, "max_cases", MAX_CASES)?;
+        if first_case.checked_add(n as u64).is_none() {
+            return Err(ReadError::value(format!(
+                "first_case = {first_case} violates first_case + n < 2^64 (n = {n})"
+            )));
+        }
+        Ok(self.sample_stream(seed, stream, first_case, n))
     }
 
     /// Cases `first_case .. first_case + n` of `stream` ([`parameter_stream`] for a parameter).

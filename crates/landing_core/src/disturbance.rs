@@ -347,6 +347,17 @@ impl<const D: usize> FromParams for Disturbance<D> {
     }
 }
 
+/// The components of a disturbance's table (`{"components": [...]}`), `owner` naming it in the
+/// error when it has none.
+pub fn components_of(table: &Table, owner: &str) -> Result<Vec<Table>, ReadError> {
+    let list = table.list(COMPONENTS.name).ok_or_else(|| {
+        ReadError::type_(format!(
+            "{owner}: a disturbance table has a list 'components'"
+        ))
+    });
+    list.map(<[Table]>::to_vec)
+}
+
 /// The numeric parameter `name` of the one component of `components` that declares it, as
 /// read for `axes` axes.
 pub fn component_values(

@@ -229,11 +229,22 @@ pub(crate) trait OutOfLine<const D: usize, R: Real> {
 /// The laws compiled for one level: out-of-line trampolines, generic over the axis count and
 /// the lane type, that the level's block rollouts call once per control period (see
 /// [`LawCalls`]). Only the level's own lane types are given them.
+///
+/// Each level's trampolines live in a module of their own (`$module`) because rustc places
+/// every instance of a generic function in the codegen unit of the module that defines it:
+/// in one module, every level's laws and periods for every plant were one codegen unit of
+/// 40 % of the extension, optimised on one thread while the other core idled (the build's
+/// critical path; BENCHMARKS.md). A module per level, and one for its periods, give the
+/// optimiser six units to share out.
 macro_rules! level_laws {
-    ($name:ident $(, $features:literal)?) => {
-        pub(crate) struct $name;
+    ($module:ident, $name:ident $(, $features:literal)?) => {
+        pub(crate) use $module::$name;
 
-        const _: () = {
+        mod $module {
+            use super::*;
+
+            pub(crate) struct $name;
+
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
             unsafe fn start<const D: usize, L: Real>(law: &AnyLaw<D, L>, input: &LawInput<D, L>) -> AnyMemory<D, L> {
@@ -282,10 +293,17 @@ macro_rules! level_laws {
                 stats.add(u, e, dt)
             }
 
-            $(#[target_feature(enable = $features)])?
-            #[inline(never)]
-            unsafe fn out_of_line<const D: usize, L: Real, J: OutOfLine<D, L>>(job: J) -> J::Output {
-                job.run::<$name>()
+            // the periods (every plant's) in a unit apart from the laws
+            mod period {
+                use super::*;
+
+                $(#[target_feature(enable = $features)])?
+                #[inline(never)]
+                pub(super) unsafe fn out_of_line<const D: usize, L: Real, J: OutOfLine<D, L>>(
+                    job: J,
+                ) -> J::Output {
+                    job.run::<$name>()
+                }
             }
 
             // SAFETY (every call below): this type is used only by the block rollouts of its
@@ -327,18 +345,19 @@ macro_rules! level_laws {
                 }
                 #[inline(always)]
                 fn out_of_line<J: OutOfLine<D, L>>(job: J) -> J::Output {
-                    unsafe { out_of_line(job) }
+                    unsafe { period::out_of_line(job) }
                 }
             }
-        };
+        }
     };
 }
 
-level_laws!(BaselineLaws);
+level_laws!(baseline, BaselineLaws);
 #[cfg(target_arch = "x86_64")]
-level_laws!(Avx2Laws, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
+level_laws!(avx2, Avx2Laws, "avx2,fma,bmi1,bmi2,lzcnt,popcnt");
 #[cfg(target_arch = "x86_64")]
 level_laws!(
+    avx512,
     Avx512Laws,
     "avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"
 );

@@ -19,6 +19,7 @@ pub mod external;
 pub mod fuzzy;
 pub mod gravity;
 pub mod integrator;
+pub mod interrupt;
 pub mod kernel;
 pub mod lanes;
 pub mod limits;

@@ -389,9 +389,16 @@ impl AnyPlant {
         Ok(self.visit(Coordinates(states)))
     }
 
-    /// States (rows x state dim, row-major) at rows of (q, q'), for the plants whose state
-    /// they determine (the tethered satellite).
-    pub fn states_at(&self, rows: &[f64]) -> Result<Vec<f64>, ReadError> {
+    /// States (rows x state dim, row-major) at `[n, width]` rows of (q, q'), for the plants
+    /// whose state they determine (the tethered satellite).
+    pub fn states_at(&self, rows: &[f64], [n, width]: [usize; 2]) -> Result<Vec<f64>, ReadError> {
+        let axes = self.axes();
+        if width != 2 * axes {
+            return Err(ReadError::value(format!(
+                "coordinates have shape ({n}, {width}); give (M, {}): q then q'",
+                2 * axes
+            )));
+        }
         self.visit(StatesAt(rows))
     }
 }
@@ -485,8 +492,14 @@ macro_rules! gravities {
             }
 
             /// The acceleration (3 values per position) or the potential (1) at positions
-            /// given as rows of 3 coordinates, refusing non-finite ones by their position.
-            pub fn evaluate(&self, r: &[f64], potential: bool) -> Result<Vec<f64>, ReadError> {
+            /// given as `[n, width]` rows, refusing another width than 3 and non-finite
+            /// coordinates by their position.
+            pub fn evaluate(&self, r: &[f64], [n, width]: [usize; 2], potential: bool) -> Result<Vec<f64>, ReadError> {
+                if width != 3 {
+                    return Err(ReadError::value(format!(
+                        "r has shape ({n}, {width}); it takes (3,) or (N, 3)"
+                    )));
+                }
                 if let Some((k, v)) = r.iter().enumerate().find(|(_, v)| !v.is_finite()) {
                     return Err(ReadError::value(format!(
                         "r[{}, {}] = {v} violates finite values",

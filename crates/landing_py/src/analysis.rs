@@ -7,7 +7,6 @@ use pyo3::prelude::*;
 use pyo3::types::{IntoPyDict, PyDict};
 
 use landing_core::dispersion::{Dispersion as CoreDispersion, parameter_stream};
-use landing_core::limits::{MAX_CASES, within_cap};
 use landing_core::theory;
 
 use crate::errors::{InputError, guard};
@@ -18,29 +17,23 @@ trait Answer {
     fn answer(self, py: Python<'_>) -> PyResult<Bound<'_, PyAny>>;
 }
 
-impl Answer for f64 {
-    fn answer(self, py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-        Ok(self.into_pyobject(py)?.into_any())
-    }
+/// Numbers and pairs as they are; a bound as the dict of its named terms.
+macro_rules! answers {
+    ($($number:ty),* ; $($bound:ty),*) => {
+        $(impl Answer for $number {
+            fn answer(self, py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+                Ok(self.into_pyobject(py)?.into_any())
+            }
+        })*
+        $(impl Answer for $bound {
+            fn answer(self, py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+                Ok(self.named().into_py_dict(py)?.into_any())
+            }
+        })*
+    };
 }
 
-impl Answer for (f64, f64) {
-    fn answer(self, py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-        Ok(self.into_pyobject(py)?.into_any())
-    }
-}
-
-impl Answer for theory::MssBounds {
-    fn answer(self, py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-        Ok(self.named().into_py_dict(py)?.into_any())
-    }
-}
-
-impl Answer for theory::FntsmcBounds {
-    fn answer(self, py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-        Ok(self.named().into_py_dict(py)?.into_any())
-    }
-}
+answers!(f64, (f64, f64); theory::MssBounds, theory::FntsmcBounds);
 
 /// Each formula of `landing_core::theory` listed once: a function of the same name and
 /// arguments (all float), its `ParamError` as a `ParameterError`, and its registration.
@@ -123,18 +116,15 @@ impl Dispersion {
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             // `landing.dispersions.Dispersion.sample` has checked the memory it needs
-            within_cap("n", n as u64, "max_cases", MAX_CASES).map_err(InputError::from)?;
-            if first_case.checked_add(n as u64).is_none() {
-                return Err(InputError::value(format!(
-                    "first_case = {first_case} violates first_case + n < 2^64 (n = {n})"
-                ))
-                .into());
-            }
-            let dim = self.dispersion.dim();
-            let d = &self.dispersion;
-            let stream = key.map_or(streams::DISPERSION, parameter_stream);
-            let data = py.detach(|| d.sample_stream(seed, stream, first_case, n));
-            Ok(PyArray1::from_vec(py, data).reshape([n, dim])?.into_any())
+            let (d, stream) = (
+                &self.dispersion,
+                key.map_or(streams::DISPERSION, parameter_stream),
+            );
+            let data = py.detach(|| d.sample_checked(seed, stream, first_case, n));
+            let data = data.map_err(InputError::from)?;
+            Ok(PyArray1::from_vec(py, data)
+                .reshape([n, d.dim()])?
+                .into_any())
         })
     }
 }

@@ -1,13 +1,12 @@
 //! Errors at the boundary, converted in one place.
 //!
 //! The exception classes live in `landing.errors` (Python), so that one base class,
-//! `LandingError`, can sit under both ValueError and TypeError; they are looked up once and
-//! cached. Every binding function returns `Result<_, InputError>` or `PyResult` and uses `?`.
+//! `LandingError`, can sit under ValueError, TypeError and RuntimeError; pyo3 imports each
+//! once, on first use (the package imports `landing.errors` before `_core`). Every binding
+//! function returns `Result<_, InputError>` or `PyResult` and uses `?`.
 
-use pyo3::exceptions::{PyMemoryError, PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::PyMemoryError;
 use pyo3::prelude::*;
-use pyo3::sync::PyOnceLock;
-use pyo3::types::PyType;
 
 use landing_core::error::ReadError;
 use landing_core::{BatchError, ParamError};
@@ -64,43 +63,24 @@ impl From<ReadError> for InputError {
     }
 }
 
-/// The library's exception classes, looked up in `landing.errors` once.
-struct Classes {
-    parameter: Py<PyType>,
-    parameter_type: Py<PyType>,
-    simulation: Py<PyType>,
+/// Returns early with an [`InputError::Value`] (a `ParameterError`) of `format!(...)`, from a
+/// function returning `PyResult` or `Result<_, InputError>`.
+macro_rules! invalid {
+    ($($message:tt)*) => {
+        return Err($crate::errors::InputError::value(format!($($message)*)).into())
+    };
 }
+pub(crate) use invalid;
 
-static CLASSES: PyOnceLock<Option<Classes>> = PyOnceLock::new();
-
-fn classes(py: Python<'_>) -> Option<&Classes> {
-    CLASSES
-        .get_or_init(py, || {
-            let m = py.import("landing.errors").ok()?;
-            let get = |name: &str| -> Option<Py<PyType>> {
-                Some(m.getattr(name).ok()?.cast_into::<PyType>().ok()?.unbind())
-            };
-            Some(Classes {
-                parameter: get("ParameterError")?,
-                parameter_type: get("ParameterTypeError")?,
-                simulation: get("SimulationError")?,
-            })
-        })
-        .as_ref()
-}
-
-fn raise(which: fn(&Classes) -> &Py<PyType>, fallback: fn(String) -> PyErr, msg: String) -> PyErr {
-    Python::attach(|py| match classes(py) {
-        Some(c) => PyErr::from_type(which(c).bind(py).clone(), msg),
-        None => fallback(msg),
-    })
-}
+pyo3::import_exception!(landing.errors, ParameterError);
+pyo3::import_exception!(landing.errors, ParameterTypeError);
+pyo3::import_exception!(landing.errors, SimulationError);
 
 impl From<InputError> for PyErr {
     fn from(e: InputError) -> Self {
         match e {
-            InputError::Value(m) => raise(|c| &c.parameter, PyValueError::new_err::<String>, m),
-            InputError::Type(m) => raise(|c| &c.parameter_type, PyTypeError::new_err::<String>, m),
+            InputError::Value(m) => ParameterError::new_err(m),
+            InputError::Type(m) => ParameterTypeError::new_err(m),
             InputError::Py(e) => e,
         }
     }
@@ -113,16 +93,10 @@ pub fn batch_error(e: BatchError) -> PyErr {
         BatchError::Length { .. }
         | BatchError::Shape { .. }
         | BatchError::Level(_)
-        | BatchError::Event(_) => raise(
-            |c| &c.parameter,
-            PyValueError::new_err::<String>,
-            e.to_string(),
-        ),
-        BatchError::ThreadPool(_) | BatchError::Cancelled => raise(
-            |c| &c.simulation,
-            PyRuntimeError::new_err::<String>,
-            e.to_string(),
-        ),
+        | BatchError::Event(_) => ParameterError::new_err(e.to_string()),
+        BatchError::ThreadPool(_) | BatchError::Cancelled => {
+            SimulationError::new_err(e.to_string())
+        }
     }
 }
 
@@ -133,11 +107,9 @@ pub fn internal_error(panic: Box<dyn std::any::Any + Send>) -> PyErr {
         .map(|s| s.to_string())
         .or_else(|| panic.downcast_ref::<String>().cloned())
         .unwrap_or_else(|| "panic".into());
-    raise(
-        |c| &c.simulation,
-        PyRuntimeError::new_err::<String>,
-        format!("internal error in the simulation core ({what}); this is a bug, please report it"),
-    )
+    SimulationError::new_err(format!(
+        "internal error in the simulation core ({what}); this is a bug, please report it"
+    ))
 }
 
 /// Runs the body of a binding entry point (every `#[pyfunction]` and `#[pymethods]` item

@@ -7,8 +7,7 @@ use numpy::{PyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::fuzzy::{Mamdani, Variable, variable_rate_system};
-use landing_core::limits::{MAX_FUZZY_RESOLUTION, within_cap};
+use landing_core::fuzzy::{Mamdani, Variable, checked_variable_rate_system};
 
 use crate::errors::{InputError, guard};
 use crate::table;
@@ -41,19 +40,10 @@ impl FuzzySystem {
         inputs: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         guard(|| {
-            let columns = inputs.shape()[1];
-            if columns != self.system.n_inputs() {
-                return Err(InputError::value(format!(
-                    "inputs has {columns} columns; the system takes {}",
-                    self.system.n_inputs()
-                ))
-                .into());
-            }
+            let (columns, system) = (inputs.shape()[1], self.system.clone());
             let rows: Vec<f64> = inputs.as_array().iter().copied().collect();
-            let system = self.system.clone();
-            let out = py
-                .detach(move || system.evaluate_rows(&rows))
-                .map_err(InputError::from)?;
+            let out = py.detach(move || system.evaluate_rows(&rows, columns));
+            let out = out.map_err(InputError::from)?;
             Ok(PyArray1::from_vec(py, out))
         })
     }
@@ -79,20 +69,7 @@ pub fn variable_rate_system_table(
     resolution: usize,
 ) -> PyResult<Bound<'_, PyDict>> {
     guard(|| {
-        if resolution < 2 {
-            return Err(InputError::value(format!(
-                "resolution = {resolution} violates resolution >= 2"
-            ))
-            .into());
-        }
-        within_cap(
-            "resolution",
-            resolution as u64,
-            "max_fuzzy_resolution",
-            MAX_FUZZY_RESOLUTION,
-        )
-        .map_err(InputError::from)?;
-        let m = variable_rate_system(resolution);
+        let m = checked_variable_rate_system(resolution).map_err(InputError::from)?;
         let d = PyDict::new(py);
         let inputs = m
             .inputs()

@@ -46,29 +46,18 @@ impl Gravity {
         potential: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
-            let [n, width] = [positions.shape()[0], positions.shape()[1]];
-            if width != 3 {
-                return Err(InputError::value(format!(
-                    "r has shape ({n}, {width}); it takes (3,) or (N, 3)"
-                ))
-                .into());
-            }
-            if !self.fields.is_shared() {
-                return Err(InputError::value(
-                    "evaluating a field needs parameters shared by all cases",
-                )
-                .into());
-            }
-            let out = self
-                .fields
-                .get(0)
-                .evaluate(positions.as_slice()?, potential)
-                .map_err(InputError::from)?;
+            let (r, shape) = (
+                positions.as_slice()?,
+                [positions.shape()[0], positions.shape()[1]],
+            );
+            let field = self.fields.single("evaluating a field");
+            let out = field.and_then(|f| f.evaluate(r, shape, potential));
+            let out = out.map_err(InputError::from)?;
             let arr = PyArray1::from_vec(py, out);
             Ok(if potential {
                 arr.into_any()
             } else {
-                arr.reshape([n, 3])?.into_any()
+                arr.reshape(shape)?.into_any()
             })
         })
     }

@@ -6,6 +6,7 @@
 //! released. Nothing here holds simulation logic.
 
 mod analysis;
+mod callables;
 mod errors;
 mod fuzzy;
 mod gravity;
@@ -17,7 +18,7 @@ mod simulate;
 mod table;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{IntoPyDict, PyDict, PyList};
 
 use landing_core::control::LAW_KINDS;
 use landing_core::gravity::G;
@@ -65,25 +66,18 @@ fn _panic_for_test() -> PyResult<()> {
     guard(|| panic!("deliberate panic for the tests"))
 }
 
-/// The caps of `landing_core::limits`, by name.
-fn limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
-    let d = PyDict::new(py);
-    for (name, value) in LIMITS {
-        d.set_item(name, value)?;
-    }
-    Ok(d)
-}
-
 /// A parameter's declaration: name, shape, unit, rule, required, doc, and its choices or its
 /// nested tables' family (or fixed layout).
 fn param<'py>(py: Python<'py>, p: &Param) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("name", p.name)?;
-    d.set_item("shape", p.shape.name())?;
-    d.set_item("unit", p.unit)?;
+    let texts = [
+        ("name", p.name),
+        ("shape", p.shape.name()),
+        ("unit", p.unit),
+        ("doc", p.doc),
+    ];
+    let d = texts.into_py_dict(py)?;
     d.set_item("rule", p.rules())?;
     d.set_item("required", p.required)?;
-    d.set_item("doc", p.doc)?;
     match p.shape {
         Shape::Choice(names) => d.set_item("choices", names.to_vec())?,
         Shape::Count(values) => d.set_item("choices", values.to_vec())?,
@@ -130,11 +124,8 @@ fn metric_list(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
     let items = CaseMetrics::<3>::COLUMNS
         .iter()
         .map(|c| {
-            let d = PyDict::new(py);
-            d.set_item("name", c.name)?;
-            d.set_item("unit", c.unit)?;
+            let d = [("name", c.name), ("unit", c.unit), ("doc", c.doc)].into_py_dict(py)?;
             d.set_item("per_axis", c.per_axis())?;
-            d.set_item("doc", c.doc)?;
             Ok(d)
         })
         .collect::<PyResult<Vec<_>>>()?;
@@ -167,7 +158,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("GRAVITATIONAL_CONSTANT", G)?;
     m.add("DIVERGENCE_REASONS", Divergence::NAMES.to_vec())?;
     m.add("MAX_COMMAND", MAX_COMMAND)?;
-    m.add("LIMITS", limits(m.py())?)?;
+    m.add("LIMITS", LIMITS.into_py_dict(m.py())?)?;
     m.add("SCHEMAS", schema_table(m.py())?)?;
     m.add("METRICS", metric_list(m.py())?)?;
     Ok(())

@@ -66,10 +66,9 @@ impl Plant {
             d.set_item("axes", info.axes)?;
             d.set_item("max_step", info.max_step)?;
             for (name, v) in info.figures {
-                if v.len() == 1 {
-                    d.set_item(name, v[0])?;
-                } else {
-                    d.set_item(name, v)?;
+                match v.as_slice() {
+                    [x] => d.set_item(name, x)?,
+                    _ => d.set_item(name, v)?,
                 }
             }
             Ok(d)
@@ -104,19 +103,11 @@ impl Plant {
         rows: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
-            let axes = self.plants.axes();
-            let [n, width] = [rows.shape()[0], rows.shape()[1]];
-            if width != 2 * axes {
-                return Err(InputError::value(format!(
-                    "coordinates have shape ({n}, {width}); give (M, {}): q then q'",
-                    2 * axes
-                ))
-                .into());
-            }
+            let n = rows.shape()[0];
             let data = self
                 .plants
-                .states_at(rows.as_slice()?)
-                .map_err(InputError::from)?;
+                .states_at(rows.as_slice()?, [n, rows.shape()[1]]);
+            let data = data.map_err(InputError::from)?;
             let nx = data.len() / n.max(1);
             output::shaped(py, data, [n, nx])
         })

@@ -3,7 +3,7 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::disturbance::{COMPONENTS, Disturbances, component_values};
+use landing_core::disturbance::{COMPONENTS, Disturbances, component_values, components_of};
 use landing_core::error::finite;
 use landing_core::params::{ByAxes, Table};
 use landing_core::reference::{ReferenceKind, References, cubic_from_slices};
@@ -41,13 +41,8 @@ impl Reference {
             finite("t", &t).map_err(InputError::from)?;
             let values = with_axes!(axes, D => {
                 let (refs, _) = self.compiled.get::<D>().map_err(InputError::from)?;
-                if !refs.is_shared() {
-                    return Err(InputError::value(
-                        "evaluate() needs a reference shared by all cases",
-                    )
-                    .into());
-                }
-                refs.get(0).trajectory(&t).map_err(InputError::from)?
+                let reference = refs.single("evaluate()").map_err(InputError::from)?;
+                reference.trajectory(&t).map_err(InputError::from)?
             }, a => return Err(axes_error(a).into()));
             let d = PyDict::new(py);
             for (name, v) in ["position", "velocity", "acceleration"]
@@ -102,13 +97,11 @@ impl Disturbance {
     #[new]
     fn new(owner: &str, table: &Bound<'_, PyDict>) -> PyResult<Self> {
         guard(|| {
-            let t = table::from_py(owner, table)?;
-            let components = t.list(COMPONENTS.name).ok_or_else(|| {
-                InputError::type_(format!(
-                    "{owner}: a disturbance table has a list 'components'"
-                ))
-            })?;
-            Ok(Self::from_components(owner, components.to_vec())?)
+            let components = components_of(&table::from_py(owner, table)?, owner);
+            Ok(Self::from_components(
+                owner,
+                components.map_err(InputError::from)?,
+            )?)
         })
     }
 
@@ -130,13 +123,8 @@ impl Disturbance {
         guard(|| {
             with_axes!(axes, D => {
                 let (d, _) = self.compiled.get::<D>().map_err(InputError::from)?;
-                if !d.is_shared() {
-                    return Err(InputError::value(
-                        "the bound needs a disturbance shared by all cases",
-                    )
-                    .into());
-                }
-                Ok(d.get(0).bound().as_slice().to_vec())
+                let d = d.single("the bound").map_err(InputError::from)?;
+                Ok(d.bound().as_slice().to_vec())
             }, a => Err(axes_error(a).into()))
         })
     }

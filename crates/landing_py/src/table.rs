@@ -11,7 +11,7 @@ use numpy::{PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
-use landing_core::params::{Array, Table, Value, shape_str};
+use landing_core::params::{Array, Table, Value};
 
 use crate::errors::InputError;
 
@@ -101,22 +101,5 @@ fn list_item(key: &str, item: &Bound<'_, PyAny>) -> Result<Table, InputError> {
 }
 
 fn numbers(key: &str, data: Vec<f64>, shape: Vec<usize>) -> Result<Value, InputError> {
-    if shape.contains(&0) {
-        // every reader picks at least one value (the first case, axis or node count)
-        return Err(InputError::value(format!(
-            "{key} has shape {}; it takes at least one value",
-            shape_str(&shape)
-        )));
-    }
-    if let Some((i, x)) = data.iter().enumerate().find(|(_, x)| !x.is_finite()) {
-        let at = if data.len() > 1 {
-            format!(" (entry {i})")
-        } else {
-            String::new()
-        };
-        return Err(InputError::value(format!(
-            "{key} = {x} violates finite values{at}"
-        )));
-    }
-    Ok(Value::Numbers(Array { data, shape }))
+    Ok(Value::Numbers(Array::new(key, data, shape)?))
 }

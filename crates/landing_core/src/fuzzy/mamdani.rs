@@ -56,10 +56,15 @@ pub const MAX_INPUTS: usize = 4;
 pub const MAX_INPUT_SETS: usize = 16;
 
 impl Mamdani {
-    /// The crisp outputs for rows of [`Mamdani::n_inputs`] inputs each (row-major), refusing
-    /// non-finite inputs by their position.
-    pub fn evaluate_rows(&self, rows: &[f64]) -> Result<Vec<f64>, ReadError> {
+    /// The crisp outputs for rows of `columns` inputs each (row-major), refusing rows of
+    /// another width than [`Mamdani::n_inputs`] and non-finite inputs by their position.
+    pub fn evaluate_rows(&self, rows: &[f64], columns: usize) -> Result<Vec<f64>, ReadError> {
         let n = self.n_inputs();
+        if columns != n {
+            return Err(ReadError::value(format!(
+                "inputs has {columns} columns; the system takes {n}"
+            )));
+        }
         if let Some((k, v)) = rows.iter().enumerate().find(|(_, v)| !v.is_finite()) {
             return Err(ReadError::value(format!(
                 "inputs[{}, {}] = {v} violates finite values",
@@ -314,6 +319,18 @@ pub fn even_triangles(lo: f64, hi: f64, count: usize) -> Vec<Membership> {
             Membership::Triangle((b - step).max(lo), b, (b + step).min(hi))
         })
         .collect()
+}
+
+/// [`variable_rate_system`] at a resolution a caller names: refused below 2 or past the cap.
+pub fn checked_variable_rate_system(resolution: usize) -> Result<Mamdani, ReadError> {
+    if resolution < 2 {
+        return Err(ReadError::value(format!(
+            "resolution = {resolution} violates resolution >= 2"
+        )));
+    }
+    let cap = crate::limits::MAX_FUZZY_RESOLUTION;
+    crate::limits::within_cap("resolution", resolution as u64, "max_fuzzy_resolution", cap)?;
+    Ok(variable_rate_system(resolution))
 }
 
 /// The seed-002 variable-rate system (sec. 2.3, Table 1): inputs s and s' with NB NS ZR PS PB

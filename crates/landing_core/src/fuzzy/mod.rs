@@ -6,6 +6,7 @@ mod membership;
 mod table;
 
 pub use mamdani::{
-    MAX_INPUTS, MAX_OUTPUT_SETS, Mamdani, Rule, Variable, even_triangles, variable_rate_system,
+    MAX_INPUTS, MAX_OUTPUT_SETS, Mamdani, Rule, Variable, checked_variable_rate_system,
+    even_triangles, variable_rate_system,
 };
 pub use membership::{Membership, MembershipShape, TRAPEZOID, TRIANGLE};

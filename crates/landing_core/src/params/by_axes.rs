@@ -101,6 +101,20 @@ impl<M: ReadFor> ByAxes<M> {
         }
     }
 
+    /// The reading for D axes if it fits a batch of `n` cases (`owner` names it in the error).
+    pub fn for_cases<const D: usize>(
+        &self,
+        owner: &str,
+        n: usize,
+    ) -> Result<PerCase<M::At<D>>, ReadError>
+    where
+        Dim<D>: AxisCount<D>,
+    {
+        let (models, cases) = self.get::<D>()?;
+        cases.check(owner, n)?;
+        Ok(models.clone())
+    }
+
     /// The axis counts the table fits.
     pub fn axes(&self) -> Vec<usize> {
         let mut a = Vec::new();

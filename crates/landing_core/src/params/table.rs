@@ -27,6 +27,30 @@ pub struct Array {
     pub shape: Vec<usize>,
 }
 
+impl Array {
+    /// The numbers of the entry `key`: at least one (every reader picks at least one value:
+    /// the first case, axis or node count), each finite.
+    pub fn new(key: &str, data: Vec<f64>, shape: Vec<usize>) -> Result<Self, ReadError> {
+        if shape.contains(&0) {
+            return Err(ReadError::value(format!(
+                "{key} has shape {}; it takes at least one value",
+                shape_str(&shape)
+            )));
+        }
+        if let Some((i, x)) = data.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+            let at = if data.len() > 1 {
+                format!(" (entry {i})")
+            } else {
+                String::new()
+            };
+            return Err(ReadError::value(format!(
+                "{key} = {x} violates finite values{at}"
+            )));
+        }
+        Ok(Self { data, shape })
+    }
+}
+
 #[derive(Clone, Debug)]
 pub enum Value {
     Absent,

@@ -1,0 +1,130 @@
+//! Running a batch while the caller watches for a request to stop (Ctrl-C in Python).
+//!
+//! A batch polls its cancel flag between blocks and control periods ([`crate::RunOptions`]);
+//! something must raise the flag while the batch holds the calling thread. [`supervised`] runs
+//! a large job on a scoped thread and lets the calling thread poll the caller (Python's signal
+//! handlers, for the binding) until the job ends; a small job runs where it is called, since it
+//! ends within milliseconds anyway.
+
+use std::any::Any;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+/// Jobs of fewer integrator steps than this (cases x periods x substeps) run on the calling
+/// thread, unwatched: they take milliseconds.
+pub const WATCHED_WORK: u128 = 1 << 17;
+
+/// How often the calling thread polls while a job runs: well under the second a user waits
+/// for Ctrl-C to act.
+pub const POLL_INTERVAL: Duration = Duration::from_millis(50);
+
+/// Why a supervised job gave no result.
+pub enum Stopped<E> {
+    /// `poll` asked to stop (with its reason); the job was cancelled and its result dropped.
+    Interrupted(E),
+    /// The job panicked (the payload), caught rather than unwound into the caller.
+    Panicked(Box<dyn Any + Send>),
+}
+
+/// Runs `job` (`work` integrator steps) and returns its result, catching its panics. A job of
+/// [`WATCHED_WORK`] steps or more runs on a scoped thread while this thread calls `poll` every
+/// [`POLL_INTERVAL`]; the first error `poll` returns raises `cancel`, the job stops at its
+/// next poll of the flag, and the error is returned once the job has ended.
+pub fn supervised<'a, T: Send, E>(
+    work: u128,
+    cancel: &AtomicBool,
+    mut poll: impl FnMut() -> Result<(), E>,
+    job: Box<dyn FnOnce() -> T + Send + 'a>,
+) -> Result<T, Stopped<E>> {
+    let caught = || std::panic::catch_unwind(std::panic::AssertUnwindSafe(job));
+    if work < WATCHED_WORK {
+        return caught().map_err(Stopped::Panicked);
+    }
+    let watcher = std::thread::current();
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(move || {
+            let out = caught();
+            watcher.unpark();
+            out
+        });
+        let mut raised = None;
+        while !worker.is_finished() {
+            std::thread::park_timeout(POLL_INTERVAL);
+            if raised.is_none()
+                && !worker.is_finished()
+                && let Err(e) = poll()
+            {
+                cancel.store(true, Ordering::Relaxed);
+                raised = Some(e);
+            }
+        }
+        // the job's panics are caught inside it, so the thread itself cannot have panicked
+        let out = worker
+            .join()
+            .expect("the job's panics are caught inside it");
+        match (raised, out) {
+            (Some(e), _) => Err(Stopped::Interrupted(e)),
+            (None, out) => out.map_err(Stopped::Panicked),
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_small_job_runs_unwatched_and_its_panic_is_caught() {
+        let cancel = AtomicBool::new(false);
+        let polled = std::cell::Cell::new(0);
+        let poll = || -> Result<(), ()> {
+            polled.set(polled.get() + 1);
+            Ok(())
+        };
+        assert!(matches!(
+            supervised(1, &cancel, poll, Box::new(|| 7)),
+            Ok(7)
+        ));
+        let r = supervised(
+            1,
+            &cancel,
+            || Err::<(), ()>(()),
+            Box::new(|| panic!("boom")),
+        );
+        assert!(matches!(r, Err(Stopped::Panicked(_))));
+        assert_eq!(polled.get(), 0);
+    }
+
+    #[test]
+    fn a_poll_error_cancels_a_large_job_and_is_returned() {
+        let cancel = AtomicBool::new(false);
+        let job = Box::new(|| {
+            // a job that runs until it is cancelled, as a batch does
+            while !cancel.load(Ordering::Relaxed) {
+                std::thread::sleep(Duration::from_millis(1));
+            }
+            1
+        });
+        let r = supervised(u128::MAX, &cancel, || Err::<(), &str>("stop"), job);
+        assert!(matches!(r, Err(Stopped::Interrupted("stop"))));
+        assert!(cancel.load(Ordering::Relaxed));
+    }
+
+    #[test]
+    fn a_large_job_that_ends_returns_its_result() {
+        let cancel = AtomicBool::new(false);
+        let job = Box::new(|| {
+            std::thread::sleep(Duration::from_millis(120));
+            5
+        });
+        let r = supervised(u128::MAX, &cancel, || Ok::<(), ()>(()), job);
+        assert!(matches!(r, Ok(5)));
+        let r = supervised(
+            u128::MAX,
+            &cancel,
+            || Ok::<(), ()>(()),
+            Box::new(|| panic!("x")),
+        );
+        assert!(matches!(r, Err(Stopped::Panicked(_))));
+    }
+}

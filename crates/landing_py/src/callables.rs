@@ -1,0 +1,193 @@
+//! Python callables as the core's external law and plant (`landing_core::external`): the
+//! arrays handed to them at every call, and the checks of what they return.
+
+use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use landing_core::external::{ExternalLaw, ExternalPlant, Inputs, StateLayout};
+
+use crate::errors::invalid;
+
+/// The (N, width) arrays handed to Python at every call, reused from one call to the next: a
+/// fresh array at every call faults its pages in again (a quarter of a Python law's time at
+/// 10^4 cases). An array the callee kept a reference to (in its memory, a view of it) is left
+/// to it, and replaced by a new one.
+#[derive(Default)]
+pub struct Handed {
+    slots: Vec<Option<Py<PyArray2<f64>>>>,
+}
+
+impl Handed {
+    /// Slot `slot`'s array, holding `values` (`n x width`, row-major).
+    fn array<'py>(
+        &mut self,
+        py: Python<'py>,
+        slot: usize,
+        values: &[f64],
+        n: usize,
+    ) -> Bound<'py, PyAny> {
+        let width = values.len() / n;
+        if self.slots.len() <= slot {
+            self.slots.resize_with(slot + 1, || None);
+        }
+        let held = &mut self.slots[slot];
+        // SAFETY: a plain reference count read of a live object, with the GIL held
+        let ours = |a: &Py<PyArray2<f64>>| unsafe { pyo3::ffi::Py_REFCNT(a.as_ptr()) } == 1;
+        if !held
+            .as_ref()
+            .is_some_and(|a| ours(a) && a.bind(py).shape() == [n, width])
+        {
+            *held = Some(PyArray2::zeros(py, [n, width], false).unbind());
+        }
+        let a = held.as_ref().expect("set above").bind(py);
+        // SAFETY: a C-contiguous (n, width) float64 array that only this slot holds (its count
+        // is one, or it was just made), so no Python code sees the write; numpy's read-only
+        // flag, which the Python layer sets, guards Python's writes, not this one
+        unsafe { std::ptr::copy_nonoverlapping(values.as_ptr(), a.data(), values.len()) };
+        a.clone().into_any()
+    }
+
+    /// Calls `f(*head, *arrays)`, the arrays in slots `first ..` (each `n` rows).
+    fn call<'py>(
+        &mut self,
+        f: &Bound<'py, PyAny>,
+        head: Vec<Bound<'py, PyAny>>,
+        arrays: &[&[f64]],
+        first: usize,
+        n: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let py = f.py();
+        let mut items = head;
+        for (j, a) in arrays.iter().enumerate() {
+            items.push(self.array(py, first + j, a, n));
+        }
+        f.call1(PyTuple::new(py, items)?)
+    }
+}
+
+/// Copies a C-contiguous (n, width) array that `who` returned into `into`, or an error naming
+/// it: a wrong shape would be read out of bounds.
+fn copy_rows(who: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, into: &mut [f64]) -> PyResult<()> {
+    let width = into.len() / n;
+    if a.shape() != [n, width] {
+        invalid!(
+            "{who} returned an array of shape {:?}; expected ({n}, {width})",
+            a.shape()
+        );
+    }
+    into.copy_from_slice(a.as_slice()?);
+    Ok(())
+}
+
+/// A Python callable as the core's [`ExternalLaw`]: `step(t, k, e, de, position, velocity,
+/// acceleration, drift, inertia)`, each an (N, D) float64 array but the instant `t` and its
+/// index `k`, returns `(command, diagnostics)`, float64 arrays of shapes (N, D) and (N,
+/// width), C-contiguous. The Python layer (`landing.controllers.PythonLaw`) checks what the
+/// user's function returns and makes it so; the shapes are checked again here.
+pub struct PyLaw {
+    pub step: Py<PyAny>,
+    pub width: usize,
+    pub n: usize,
+    pub handed: Handed,
+}
+
+impl<const D: usize> ExternalLaw<D> for PyLaw {
+    type Error = PyErr;
+
+    fn diagnostic_width(&self) -> usize {
+        self.width
+    }
+
+    fn command(
+        &mut self,
+        i: &Inputs<D>,
+        command: &mut [f64],
+        diagnostics: &mut [f64],
+    ) -> PyResult<()> {
+        Python::attach(|py| {
+            let head = vec![
+                i.t.into_pyobject(py)?.into_any(),
+                i.k.into_pyobject(py)?.into_any(),
+            ];
+            let fields = [
+                &i.e,
+                &i.de,
+                &i.position,
+                &i.velocity,
+                &i.acceleration,
+                &i.drift,
+                &i.inertia,
+            ];
+            let fields = fields.map(|v| v.as_slice());
+            let out = self
+                .handed
+                .call(self.step.bind(py), head, &fields, 0, self.n)?;
+            let (u, diag): (PyReadonlyArray2<'_, f64>, PyReadonlyArray2<'_, f64>) =
+                out.extract()?;
+            copy_rows("the Python law's step (command)", &u, self.n, command)?;
+            copy_rows(
+                "the Python law's step (diagnostics)",
+                &diag,
+                self.n,
+                diagnostics,
+            )
+        })
+    }
+}
+
+/// A plant written in Python, as the core's [`ExternalPlant`]: `landing.plants.PythonPlant`
+/// hands over its hooks `(derivative, model, actuate, in_domain)`, each None but the first when
+/// absent, and each called as `f(t, *arrays)` on (N, width) float64 arrays (`derivative(t, x,
+/// u)`, `model(t, x)`, `actuate(t, x, a)`, `in_domain(t, x)`) to return one C-contiguous
+/// float64 array (N, n_state), (N, 2 D): drifts then inertias, (N, D), (N, 1): 1 inside.
+pub struct PyPlant<const D: usize> {
+    pub layout: StateLayout<D>,
+    pub hooks: [Option<Py<PyAny>>; 4],
+    pub n: usize,
+    pub handed: Handed,
+}
+
+impl<const D: usize> PyPlant<D> {
+    /// Hook `i` on `args`, its result into `out` (`n x width`).
+    fn call(&mut self, i: usize, t: f64, args: &[&[f64]], out: &mut [f64]) -> PyResult<()> {
+        let what = ["derivative", "model", "actuate", "in_domain"][i];
+        let Some(f) = &self.hooks[i] else {
+            invalid!("the plant has no {what} to call");
+        };
+        Python::attach(|py| {
+            let head = vec![t.into_pyobject(py)?.into_any()];
+            // two slots per hook: its arguments after t
+            let r = self.handed.call(f.bind(py), head, args, 2 * i, self.n)?;
+            copy_rows(&format!("the plant's {what}"), &r.extract()?, self.n, out)
+        })
+    }
+}
+
+impl<const D: usize> ExternalPlant<D> for PyPlant<D> {
+    type Error = PyErr;
+
+    fn layout(&self) -> &StateLayout<D> {
+        &self.layout
+    }
+
+    fn hooks(&self) -> [bool; 3] {
+        [1, 2, 3].map(|i| self.hooks[i].is_some())
+    }
+
+    fn derivative(&mut self, t: f64, x: &[f64], u: &[f64], xdot: &mut [f64]) -> PyResult<()> {
+        self.call(0, t, &[x, u], xdot)
+    }
+
+    fn model(&mut self, t: f64, x: &[f64], model: &mut [f64]) -> PyResult<()> {
+        self.call(1, t, &[x], model)
+    }
+
+    fn actuate(&mut self, t: f64, x: &[f64], a: &[f64], u: &mut [f64]) -> PyResult<()> {
+        self.call(2, t, &[x, a], u)
+    }
+
+    fn in_domain(&mut self, t: f64, x: &[f64], inside: &mut [f64]) -> PyResult<()> {
+        self.call(3, t, &[x], inside)
+    }
+}
