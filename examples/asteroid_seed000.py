@@ -11,8 +11,18 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+import numpy as np
+
 import landing
-from landing.scenarios import SEED000_LAWS, seed000_landing, seed000_reference, seed000_tracking
+from landing import theory
+from landing.scenarios import (
+    SEED000_GAINS,
+    SEED000_LAWS,
+    SEED000_OFFSET,
+    seed000_landing,
+    seed000_reference,
+    seed000_tracking,
+)
 
 SEED = {"pd": (8.0, 244.0), "ftsmc": (5.0, 139.0), "fuzzy_ftsmc": (4.0, 113.0)}
 NAMES = {"pd": "PD-SMC", "ftsmc": "FTSMC", "fuzzy_ftsmc": "fuzzy FTSMC"}
@@ -38,6 +48,22 @@ def main() -> None:
                   f"{t:.0f} s, {e:.0f} ({e / SEED['pd'][1]:.2f})")
     print("\n(tracked: |r - r_ref| within 0.1 m from then on; IAE: integral of |e_x| + |e_y| + |e_z|; variation:"
           " total variation of the command per second, m/s^3; HF share: energy above 5 Hz)")
+
+    # eq. 5 and 7: the time to reach e = 0 once on the surface, for the preset's FTSMC gains
+    # and the 10 m initial offset; the seed prints p and q swapped
+    g, e0 = SEED000_GAINS, float(SEED000_OFFSET[0])
+    alpha, beta, p, q = g["lam"], g["beta"], g["p"], g["q"]
+    print(f"\nReaching times on the surface from e0 = {e0:g} m (alpha {alpha:g}, beta {beta:g}, p/q = {p:g}/{q:g}):")
+    print(f"  eq. 7 (fast terminal):  {theory.fast_terminal_reaching_time(e0, alpha, beta, p, q):.4f} s"
+          f"   as printed (p, q swapped): {theory.fast_terminal_reaching_time_printed(e0, alpha, beta, p, q):.3g} s")
+    print(f"  eq. 5 (terminal):       {theory.terminal_reaching_time(e0, beta, p, q):.4f} s"
+          f"   as printed (p, q swapped): {theory.terminal_reaching_time_printed(e0, beta, p, q):.3g} s")
+    law = seed000_tracking("ftsmc", "sat").controller
+    check = theory.check_terminal_reaching_time(law, [e0, -e0, 1.0])
+    print(f"  the FTSMC started on its surface (double integrator, dt {float(check.extra['dt']):.3g} s): |e| <= "
+          f"{float(check.extra['tolerance']):g} m after {check.measured[0, 0]:.4f} s, eq. 7 predicts "
+          f"{check.extra['predicted'][0, 0]:.4f} s; largest difference over e0 = +-{e0:g}, 1 m: "
+          f"{np.abs(check.extra['difference']).max():.2g} s")
 
     print("\nFull landing, 8000 s (tanh switching):")
     for law in SEED000_LAWS:

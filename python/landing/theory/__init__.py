@@ -16,6 +16,11 @@ that violates it:
   law on a double integrator, where its derivation holds exactly) and
   :func:`check_fntsmc_run` (a recorded tethered-satellite run); the printed eq. 42 and 47 are
   :func:`fntsmc_ts_printed` and :func:`fntsmc_td_printed`.
+- :func:`terminal_reaching_time` and :func:`fast_terminal_reaching_time` (seed 000 eq. 5 and
+  7, with p and q as the surfaces have them; the printed forms swap them:
+  :func:`terminal_reaching_time_printed`, :func:`fast_terminal_reaching_time_printed`), with
+  :func:`check_terminal_reaching_time` (the fast terminal law on a double integrator, started
+  on its surface).
 """
 
 from landing.theory._signals import entry_time, settle_time
@@ -24,6 +29,8 @@ from landing.theory.bounds import (
     MSSBounds,
     chattering_band,
     disturbance_bound,
+    fast_terminal_reaching_time,
+    fast_terminal_reaching_time_printed,
     fixed_time_bound,
     fntsmc_bounds,
     fntsmc_td_printed,
@@ -34,6 +41,8 @@ from landing.theory.bounds import (
     practical_radius,
     practical_time_bound,
     scenario_bounds,
+    terminal_reaching_time,
+    terminal_reaching_time_printed,
 )
 from landing.theory.checks import (
     BoundCheck,
@@ -42,6 +51,7 @@ from landing.theory.checks import (
     check_fntsmc_run,
     check_mss,
     check_practical_bound,
+    check_terminal_reaching_time,
 )
 
 __all__ = [
@@ -67,4 +77,9 @@ __all__ = [
     "fntsmc_td_printed",
     "check_fntsmc_bound",
     "check_fntsmc_run",
+    "terminal_reaching_time",
+    "fast_terminal_reaching_time",
+    "terminal_reaching_time_printed",
+    "fast_terminal_reaching_time_printed",
+    "check_terminal_reaching_time",
 ]

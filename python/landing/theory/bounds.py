@@ -34,6 +34,10 @@ __all__ = [
     "chattering_band",
     "FNTSMCBounds",
     "fntsmc_bounds",
+    "terminal_reaching_time",
+    "fast_terminal_reaching_time",
+    "terminal_reaching_time_printed",
+    "fast_terminal_reaching_time_printed",
     "fntsmc_ts_printed",
     "fntsmc_td_printed",
     "FNTSMC_GAINS",
@@ -226,6 +230,44 @@ def chattering_band(c1: float, e1: float, dt: float) -> float:
         raise ParameterError(f"chattering_band: (c1 dt)^(1/(1 - e1)) with c1 = {c1:g}, dt = {dt:g}, e1 = {e1:g} "
                              "exceeds the largest double: no band to speak of (a smaller c1 dt)")
     return float((c1 * dt) ** (1.0 / (1.0 - e1)))
+
+
+# Seed 000: the terminal and fast terminal surfaces' reaching times (eq. 5 and 7).
+
+
+def terminal_reaching_time(e0: ArrayLike, beta: ArrayLike, p: ArrayLike, q: ArrayLike) -> Real:
+    """Seed 000 eq. 5: the time the error takes to reach 0 from ``e0`` on the terminal sliding
+    surface ``s = e' + beta sig^(p/q)(e) = 0`` (0 < p < q),
+    ``t_s = q / (beta (q - p)) |e0|^((q - p)/q)``. The seed prints p and q swapped
+    (:func:`terminal_reaching_time_printed`), which is negative for its own p < q. Arrays
+    broadcast; checked against simulation by :func:`check_terminal_reaching_time`."""
+    return _vectorized(_core.terminal_reaching_time, "terminal_reaching_time", e0=e0, beta=beta, p=p, q=q)
+
+
+def fast_terminal_reaching_time(e0: ArrayLike, alpha: ArrayLike, beta: ArrayLike, p: ArrayLike,
+                                q: ArrayLike) -> Real:
+    """Seed 000 eq. 7: the time the error takes to reach 0 from ``e0`` on the fast terminal
+    surface ``s = e' + alpha e + beta sig^(p/q)(e) = 0`` (eq. 6, 0 < p < q),
+    ``t_s = q / (alpha (q - p)) ln((alpha |e0|^((q - p)/q) + beta) / beta)``. The seed prints p
+    and q swapped (:func:`fast_terminal_reaching_time_printed`). Arrays broadcast; checked
+    against simulation by :func:`check_terminal_reaching_time`."""
+    return _vectorized(_core.fast_terminal_reaching_time, "fast_terminal_reaching_time", e0=e0, alpha=alpha,
+                       beta=beta, p=p, q=q)
+
+
+def terminal_reaching_time_printed(e0: ArrayLike, beta: ArrayLike, p: ArrayLike, q: ArrayLike) -> Real:
+    """Seed 000 eq. 5 as printed, ``p / (beta (p - q)) |e0|^((p - q)/p)``: negative for the
+    seed's p < q. Returned as printed, whatever its sign. Arrays broadcast."""
+    return _vectorized(_core.terminal_reaching_time_printed, "terminal_reaching_time_printed", e0=e0, beta=beta,
+                       p=p, q=q)
+
+
+def fast_terminal_reaching_time_printed(e0: ArrayLike, alpha: ArrayLike, beta: ArrayLike, p: ArrayLike,
+                                        q: ArrayLike) -> Real:
+    """Seed 000 eq. 7 as printed, ``p / (alpha (p - q)) (ln(alpha |e0|^((p - q)/p) + beta) - ln beta)``
+    (|e0| for the seed's e0). Returned as printed, whatever its sign. Arrays broadcast."""
+    return _vectorized(_core.fast_terminal_reaching_time_printed, "fast_terminal_reaching_time_printed", e0=e0,
+                       alpha=alpha, beta=beta, p=p, q=q)
 
 
 # Seed 003: the fixed-time NTSMC with RBF compensation (law 9).

@@ -9,6 +9,8 @@ reports the cases that violate it.
   practical neighbourhoods and times (Theorem 4).
 - :func:`check_fntsmc_bound` (the seed-003 law on a double integrator, where its derivation
   holds exactly) and :func:`check_fntsmc_run` (a recorded tethered-satellite run).
+- :func:`check_terminal_reaching_time`: seed 000's eq. 7 (and eq. 5, its alpha -> 0 limit) for
+  :class:`~landing.controllers.FastTerminalSMC` started on its surface.
 
 A scalar reaching law is simulated where the library realises it: the exact variant of
 FixedTimeMSS on a :class:`~landing.plants.DoubleIntegrator` makes its second sliding variable
@@ -26,7 +28,7 @@ import numpy as np
 
 from landing._internal.args import integer, real, real_array
 from landing._internal.table import ArrayLike
-from landing.controllers import FixedTimeMSS, FixedTimeNTSMC
+from landing.controllers import FastTerminalSMC, FixedTimeMSS, FixedTimeNTSMC
 from landing.disturbances import DisturbanceLike, Sinusoid
 from landing.errors import ParameterError, ParameterTypeError
 from landing.plants import DoubleIntegrator, Plant
@@ -38,9 +40,11 @@ from landing.theory.bounds import (
     FNTSMCBounds,
     MSSBounds,
     chattering_band,
+    fast_terminal_reaching_time,
     fixed_time_bound,
     fntsmc_bounds,
     law_gains,
+    law_parameter,
     practical_radius,
     practical_time_bound,
 )
@@ -52,6 +56,7 @@ __all__ = [
     "check_mss",
     "check_fntsmc_bound",
     "check_fntsmc_run",
+    "check_terminal_reaching_time",
 ]
 
 
@@ -338,3 +343,53 @@ def check_fntsmc_run(result: SimulationResult, plant: Any, bounds: FNTSMCBounds)
         measured=measured,
         extra={"checkable": np.asarray(bound <= result.t[-1])},
     )
+
+
+# Seed 000: the fast terminal surface's reaching time (eq. 7).
+
+def check_terminal_reaching_time(law: FastTerminalSMC, e0: ArrayLike, *, tol: float = 1e-3,
+                                 dt: Optional[float] = None) -> BoundCheck:
+    """Simulate ``law`` (its gains shared by every case; each axis its own) on a
+    :class:`~landing.plants.DoubleIntegrator` (unit inertia, no drift, no saturation) from
+    initial errors ``e0`` ((N,) or (N, 3)) started on the sliding surface,
+    ``e'(0) = -alpha e0 - beta sig^(p/q)(e0)``, and compare the first time |e| <= tol with
+    eq. 7's time to reach 0, :func:`~landing.theory.fast_terminal_reaching_time`.
+
+    On the surface the error obeys ``e' = -alpha e - beta sig^(p/q)(e)``, so the time to come
+    down to ``tol`` is eq. 7 at e0 less eq. 7 at tol: that prediction is
+    ``extra["predicted"]``, and ``extra["difference"]`` what the sampled law measures against
+    it (a few control periods when eq. 7 holds). ``tol`` is raised to ten times the law's
+    ``e_floor`` (below which the equivalent control is guarded, not the surface's) if smaller.
+    ``dt`` defaults to a period a hundred times shorter than the fastest time constant of the
+    surface. Eq. 5 is eq. 7's limit as alpha tends to 0: a law with a small alpha checks it."""
+    owner = "check_terminal_reaching_time"
+    _instance(owner, "law", law, FastTerminalSMC, "a landing.controllers.FastTerminalSMC law")
+    e = _as_cases(owner, e0).astype(float)
+    if np.any(e == 0):
+        raise ParameterError(f"{owner}: e0 has a zero; it takes non-zero initial errors (at 0 the time is 0)")
+    gains = [law_parameter(law, n, 3) for n in ("alpha", "beta", "p", "q")]
+    if any(g.ndim > 1 for g in gains):
+        raise ParameterError(f"{owner} takes a law with the same gains for every case")
+    alpha, beta, p, q = gains
+    e_floor = float(np.max(law_parameter(law, "e_floor", 3)))
+    tol = max(real("tol", tol, positive=True, owner=owner), 10.0 * e_floor)
+    r = p / q
+    if dt is None:
+        e_max = np.abs(e).max(axis=0)
+        # the surface's local rate at e: alpha + beta r |e|^(r - 1), largest at the smallest
+        # |e| the check reads (tol)
+        rate = float(np.max(alpha + beta * r * np.minimum(e_max, tol) ** (r - 1.0)))
+        dt = float(min(1e-2, 0.01 / rate))
+    else:
+        dt = real("dt", dt, positive=True, owner=owner)
+    de0 = -alpha * e - beta * np.sign(e) * np.abs(e) ** r
+    bound = np.asarray(fast_terminal_reaching_time(np.abs(e), alpha, beta, p, q), dtype=float)
+    predicted = bound - np.asarray(fast_terminal_reaching_time(np.full_like(e, tol), alpha, beta, p, q), dtype=float)
+    predicted = np.where(np.abs(e) <= tol, 0.0, predicted)
+    res = simulate_batch(DoubleIntegrator(), law, np.concatenate([e, de0], axis=1),
+                         t_final=_horizon(dt, 1.2 * float(bound.max()) + 10 * dt), dt=dt, record_every=1)
+    assert res.states is not None  # recorded: record_every = 1
+    measured = entry_time(res.t, res.states[:, :, :3], tol)
+    return BoundCheck(name=f"|e| <= {tol:.3g} within eq. 7's time to reach 0", bound=bound, measured=measured,
+                      extra={"predicted": predicted, "difference": measured - predicted,
+                             "tolerance": np.asarray(tol), "dt": np.asarray(dt)})
