@@ -12,9 +12,8 @@ __all__ = [
     "__version__", "Plant", "Law", "Reference", "Disturbance", "Gravity", "FuzzySystem", "simulate_batch",
     "cubic_from_boundary", "variable_rate_system_table", "kernel_levels", "default_kernel", "available_memory",
     "_panic_for_test", "fixed_time_bound", "practical_time_bound", "practical_radius", "mss_bounds",
-    "min_final_time", "min_time_to_rest", "terminal_reaching_time", "fast_terminal_reaching_time",
-    "terminal_reaching_time_printed", "fast_terminal_reaching_time_printed", "fntsmc_ts_printed", "fntsmc_td_printed",
-    "fntsmc_bounds",
+    "min_final_time", "min_time_to_rest", "terminal_reaching_time", "terminal_reaching_time_printed",
+    "fntsmc_ts_printed", "fntsmc_td_printed", "fntsmc_bounds",
     "philox4x64", "Dispersion", "DispersionHandle", "INTEGRATORS", "PLANT_KINDS", "CONTROLLER_KINDS",
     "GRAVITY_KINDS", "KERNEL_LEVELS", "EVENTS", "GRAVITATIONAL_CONSTANT", "DIVERGENCE_REASONS", "MAX_COMMAND", "LIMITS",
     "SCHEMAS", "METRICS",
@@ -232,17 +231,11 @@ def min_final_time(r0: float, v0: float, a_max: float, g: float) -> tuple[float,
 def min_time_to_rest(r0: float, v0: float, a_max: float, g: float) -> float:
     """Shortest time to rest at 0 on one axis (time-optimal bang-bang)."""
 
-def terminal_reaching_time(e0: float, beta: float, p: float, q: float) -> float:
-    """Seed 000 eq. 5 (p and q as in the surface): time to reach e = 0 on s = e' + beta sig^(p/q)(e) = 0."""
+def terminal_reaching_time(e0: float, alpha: float, beta: float, p: float, q: float) -> float:
+    """Seed 000 eq. 7 (eq. 5 at alpha = 0): time to reach e = 0 on the (fast) terminal surface."""
 
-def fast_terminal_reaching_time(e0: float, alpha: float, beta: float, p: float, q: float) -> float:
-    """Seed 000 eq. 7: time to reach e = 0 on the fast terminal surface (eq. 6)."""
-
-def terminal_reaching_time_printed(e0: float, beta: float, p: float, q: float) -> float:
-    """Seed 000 eq. 5 as printed (p and q swapped; negative for p < q)."""
-
-def fast_terminal_reaching_time_printed(e0: float, alpha: float, beta: float, p: float, q: float) -> float:
-    """Seed 000 eq. 7 as printed (p and q swapped)."""
+def terminal_reaching_time_printed(e0: float, alpha: float, beta: float, p: float, q: float) -> float:
+    """Seed 000 eq. 7 (eq. 5 at alpha = 0) as printed: p and q swapped, negative for p < q."""
 
 def fntsmc_ts_printed(c_v: float, alpha_s: float, beta_s: float) -> float:
     """Seed 003 eq. 42 as printed, as a function of Lemma 2's constant c_v."""

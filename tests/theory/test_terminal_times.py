@@ -99,7 +99,10 @@ def test_bad_input_is_refused_naming_the_argument():
     with pytest.raises(ParameterError, match="q > p"):
         theory.terminal_reaching_time(1.0, 0.4, 5.0, 1.0)
     with pytest.raises(ParameterError, match="alpha"):
-        theory.fast_terminal_reaching_time(1.0, 0.0, 0.4, 1.0, 5.0)
+        theory.fast_terminal_reaching_time(1.0, -1.0, 0.4, 1.0, 5.0)
+    # alpha = 0 is eq. 5 exactly
+    t5 = theory.terminal_reaching_time(1.0, 0.4, 1.0, 5.0)
+    assert theory.fast_terminal_reaching_time(1.0, 0.0, 0.4, 1.0, 5.0) == t5
     with pytest.raises(ParameterError, match="e0"):
         theory.terminal_reaching_time(np.inf, 0.4, 1.0, 5.0)
     law = FastTerminalSMC(alpha=1.0, beta=0.4, p=1.0, q=5.0, k=2.5)

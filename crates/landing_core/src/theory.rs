@@ -301,79 +301,61 @@ fn check_fntsmc_exponents(p1: f64, p2: f64, alpha_s: f64, beta_s: f64) -> Result
     check_reaching_exponents(alpha_s, beta_s)
 }
 
-/// Seed 000 eq. 5: on the terminal sliding surface `s = e' + beta sig^(p/q)(e) = 0`
-/// (0 < p < q), the error `e' = -beta sig^(p/q)(e)` reaches 0 from `e0` at
-///
-/// `t_s = q / (beta (q - p)) |e0|^((q - p)/q)`
-///
-/// (with y = |e|^(1 - p/q), y' = -(1 - p/q) beta). The seed prints
-/// `p / (beta (p - q)) |e0|^((p - q)/p)`, p and q swapped: for its p < q that is negative
-/// ([`terminal_reaching_time_printed`]).
-pub fn terminal_reaching_time(e0: f64, beta: f64, p: f64, q: f64) -> Result<f64, ParamError> {
-    check_terminal(e0, beta, p, q)?;
-    let r = 1.0 - p / q;
-    Ok(e0.abs().powf(r) / (beta * r))
-}
-
 /// Seed 000 eq. 7: on the fast terminal surface `s = e' + alpha e + beta sig^(p/q)(e) = 0`
 /// (eq. 6, 0 < p < q), `e' = -alpha e - beta sig^(p/q)(e)` reaches 0 from `e0` at
 ///
 /// `t_s = q / (alpha (q - p)) ln((alpha |e0|^((q - p)/q) + beta) / beta)`
 ///
-/// (with y = |e|^(1 - p/q), `y' = -(1 - p/q)(alpha y + beta)`, linear). The seed prints
-/// `p / (alpha (p - q)) (ln(alpha e0^((p - q)/p) + beta) - ln beta)`, p and q swapped as in
-/// eq. 5 ([`fast_terminal_reaching_time_printed`]). As alpha tends to 0 this tends to eq. 5.
-pub fn fast_terminal_reaching_time(
+/// (with y = |e|^(1 - p/q), `y' = -(1 - p/q)(alpha y + beta)`, linear). At alpha = 0 it is
+/// eq. 5, the terminal surface `s = e' + beta sig^(p/q)(e)`, where y falls at a constant rate:
+/// `t_s = q / (beta (q - p)) |e0|^((q - p)/q)`, the limit of eq. 7 as alpha tends to 0.
+/// The seed prints both with p and q swapped ([`terminal_reaching_time_printed`]).
+pub fn terminal_reaching_time(
     e0: f64,
     alpha: f64,
     beta: f64,
     p: f64,
     q: f64,
 ) -> Result<f64, ParamError> {
-    check_terminal(e0, beta, p, q)?;
-    require(
-        alpha > 0.0 && alpha.is_finite(),
-        "alpha",
-        alpha,
-        "alpha > 0",
-    )?;
+    check_terminal(e0, alpha, beta, p, q)?;
     let r = 1.0 - p / q;
-    Ok((alpha * e0.abs().powf(r) / beta).ln_1p() / (alpha * r))
+    let y0 = e0.abs().powf(r);
+    Ok(if alpha == 0.0 {
+        y0 / (beta * r)
+    } else {
+        (alpha * y0 / beta).ln_1p() / (alpha * r)
+    })
 }
 
-/// Seed 000 eq. 5's time as printed, `p / (beta (p - q)) |e0|^((p - q)/p)`: negative (or
-/// NaN) for the seed's own p < q; returned as printed so that the reproduction can show it.
+/// Seed 000's eq. 7 as printed, `p / (alpha (p - q)) (ln(alpha |e0|^((p - q)/p) + beta) - ln
+/// beta)` (the seed writes e0 without the bars), and at alpha = 0 its eq. 5,
+/// `p / (beta (p - q)) |e0|^((p - q)/p)`: p and q swapped against
+/// [`terminal_reaching_time`], so negative for the seed's own p < q. Returned as printed,
+/// whatever its sign, so that the reproduction can show it.
 pub fn terminal_reaching_time_printed(
     e0: f64,
-    beta: f64,
-    p: f64,
-    q: f64,
-) -> Result<f64, ParamError> {
-    check_terminal(e0, beta, p, q)?;
-    Ok(p / (beta * (p - q)) * e0.abs().powf((p - q) / p))
-}
-
-/// Seed 000 eq. 7's time as printed, `p / (alpha (p - q)) (ln(alpha |e0|^((p - q)/p) + beta)
-/// - ln beta)` (the seed writes e0 without the bars); returned as printed, whatever its sign.
-pub fn fast_terminal_reaching_time_printed(
-    e0: f64,
     alpha: f64,
     beta: f64,
     p: f64,
     q: f64,
 ) -> Result<f64, ParamError> {
-    check_terminal(e0, beta, p, q)?;
-    require(
-        alpha > 0.0 && alpha.is_finite(),
-        "alpha",
-        alpha,
-        "alpha > 0",
-    )?;
-    Ok(p / (alpha * (p - q)) * ((alpha * e0.abs().powf((p - q) / p) + beta).ln() - beta.ln()))
+    check_terminal(e0, alpha, beta, p, q)?;
+    let y0 = e0.abs().powf((p - q) / p);
+    Ok(if alpha == 0.0 {
+        p / (beta * (p - q)) * y0
+    } else {
+        p / (alpha * (p - q)) * ((alpha * y0 + beta).ln() - beta.ln())
+    })
 }
 
-fn check_terminal(e0: f64, beta: f64, p: f64, q: f64) -> Result<(), ParamError> {
+fn check_terminal(e0: f64, alpha: f64, beta: f64, p: f64, q: f64) -> Result<(), ParamError> {
     require(e0.is_finite(), "e0", e0, "finite")?;
+    require(
+        alpha >= 0.0 && alpha.is_finite(),
+        "alpha",
+        alpha,
+        "alpha >= 0",
+    )?;
     require(beta > 0.0 && beta.is_finite(), "beta", beta, "beta > 0")?;
     require(p > 0.0, "p", p, "p > 0")?;
     require(q > p && q.is_finite(), "q", q, "q > p")

@@ -68,14 +68,10 @@ formulas! {
     min_final_time(r0, v0, a_max, g);
     /// Shortest time to rest at 0 on one axis (time-optimal bang-bang, gravity g).
     min_time_to_rest(r0, v0, a_max, g);
-    /// Seed 000 eq. 5 (p and q as in the surface): time to reach e = 0 on s = e' + beta sig^(p/q)(e) = 0.
-    terminal_reaching_time(e0, beta, p, q);
-    /// Seed 000 eq. 7: time to reach e = 0 on the fast terminal surface (eq. 6).
-    fast_terminal_reaching_time(e0, alpha, beta, p, q);
-    /// Seed 000 eq. 5 as printed (p and q swapped; negative for p < q).
-    terminal_reaching_time_printed(e0, beta, p, q);
-    /// Seed 000 eq. 7 as printed (p and q swapped).
-    fast_terminal_reaching_time_printed(e0, alpha, beta, p, q);
+    /// Seed 000 eq. 7 (eq. 5 at alpha = 0): time to reach e = 0 on the (fast) terminal surface.
+    terminal_reaching_time(e0, alpha, beta, p, q);
+    /// Seed 000 eq. 7 (eq. 5 at alpha = 0) as printed: p and q swapped, negative for p < q.
+    terminal_reaching_time_printed(e0, alpha, beta, p, q);
     /// Seed 003 eq. 42 as printed, as a function of Lemma 2's constant c_v (not in the seed).
     fntsmc_ts_printed(c_v, alpha_s, beta_s);
     /// Seed 003 eq. 47 as printed (not a bound for eq. 21's exponents; see the core).
@@ -124,10 +120,8 @@ impl Dispersion {
     ) -> PyResult<Bound<'py, PyAny>> {
         guard(|| {
             // `landing.dispersions.Dispersion.sample` has checked the memory it needs
-            let (d, stream) = (
-                &self.dispersion,
-                key.map_or(streams::DISPERSION, parameter_stream),
-            );
+            let d = &self.dispersion;
+            let stream = key.map_or(streams::DISPERSION, parameter_stream);
             let data = py.detach(|| d.sample_checked(seed, stream, first_case, n));
             let data = data.map_err(InputError::from)?;
             Ok(PyArray1::from_vec(py, data)

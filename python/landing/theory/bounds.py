@@ -241,32 +241,34 @@ def terminal_reaching_time(e0: ArrayLike, beta: ArrayLike, p: ArrayLike, q: Arra
     ``t_s = q / (beta (q - p)) |e0|^((q - p)/q)``. The seed prints p and q swapped
     (:func:`terminal_reaching_time_printed`), which is negative for its own p < q. Arrays
     broadcast; checked against simulation by :func:`check_terminal_reaching_time`."""
-    return _vectorized(_core.terminal_reaching_time, "terminal_reaching_time", e0=e0, beta=beta, p=p, q=q)
+    return _vectorized(_core.terminal_reaching_time, "terminal_reaching_time", e0=e0, alpha=0.0, beta=beta, p=p,
+                       q=q)
 
 
 def fast_terminal_reaching_time(e0: ArrayLike, alpha: ArrayLike, beta: ArrayLike, p: ArrayLike,
                                 q: ArrayLike) -> Real:
     """Seed 000 eq. 7: the time the error takes to reach 0 from ``e0`` on the fast terminal
-    surface ``s = e' + alpha e + beta sig^(p/q)(e) = 0`` (eq. 6, 0 < p < q),
-    ``t_s = q / (alpha (q - p)) ln((alpha |e0|^((q - p)/q) + beta) / beta)``. The seed prints p
-    and q swapped (:func:`fast_terminal_reaching_time_printed`). Arrays broadcast; checked
-    against simulation by :func:`check_terminal_reaching_time`."""
-    return _vectorized(_core.fast_terminal_reaching_time, "fast_terminal_reaching_time", e0=e0, alpha=alpha,
-                       beta=beta, p=p, q=q)
+    surface ``s = e' + alpha e + beta sig^(p/q)(e) = 0`` (eq. 6, 0 < p < q, alpha >= 0),
+    ``t_s = q / (alpha (q - p)) ln((alpha |e0|^((q - p)/q) + beta) / beta)``; at alpha = 0 its
+    limit, eq. 5 (:func:`terminal_reaching_time`). The seed prints p and q swapped
+    (:func:`fast_terminal_reaching_time_printed`). Arrays broadcast; checked against simulation
+    by :func:`check_terminal_reaching_time`."""
+    return _vectorized(_core.terminal_reaching_time, "fast_terminal_reaching_time", e0=e0, alpha=alpha, beta=beta,
+                       p=p, q=q)
 
 
 def terminal_reaching_time_printed(e0: ArrayLike, beta: ArrayLike, p: ArrayLike, q: ArrayLike) -> Real:
     """Seed 000 eq. 5 as printed, ``p / (beta (p - q)) |e0|^((p - q)/p)``: negative for the
     seed's p < q. Returned as printed, whatever its sign. Arrays broadcast."""
-    return _vectorized(_core.terminal_reaching_time_printed, "terminal_reaching_time_printed", e0=e0, beta=beta,
-                       p=p, q=q)
+    return _vectorized(_core.terminal_reaching_time_printed, "terminal_reaching_time_printed", e0=e0, alpha=0.0,
+                       beta=beta, p=p, q=q)
 
 
 def fast_terminal_reaching_time_printed(e0: ArrayLike, alpha: ArrayLike, beta: ArrayLike, p: ArrayLike,
                                         q: ArrayLike) -> Real:
     """Seed 000 eq. 7 as printed, ``p / (alpha (p - q)) (ln(alpha |e0|^((p - q)/p) + beta) - ln beta)``
     (|e0| for the seed's e0). Returned as printed, whatever its sign. Arrays broadcast."""
-    return _vectorized(_core.fast_terminal_reaching_time_printed, "fast_terminal_reaching_time_printed", e0=e0,
+    return _vectorized(_core.terminal_reaching_time_printed, "fast_terminal_reaching_time_printed", e0=e0,
                        alpha=alpha, beta=beta, p=p, q=q)
 
 
