@@ -51,17 +51,19 @@ def main() -> None:
     free = optimal.fuel_optimal(plant, x0, 30.0, free_final_time=True, nodes=args.nodes // 2, steps_per_node=4)
     print(f"  with t_f free ({free.status}): t_f = {free.t_final:.2f} s, fuel {free.fuel:.2f} kg")
 
+    # the peaks are the metric's, taken at every control period (the recorded controls are
+    # sampled, and miss the super-twisting law's spikes)
     print("\nfuel to landing (settle within 1 m), nominal Table I case, no disturbance")
     mss = scenarios.mars_nominal().simulate()
     rows = [("fuel-optimal, t_f = 30 s (landing.optimal)", opt.fuel, 30.0, np.abs(opt.thrust).max(), "212.9067 kg")]
     mm = mss.metrics
     rows.append(("fixed-time MSS, preset gains", float(mm["fuel_to_settle"]), float(mm["settle_time"]),
-                 np.abs(mss.controls).max(), "238.2907 kg"))
+                 float(np.max(mm["peak_command_axis"])), "238.2907 kg"))
     for variant in ("standard", "printed"):
         st = scenarios.mars_super_twisting(variant).simulate()
         sm = st.metrics
         rows.append((f"super-twisting ({variant})", float(sm["fuel_to_settle"]), float(sm["settle_time"]),
-                     np.abs(st.controls).max(), "277.13 kg in 30 s"))
+                     float(np.max(sm["peak_command_axis"])), "277.13 kg in 30 s"))
     print(f"  {'law':<44} {'fuel':>10} {'landing':>9} {'peak |F_i|':>11}   seed 001")
     for name, fuel, t_land, peak, seed in rows:
         print(f"  {name:<44} {fuel:8.2f} kg {t_land:7.2f} s {peak / 1e3:8.2f} kN   {seed}")

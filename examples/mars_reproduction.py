@@ -34,6 +34,27 @@ def nominal() -> None:
     rest = theory.min_time_to_rest(scenarios.MARS_NOMINAL_STATE[:3], scenarios.MARS_NOMINAL_STATE[3:6], a_max,
                                    [0, 0, -3.7114])
     line("fastest possible landing at 40 kN per axis (bang-bang)", f"{rest.max():.2f} s", "")
+    # the same bound with the lightest mass a landing of T seconds can reach (|F| <= 40 kN sqrt 3,
+    # m' = -|F| / (Isp g0)): a landing in T needs T >= rest(T); rest falls as T grows, so the
+    # least such T is where they meet (bisection). Drag is neglected in both bounds.
+    lander = scenarios.mars_nominal().plant
+    burn = np.sqrt(3) * 40e3 / (lander.isp * lander.g0)
+
+    def rest_at(T: float) -> float:
+        return float(np.max(theory.min_time_to_rest(scenarios.MARS_NOMINAL_STATE[:3], scenarios.MARS_NOMINAL_STATE[3:6],
+                                                    40e3 / (1905.0 - burn * T), [0, 0, -3.7114])))
+    lo, hi = 0.0, float(rest.max())
+    for _ in range(60):
+        lo, hi = (lo, (lo + hi) / 2) if rest_at((lo + hi) / 2) <= (lo + hi) / 2 else ((lo + hi) / 2, hi)
+    line("  the same with the mass a landing that fast can burn", f"{hi:.2f} s", "")
+    # after landing the sampled law chatters: every control period recorded, 50 to 60 s
+    fine = scenarios.mars_nominal().replace(record_every=1).simulate()
+    late = fine.t >= 50.0
+    u = fine.controls[late]
+    swing = (u.max(axis=0) - u.min(axis=0)) / 1e3
+    line("after landing (50-60 s): thrust peak to peak per axis",
+         f"{swing.min():.2f} to {swing.max():.2f} kN", "(continuous time: none)")
+    line("after landing (50-60 s): largest |r_i|", f"{np.abs(fine.states[late, :3]).max():.1e} m", "")
 
     print("\nSuper-twisting baseline (eq. 46, B1, B2 as printed), nominal landing, 200 s")
     for variant in ("printed", "standard"):

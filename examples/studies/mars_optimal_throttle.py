@@ -1,12 +1,21 @@
-"""What seed 001's fuel optimum (212.9067 kg) could have been: a minimum-throttle sweep.
+"""What seed 001's fuel optimum (212.9067 kg) could have been: which unprinted choice fits it.
 
 Seed 001 prints neither the thrust bounds of its GPOPS problem nor whether its engine may shut
 down. Our optimum with 40 kN per axis and free throttling spends 178.5 kg (burn, coast, burn),
-4 kg above the drag-free impulsive bound. An engine that cannot throttle below `low` (as in
-Acikmese and Ploen 2007, the seed's reference [1]) cannot coast; this sweeps `low` and finds
-the one that gives the seed's number. It explains the gap; it does not reproduce the seed.
+4 kg above the drag-free impulsive bound. Two unprinted choices each fit the seed's number, so
+the paper does not identify which (if either) it made:
 
-    python examples/studies/mars_optimal_throttle.py     (about 1 min on 2 cores)
+1. a minimum throttle `low` (an engine that cannot coast): swept, and the `low` that gives the
+   seed's fuel found. At that floor the optimum burns a constant |F| (the seed's fuel over 30 s
+   is exactly that average thrust), so this fit holds for any fuel above the floor-free
+   optimum: it is an identity, not evidence;
+2. a lower specific impulse: the Isp that gives the seed's fuel, free throttling.
+
+And the engine of the seed's reference [1] (Acikmese and Ploen 2007, where the Table I lander
+comes from: |F| between 4.97 and 13.26 kN): the most it can burn in 30 s is below the seed's
+212.9 kg, so that engine cannot be the seed's.
+
+    python examples/studies/mars_optimal_throttle.py     (about 4 min on 2 cores)
 """
 
 from __future__ import annotations
@@ -18,9 +27,13 @@ from landing import optimal, plants, scenarios
 SEED_FUEL = 212.9067
 
 
-def fuel(low: float, nodes: int = 150) -> float:
-    res = optimal.fuel_optimal(plants.MarsLander(thrust_limit=40e3), scenarios.MARS_NOMINAL_STATE, 30.0,
-                               nodes=nodes, thrust_magnitude=None if low == 0 else (low, 80e3))
+#: The engine of the seed's reference [1], |F| in N (Acikmese and Ploen 2007).
+REFERENCE_ENGINE = (4.97e3, 13.26e3)
+
+
+def fuel(low: float, nodes: int = 150, isp: float = 225.0, high: float = 80e3) -> float:
+    res = optimal.fuel_optimal(plants.MarsLander(thrust_limit=40e3, isp=isp), scenarios.MARS_NOMINAL_STATE, 30.0,
+                               nodes=nodes, thrust_magnitude=None if low == 0 and high == 80e3 else (low, high))
     assert res.success, res.status
     return res.fuel
 
@@ -33,6 +46,15 @@ def main() -> None:
     print(f"the seed's {SEED_FUEL} kg needs low = {low / 1e3:.2f} kN "
           f"({low / 1905.0 / 3.7114:.2f} times the initial weight on Mars); the seed's fuel over 30 s is "
           f"an average |F| of {SEED_FUEL * 225.0 * 9.807 / 30.0 / 1e3:.2f} kN")
+
+    isp = brentq(lambda x: fuel(0.0, isp=x) - SEED_FUEL, 170.0, 225.0, xtol=0.05)
+    print(f"free throttling, the seed's {SEED_FUEL} kg needs Isp = {isp:.1f} s (ours, from reference [1]: 225 s)")
+
+    lo, hi = REFERENCE_ENGINE
+    # arithmetic, no optimiser: the propellant flow is |F| / (Isp g0), at most its largest |F|
+    print(f"the reference's engine, {lo / 1e3:.2f} kN <= |F| <= {hi / 1e3:.2f} kN, burns at most "
+          f"{hi * 30.0 / (225.0 * 9.807):.2f} kg in 30 s (|F| = {hi / 1e3:.2f} kN throughout): below the seed's "
+          f"{SEED_FUEL} kg, which that engine cannot spend in 30 s")
 
 
 if __name__ == "__main__":
