@@ -7,11 +7,18 @@ with W1's plant (drag, mass depletion, 50 kN per axis, RK4), no disturbance, 2 s
 final states only. Before any time is taken the Python law's final states must agree with the
 built-in law's to a relative 1e-9.
 
-Two tables:
+Three tables:
 
 1. The same campaign, built-in against Python, on ``--cases`` cases (10^4 by default) at each
-   ``--threads``: the ratio is the cost of writing the law in Python.
-2. The per-call overhead of a Python law: a law that returns zeros (``np.zeros_like(e)``), so
+   ``--threads``: the ratio is the cost of writing the law in Python (the law at its default
+   ``cases_per_call``).
+2. The same on one thread for ``cases_per_call`` from 256 to the whole batch (``None``): what
+   running a slice of cases at a time buys.
+3. Where the time of the default goes, on one thread: the function alone (timed inside the
+   run), the built-in open-loop law on the same cases (the plant's periods without a law),
+   and the rest (the engine's round trip). The function alone against the built-in law bounds
+   the ratio any engine could reach with this function.
+4. The per-call overhead of a Python law: a law that returns zeros (``np.zeros_like(e)``), so
    that what is timed is the engine's round trip (gathering the inputs of every case, the call
    into Python, the checks of the return, handing the commands back), per control instant,
    from 10^2 to 10^5 cases, against the built-in open-loop law on the same cases.
@@ -119,7 +126,46 @@ def main() -> None:
         bi, py = per[f"built-in, {threads} thread(s)"], per[f"PythonLaw, {threads} thread(s)"]
         print(f"   {threads} thread(s): built-in {bi:8.1f}   PythonLaw {py:8.1f}   ratio {py / bi:5.2f}")
 
-    print(f"\n2. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
+    print(f"\n2. cases per call, {args.cases} Mars cases, 1 thread; median of {args.repeat}, ns per case-step")
+    sweep = {"built-in": builtin}
+    for per_call in (256, 512, 1024, 2048, 4096, None):
+        sweep[f"cases_per_call={per_call}"] = python.replace(cases_per_call=per_call)
+    times = {name: [] for name in sweep}
+    for r in range(args.repeat):
+        names = list(sweep)
+        for name in names[r % len(names):] + names[:r % len(names)]:
+            times[name].append(timed(lambda law=sweep[name]: landing.simulate_batch(plant, law, x0, threads=1, **kw)))
+    base = statistics.median(times["built-in"])
+    for name, v in times.items():
+        print(f"   {name:>22}: {statistics.median(v) / (args.cases * steps) * 1e9:8.1f}   "
+              f"ratio {statistics.median(v) / base:5.2f}")
+
+    print(f"\n3. where the time goes, cases_per_call={python.cases_per_call}, 1 thread; median of {args.repeat}, "
+          "ns per case-step")
+    inside = [0.0]
+
+    def timed_law(*a):
+        start = time.perf_counter()
+        out = mss_printed(*a)
+        inside[0] += time.perf_counter() - start
+        return out
+
+    spy = python.replace(function=timed_law)
+    parts: dict[str, list[float]] = {"function": [], "total": [], "open loop": [], "built-in": []}
+    for _ in range(args.repeat):
+        inside[0] = 0.0
+        parts["total"].append(timed(lambda: landing.simulate_batch(plant, spy, x0, threads=1, **kw)))
+        parts["function"].append(inside[0])
+        parts["open loop"].append(timed(lambda: landing.simulate_batch(plant, C.OpenLoop(), x0, threads=1, **kw)))
+        parts["built-in"].append(timed(lambda: landing.simulate_batch(plant, builtin, x0, threads=1, **kw)))
+    med = {k: statistics.median(v) / (args.cases * steps) * 1e9 for k, v in parts.items()}
+    print(f"   PythonLaw {med['total']:.1f} = function {med['function']:.1f} + plant and engine "
+          f"{med['total'] - med['function']:.1f}; open loop built-in {med['open loop']:.1f}; "
+          f"built-in law {med['built-in']:.1f}")
+    print(f"   bound on the ratio with no engine overhead: (function + open loop) / built-in = "
+          f"{(med['function'] + med['open loop']) / med['built-in']:.2f}")
+
+    print(f"\n4. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
           f"{dt} s, {max(args.threads)} thread(s); median of {args.repeat}, microseconds per control instant")
     zero = C.PythonLaw(zeros)
     for n in (100, 1_000, 10_000, 100_000):

@@ -17,6 +17,7 @@ from typing import Any, ClassVar, Literal, Optional, Union
 import numpy as np
 
 from landing import _core
+from landing._internal.args import integer
 from landing._internal.table import ArrayLike, Parameter, Table, as_float_array, case_rows
 from landing._internal.user_law import qualified_name, source_hash
 from landing._internal.user_params import frozen_params, params_taking_cases, replace_with_params
@@ -372,6 +373,10 @@ def _diagnostic_kinds(diagnostics: Union[Sequence[str], Mapping[str, str]]) -> d
 
 Memory = Union[Mapping[str, ArrayLike], Callable[..., Mapping[str, Any]], None]
 
+#: A Python law's cases per call by default (``PythonLaw.cases_per_call``): measured in
+#: BENCHMARKS.md ("A law written in Python").
+DEFAULT_CASES_PER_CALL = 1024
+
 
 @dataclass(frozen=True, eq=False)
 class PythonLaw(Controller):
@@ -405,6 +410,16 @@ class PythonLaw(Controller):
         name to ``"axes"`` or ``"scalar"`` ((n,) each).
     name : how the law is named in messages and a campaign's provenance (default: the
         function's ``module:qualname``).
+    cases_per_call : at most this many cases per call (default 1024; None: the whole batch in
+        every call). A larger batch is run a slice of cases at a time, each slice through all
+        its control instants, so that the slice's arrays and the core's state of its cases
+        stay in the processor's caches between calls; with the whole batch at every call they
+        stream through memory, and numpy's temporaries of a few hundred kilobytes each are
+        mapped and unmapped at every operation (BENCHMARKS.md, "A law written in Python"). The
+        slices hold whole blocks of the kernel's lanes (a multiple of 8 cases at most). The
+        results do not depend on it for a function that treats each case on its own, as a law
+        does; each slice's memory is its own. On a plant written in Python the law sees every
+        case at each call.
 
     Examples
     --------
@@ -419,6 +434,7 @@ class PythonLaw(Controller):
     memory: Memory = None
     diagnostics: Union[Sequence[str], Mapping[str, str]] = ()
     name: Optional[str] = None
+    cases_per_call: Optional[int] = DEFAULT_CASES_PER_CALL
 
     kind: ClassVar[str] = "python"
     _in_core: ClassVar[bool] = False
@@ -446,6 +462,9 @@ class PythonLaw(Controller):
         object.__setattr__(self, "diagnostics", MappingProxyType(kinds))
         if self.name is None:
             object.__setattr__(self, "name", qualified_name(self.function))
+        if self.cases_per_call is not None:
+            object.__setattr__(self, "cases_per_call", integer("cases_per_call", self.cases_per_call, minimum=1,
+                                                               maximum=2**63 - 1, owner=owner))
         self._compile()
 
     def _compile(self) -> None:

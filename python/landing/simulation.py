@@ -261,7 +261,7 @@ def _python_step(law: PythonLaw, plant: Plant, n: int, first_case: int) -> tuple
     params = {k: per_axis(f"PythonLaw {name}", k, v, n, axes) for k, v in law.params.items()}
     layout = law.diagnostic_layout(axes)
     step = LawStep(law.function, name=name, params=params, memory=law.memory, layout=layout, n=n, axes=axes,
-                   first_case=first_case)
+                   first_case=first_case, cases_per_call=law.cases_per_call or max(n, 1))
     return step, layout
 
 

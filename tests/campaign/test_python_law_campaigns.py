@@ -90,6 +90,12 @@ def test_scenario_files_name_the_function(tmp_path):
                            "memory": "_user_laws:start_at_error", "diagnostics": {"z": "axes"}}
     law = scenario_from_dict(table).controller
     assert isinstance(law, C.PythonLaw) and law.memory is not None and law.function is integral_pd
+    assert law.cases_per_call == C.DEFAULT_CASES_PER_CALL
+    # cases_per_call: written when not the default, "all" for the whole batch at every call
+    for per_call, written in ((64, "cases_per_call = 64"), (None, 'cases_per_call = "all"')):
+        changed = s.replace(controller=s.controller.replace(cases_per_call=per_call))
+        assert written in changed.to_toml()
+        assert scenario_from_dict(tomllib.loads(changed.to_toml())).controller.cases_per_call == per_call
     table["controller"]["source_sha256"] = "0" * 64
     with pytest.raises(FileError, match="has changed since the file was written"):
         scenario_from_dict(table)

@@ -164,6 +164,59 @@ def test_one_call_per_control_instant_with_all_cases():
     np.testing.assert_allclose([c[0] for c in calls], np.arange(11) * 0.1, rtol=0, atol=1e-15)
 
 
+def test_a_batch_larger_than_cases_per_call_runs_a_slice_at_a_time_with_the_same_bits():
+    # the super-twisting law keeps memory and the fixed-time MSS law records diagnostics: each
+    # slice has its own memory, and the results are those of the whole batch in every call
+    dt = 1e-3
+    twisting = C.PythonLaw(super_twisting_standard,
+                           params={"b1": np.linspace(1000.0, 1400.0, 37), "b2": 5000.0, "c": 0.5, "dt": dt},
+                           memory={"w": np.zeros(3)}, diagnostics=("sigma", "w"))
+    mss = C.PythonLaw(mss_printed, params=dict(RECONSTRUCTED_GAINS, s1_floor=1e-3), diagnostics=("s1", "s2"))
+    storm = landing.disturbances.UniformNoise(bound=0.3)
+    for law in (twisting, mss):
+        calls = []
+
+        def seen(t, e, *rest, law=law, calls=calls):
+            calls.append((t, e.shape[0], float(e[0, 0])))
+            return law.function(t, e, *rest)
+
+        whole = landing.simulate_batch(P.MarsLander(), law.replace(cases_per_call=None), mars_x0(37), t_final=0.5,
+                                       dt=dt, record_every=10, disturbance=storm, seed=3)
+        for per_call, threads in ((8, 1), (9, 2), (16, 2), (36, 1)):
+            sliced = landing.simulate_batch(P.MarsLander(), law.replace(function=seen, cases_per_call=per_call),
+                                            mars_x0(37), t_final=0.5, dt=dt, record_every=10, disturbance=storm,
+                                            seed=3, threads=threads, kernel="baseline")
+            assert_same_run(whole, sliced, rtol=0)
+            np.testing.assert_array_equal(sliced.final_state, whole.final_state)
+            # slices of whole blocks, the same size but the last, each through all 501 instants in turn
+            sizes = [n for _, n, _ in calls[::501]]
+            assert sum(sizes) == 37 and len(calls) == 501 * len(sizes)
+            assert all(n <= per_call for n in sizes[:-1]) and len(set(sizes[:-1])) <= 1
+            for j in range(len(sizes)):
+                times = [t for t, _, _ in calls[501 * j:501 * (j + 1)]]
+                np.testing.assert_allclose(times, np.arange(501) * dt, rtol=0, atol=1e-12)
+            calls.clear()
+
+
+def test_an_exception_in_a_slice_names_the_slice_s_cases():
+    def bad(t, e, de, ref, drift, inertia, params, memory):
+        if e.shape[0] < 8:  # the last slice: cases 16 to 20
+            raise ValueError("boom")
+        return -e
+
+    with pytest.raises(UserFunctionError, match=r"at t = 0 s on cases 116\.\.120 raised ValueError: boom"):
+        landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(bad, cases_per_call=8), np.ones((21, 6)),
+                               t_final=1.0, dt=0.1, first_case=100)
+
+
+def test_cases_per_call_is_a_positive_count():
+    with pytest.raises(landing.errors.ParameterError, match="cases_per_call = 0 violates"):
+        C.PythonLaw(pd_sat, cases_per_call=0)
+    with pytest.raises(landing.errors.ParameterTypeError, match="cases_per_call must be an integer"):
+        C.PythonLaw(pd_sat, cases_per_call=1.5)
+    assert C.PythonLaw(pd_sat).cases_per_call == C.DEFAULT_CASES_PER_CALL
+
+
 def test_inputs_a_law_keeps_are_never_overwritten():
     # the engine reuses its input arrays from one instant to the next, unless the function kept
     # one: then the kept array must still hold its own instant's values

@@ -11,7 +11,7 @@ use landing_core::control::{
 use landing_core::disturbance::Disturbance;
 use landing_core::external::{ExternalError, ExternalLaw, Inputs, run_external};
 use landing_core::metrics::Divergence;
-use landing_core::plant::MarsLander;
+use landing_core::plant::{MarsLander, PlantModel};
 use landing_core::reference::{RefPoint, Reference};
 use landing_core::workloads::{mars_dispersed, mars_storm};
 use landing_core::{Level, SimConfig};
@@ -23,8 +23,10 @@ struct CaseByCase {
     laws: Vec<AnyLaw<3>>,
     memory: Vec<AnyMemory<3, f64>>,
     dt: f64,
-    calls: Vec<f64>,
+    /// (first case, cases, t) of every call.
+    calls: Vec<(usize, usize, f64)>,
     fail_at: Option<u64>,
+    per_call: usize,
 }
 
 impl CaseByCase {
@@ -35,6 +37,7 @@ impl CaseByCase {
             dt,
             calls: Vec::new(),
             fail_at: None,
+            per_call: usize::MAX,
         }
     }
 }
@@ -50,6 +53,10 @@ impl ExternalLaw<3> for CaseByCase {
         self.laws[0].diagnostic_width()
     }
 
+    fn cases_per_call(&self) -> usize {
+        self.per_call
+    }
+
     fn command(
         &mut self,
         inputs: &Inputs<3>,
@@ -59,10 +66,12 @@ impl ExternalLaw<3> for CaseByCase {
         if self.fail_at == Some(inputs.k) {
             return Err(format!("failed at t = {}", inputs.t));
         }
-        self.calls.push(inputs.t);
-        let n = self.laws.len();
+        let n = inputs.e.len() / 3;
+        self.calls.push((inputs.first, n, inputs.t));
         let nd = self.diagnostic_width();
         for i in 0..n {
+            // case `c` of the batch, row `i` of the call's arrays
+            let c = inputs.first + i;
             let input = LawInput {
                 t: inputs.t,
                 dt: self.dt,
@@ -77,17 +86,18 @@ impl ExternalLaw<3> for CaseByCase {
                 inertia: row(&inputs.inertia, i),
             };
             if inputs.k == 0 {
-                self.memory.push(self.laws[i].start(&input));
+                assert_eq!(self.memory.len(), c, "the slices come in order");
+                self.memory.push(self.laws[c].start(&input));
             }
-            let law = &self.laws[i];
-            let a = law.command(&self.memory[i], &input);
+            let law = &self.laws[c];
+            let a = law.command(&self.memory[c], &input);
             command[3 * i..3 * i + 3].copy_from_slice(a.as_slice());
             law.diagnostics(
-                &self.memory[i],
+                &self.memory[c],
                 &input,
                 &mut diagnostics[i * nd..(i + 1) * nd],
             );
-            law.advance(&mut self.memory[i], &input);
+            law.advance(&mut self.memory[c], &input);
         }
         Ok(())
     }
@@ -195,7 +205,49 @@ fn an_external_law_gives_the_bits_of_the_same_law_built_in() {
                 );
                 // once per control instant, the last at t_final
                 assert_eq!(law.calls.len() as u64, cfg.steps + 1);
-                assert_eq!(law.calls.last(), Some(&cfg.t_final()));
+                assert_eq!(law.calls.last(), Some(&(0, 21, cfg.t_final())));
+            }
+            // a slice of the cases at a time: the same bits
+            for per_call in [1, 8, 9, 16, 21] {
+                let mut law = CaseByCase::new(laws.clone(), cfg.dt);
+                law.per_call = per_call;
+                let out = run_external(&outside(&x0, &noisy), &cfg, &at(2, level), &mut law)
+                    .unwrap_or_else(|_| panic!("{name} runs"));
+                assert_eq!(
+                    fingerprint(&out),
+                    fingerprint(&reference),
+                    "{name} at {level:?}, {per_call} cases per call"
+                );
+                // whole blocks, as many as fit in per_call (at least one; all of them when the
+                // batch fits), in order, each through every instant
+                let w = level.lanes::<<MarsLander as PlantModel<3>>::Blocks>();
+                let slice = if per_call >= 21 {
+                    21
+                } else {
+                    (per_call / w).max(1) * w
+                };
+                let mut at_call = law.calls.iter().peekable();
+                for first in (0..21).step_by(slice) {
+                    let m = slice.min(21 - first);
+                    let mut k = 0;
+                    while let Some(&&(f, cases, t)) = at_call.peek().filter(|c| c.0 == first) {
+                        assert_eq!((f, cases, t), (first, m, k as f64 * cfg.dt));
+                        at_call.next();
+                        k += 1;
+                    }
+                    // the absurd case 3 stops at once: a slice of it alone ends early
+                    if (first, m) != (3, 1) {
+                        assert_eq!(
+                            k,
+                            cfg.steps + 1,
+                            "{name}: slice {first} through every instant"
+                        );
+                    }
+                }
+                assert!(
+                    at_call.next().is_none(),
+                    "{name}: only the slices, in order"
+                );
             }
         }
     }

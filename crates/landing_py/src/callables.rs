@@ -80,16 +80,46 @@ fn copy_rows(who: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, into: &mut [f64
     Ok(())
 }
 
-/// A Python callable as the core's [`ExternalLaw`]: `step(t, k, e, de, position, velocity,
-/// acceleration, drift, inertia)`, each an (N, D) float64 array but the instant `t` and its
-/// index `k`, returns `(command, diagnostics)`, float64 arrays of shapes (N, D) and (N,
-/// width), C-contiguous. The Python layer (`landing.controllers.PythonLaw`) checks what the
-/// user's function returns and makes it so; the shapes are checked again here.
+/// A Python callable as the core's [`ExternalLaw`]: `step(t, k, first, e, de, position,
+/// velocity, acceleration, drift, inertia)`, each an (m, D) float64 array for the m cases from
+/// case `first` on (at most `per_call`: the core runs a larger batch a slice at a time) but the
+/// instant `t`, its index `k` and `first`, returns `(command, diagnostics)`, float64 arrays of
+/// shapes (m, D) and (m, width), C-contiguous. The Python layer
+/// (`landing.controllers.PythonLaw`) checks what the user's function returns and makes it so;
+/// the shapes are checked again here.
 pub struct PyLaw {
     pub step: Py<PyAny>,
     pub width: usize,
-    pub n: usize,
+    pub per_call: usize,
     pub handed: Handed,
+    pub thread: ThreadState,
+}
+
+/// The interpreter's record of a thread that is not Python's (a pool thread calling a law),
+/// kept from [`ExternalLaw::enter`] to [`ExternalLaw::leave`] with the GIL released: without
+/// it, every call's `Python::attach` made a fresh one and dropped it.
+#[derive(Default)]
+pub struct ThreadState(Option<(pyo3::ffi::PyGILState_STATE, usize)>);
+
+impl ThreadState {
+    fn enter(&mut self) {
+        // SAFETY: the C API's pattern for a foreign thread: register it, then release the GIL;
+        // `leave` restores and releases on the same thread (the driver calls both there)
+        unsafe {
+            let gil = pyo3::ffi::PyGILState_Ensure();
+            self.0 = Some((gil, pyo3::ffi::PyEval_SaveThread() as usize));
+        }
+    }
+
+    fn leave(&mut self) {
+        if let Some((gil, saved)) = self.0.take() {
+            // SAFETY: the state `enter` saved, on the thread that saved it
+            unsafe {
+                pyo3::ffi::PyEval_RestoreThread(saved as *mut pyo3::ffi::PyThreadState);
+                pyo3::ffi::PyGILState_Release(gil);
+            }
+        }
+    }
 }
 
 impl<const D: usize> ExternalLaw<D> for PyLaw {
@@ -97,6 +127,18 @@ impl<const D: usize> ExternalLaw<D> for PyLaw {
 
     fn diagnostic_width(&self) -> usize {
         self.width
+    }
+
+    fn cases_per_call(&self) -> usize {
+        self.per_call
+    }
+
+    fn enter(&mut self) {
+        self.thread.enter();
+    }
+
+    fn leave(&mut self) {
+        self.thread.leave();
     }
 
     fn command(
@@ -109,6 +151,7 @@ impl<const D: usize> ExternalLaw<D> for PyLaw {
             let head = vec![
                 i.t.into_pyobject(py)?.into_any(),
                 i.k.into_pyobject(py)?.into_any(),
+                i.first.into_pyobject(py)?.into_any(),
             ];
             let fields = [
                 &i.e,
@@ -119,19 +162,12 @@ impl<const D: usize> ExternalLaw<D> for PyLaw {
                 &i.drift,
                 &i.inertia,
             ];
-            let fields = fields.map(|v| v.as_slice());
-            let out = self
-                .handed
-                .call(self.step.bind(py), head, &fields, 0, self.n)?;
+            let (fields, m) = (fields.map(|v| v.as_slice()), i.e.len() / D);
+            let out = self.handed.call(self.step.bind(py), head, &fields, 0, m)?;
             let (u, diag): (PyReadonlyArray2<'_, f64>, PyReadonlyArray2<'_, f64>) =
                 out.extract()?;
-            copy_rows("the Python law's step (command)", &u, self.n, command)?;
-            copy_rows(
-                "the Python law's step (diagnostics)",
-                &diag,
-                self.n,
-                diagnostics,
-            )
+            copy_rows("the Python law's step (command)", &u, m, command)?;
+            copy_rows("the Python law's step (diagnostics)", &diag, m, diagnostics)
         })
     }
 }

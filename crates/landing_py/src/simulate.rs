@@ -121,12 +121,12 @@ impl<'py> Simulate<'_, 'py> {
                         "diagnostics take {width} values per case; at most {MAX_DIAGNOSTIC_WIDTH}"
                     );
                 }
-                let handed = Handed::default();
                 let law = PyLaw {
+                    per_call: step.getattr("cases_per_call")?.extract()?,
                     step: step.clone().unbind(),
                     width,
-                    n,
-                    handed,
+                    handed: Handed::default(),
+                    thread: Default::default(),
                 };
                 // always watched: every call of the law takes the GIL, so even a short
                 // horizon may run long

@@ -119,23 +119,34 @@ def checked_floats(what: str, value: Any, shape: tuple[int, ...], where: str) ->
 class LawStep:
     """What the core calls at each control instant of one batch (``n`` cases of a plant with
     ``axes`` axes, numbered from ``first_case``): calls ``function(t, e, de, ref, drift,
-    inertia, params, memory)`` and returns ``(command, diagnostics)``, float64 (n, D) and
-    (n, width)."""
+    inertia, params, memory)`` and returns ``(command, diagnostics)``, float64 (m, D) and
+    (m, width).
+
+    The core calls it on a slice of at most ``cases_per_call`` cases at a time (all the batch's
+    when it is smaller), each slice through all its instants before the next: ``first`` is the
+    slice's first row in the batch, and the slice's memory is its own.
+    """
 
     def __init__(self, function: Callable[..., Any], *, name: str, params: Mapping[str, np.ndarray],
-                 memory: Any, layout: Sequence[tuple[str, int]], n: int, axes: int, first_case: int) -> None:
+                 memory: Any, layout: Sequence[tuple[str, int]], n: int, axes: int, first_case: int,
+                 cases_per_call: int) -> None:
         self.function = function
         self.name = name
         self.params = dict(params)
         self.initial = memory
-        self.memory: Optional[dict[str, np.ndarray]] = None
         self.layout = list(layout)
         self.n, self.axes, self.first_case = n, axes, first_case
+        self.cases_per_call = cases_per_call
         self.width = sum(w for _, w in self.layout)
+        # the slice being run: its rows, parameters and memory
+        self._rows = (0, n)
+        self._params: dict[str, np.ndarray] = self.params
+        self.memory: Optional[dict[str, np.ndarray]] = None
 
     def _where(self, t: float) -> str:
-        last = self.first_case + self.n - 1
-        return f"PythonLaw {self.name} at t = {t:.9g} s on cases {self.first_case}..{last}"
+        first, m = self._rows
+        start = self.first_case + first
+        return f"PythonLaw {self.name} at t = {t:.9g} s on cases {start}..{start + m - 1}"
 
     def _memory(self, value: Any, where: str, what: str) -> Optional[dict[str, np.ndarray]]:
         """A memory the function returned (or the initial one): a mapping of arrays, one row per
@@ -148,63 +159,76 @@ class LawStep:
         before = self.memory
         if before is not None and set(value) != set(before):
             raise UserFunctionError(f"{where} returned {what} with keys {sorted(value)}; expected {sorted(before)}")
+        m = self._rows[1]
         out = {}
         for key, v in value.items():
             arr = np.asarray(v)
             shape = before[key].shape if before is not None else arr.shape
-            if before is None and (arr.ndim == 0 or arr.shape[0] != self.n):
+            if before is None and (arr.ndim == 0 or arr.shape[0] != m):
                 raise UserFunctionError(f"{where} returned {what}[{key!r}] of shape {arr.shape}; "
-                                        f"expected one row per case, ({self.n}, ...)")
+                                        f"expected one row per case, ({m}, ...)")
             out[key] = checked_floats(f"{what}[{key!r}]", v, shape, where)
         return out
 
-    def _start(self, t: float, args: tuple[Any, ...]) -> None:
+    def _start(self, t: float, first: int, args: tuple[Any, ...]) -> None:
+        """A slice's first instant: its rows, parameters and initial memory."""
+        m = args[1].shape[0]
+        self._rows = (first, m)
+        whole = first == 0 and m == self.n
+        self._params = self.params if whole else {k: v[first:first + m] for k, v in self.params.items()}
+        self.memory = None
         where = self._where(t)
         init = self.initial
         if init is None:
-            self.memory = None
-        elif callable(init):
+            return
+        if callable(init):
             try:
-                value = init(*args, self.params)
+                value = init(*args, self._params)
             except Exception as exc:
                 raise UserFunctionError(
                     f"the memory initialiser of {where} raised {type(exc).__name__}: {exc}") from exc
             self.memory = self._memory(value, where, "memory (initial)")
         else:
             # values shared by every case, broadcast to one row per case
-            self.memory = {k: np.array(np.broadcast_to(np.asarray(v, dtype=np.float64), (self.n, *np.shape(v))))
+            self.memory = {k: np.array(np.broadcast_to(np.asarray(v, dtype=np.float64), (m, *np.shape(v))))
                            for k, v in init.items()}
 
-    def __call__(self, t: float, k: int, e: np.ndarray, de: np.ndarray, position: np.ndarray,
+    def __call__(self, t: float, k: int, first: int, e: np.ndarray, de: np.ndarray, position: np.ndarray,
                  velocity: np.ndarray, acceleration: np.ndarray, drift: np.ndarray,
                  inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         for a in (e, de, position, velocity, acceleration, drift, inertia):
             a.setflags(write=False)
         args = (t, e, de, ReferencePoint(position, velocity, acceleration), drift, inertia)
         if k == 0:
-            self._start(t, args)
-        where = self._where(t)
+            self._start(t, first, args)
         try:
-            out = self.function(*args, self.params, self.memory)
+            out = self.function(*args, self._params, self.memory)
         except Exception as exc:
-            raise UserFunctionError(f"{where} raised {type(exc).__name__}: {exc}") from exc
+            raise UserFunctionError(f"{self._where(t)} raised {type(exc).__name__}: {exc}") from exc
         diagnostics: Any = None
         if isinstance(out, tuple):
             if len(out) not in (2, 3):
-                raise UserFunctionError(f"{where} returned a tuple of {len(out)} values; expected the command, "
-                                        "(command, memory) or (command, memory, diagnostics)")
+                raise UserFunctionError(f"{self._where(t)} returned a tuple of {len(out)} values; expected the "
+                                        "command, (command, memory) or (command, memory, diagnostics)")
             command, memory = out[0], out[1]
             diagnostics = out[2] if len(out) == 3 else None
-            self.memory = self._memory(memory, where, "memory")
+            self.memory = self._memory(memory, self._where(t), "memory")
         else:
             command = out
-        u = checked_floats("a command", command, (self.n, self.axes), where)
-        return u, self._diagnostics(diagnostics, where)
+        m = self._rows[1]
+        if (isinstance(command, np.ndarray) and command.dtype == np.float64 and command.shape == (m, self.axes)
+                and command.flags.c_contiguous):
+            u = command  # the common case, checked without formatting a message
+        else:
+            u = checked_floats("a command", command, (m, self.axes), self._where(t))
+        return u, self._diagnostics(diagnostics, t)
 
-    def _diagnostics(self, value: Any, where: str) -> np.ndarray:
-        out = np.empty((self.n, self.width))
+    def _diagnostics(self, value: Any, t: float) -> np.ndarray:
+        m = self._rows[1]
+        out = np.empty((m, self.width))
         if not self.layout:
             return out
+        where = self._where(t)
         if not isinstance(value, Mapping):
             names = [name for name, _ in self.layout]
             raise UserFunctionError(f"{where} returned no diagnostics dict; it declares {names}")
@@ -212,8 +236,8 @@ class LawStep:
         for name, width in self.layout:
             if name not in value:
                 raise UserFunctionError(f"{where} returned diagnostics without {name!r}")
-            shape = (self.n, width) if width == self.axes else (self.n,)
+            shape = (m, width) if width == self.axes else (m,)
             arr = checked_floats(f"diagnostics[{name!r}]", value[name], shape, where)
-            out[:, col:col + width] = arr.reshape(self.n, width)
+            out[:, col:col + width] = arr.reshape(m, width)
             col += width
         return out

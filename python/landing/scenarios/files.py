@@ -132,6 +132,9 @@ def _encode_python_law(law: controllers.PythonLaw) -> dict[str, Any]:
         out["memory"] = {k: _plain(v) for k, v in law.memory.items()}
     if law.diagnostics:
         out["diagnostics"] = dict(law.diagnostic_kinds)
+    if law.cases_per_call != controllers.DEFAULT_CASES_PER_CALL:
+        # TOML has no None: "all" is the whole batch in every call
+        out["cases_per_call"] = "all" if law.cases_per_call is None else law.cases_per_call
     return out
 
 
@@ -325,7 +328,7 @@ def _function(spec: Any, source: str, path: str) -> Any:
 
 
 def _decode_python_law(table: Mapping[str, Any], source: str, path: str) -> Table:
-    allowed = {"kind", "function", "source_sha256", "name", "params", "memory", "diagnostics"}
+    allowed = {"kind", "function", "source_sha256", "name", "params", "memory", "diagnostics", "cases_per_call"}
     for key in table:
         if key not in allowed:
             raise FileError(f"{_where(source, path + '.' + key)}: unknown key (PythonLaw takes {sorted(allowed)})")
@@ -335,9 +338,11 @@ def _decode_python_law(table: Mapping[str, Any], source: str, path: str) -> Tabl
     memory = table.get("memory")
     if isinstance(memory, str):
         memory = _function(memory, source, f"{path}.memory")
+    per_call = table.get("cases_per_call", controllers.DEFAULT_CASES_PER_CALL)
     try:
         law = controllers.PythonLaw(function, params=dict(table.get("params", {})), memory=memory,
-                                    diagnostics=table.get("diagnostics", ()), name=table.get("name"))
+                                    diagnostics=table.get("diagnostics", ()), name=table.get("name"),
+                                    cases_per_call=None if per_call == "all" else per_call)
     except LandingError as exc:
         raise FileError(f"{_where(source, path)}: {exc}") from None
     expected = table.get("source_sha256")

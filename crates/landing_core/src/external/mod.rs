@@ -41,6 +41,9 @@ use crate::rollout::{
 /// inputs; its commands are ignored.
 #[derive(Clone, Debug)]
 pub struct Inputs<const D: usize> {
+    /// The index in the batch of the first case these inputs hold (a law called on the batch a
+    /// slice at a time, [`ExternalLaw::cases_per_call`], sees each slice's).
+    pub first: usize,
     /// The control instant, s.
     pub t: f64,
     /// Index of the control instant, `t = k dt` (`k = steps` at t_final, whose command is
@@ -60,6 +63,7 @@ impl<const D: usize> Inputs<D> {
     fn new(n: usize) -> Self {
         let z = || vec![0.0; n * D];
         Self {
+            first: 0,
             t: 0.0,
             k: 0,
             e: z(),
@@ -150,6 +154,24 @@ pub trait ExternalLaw<const D: usize>: Send {
     /// Diagnostic values per case and instant (at most [`MAX_DIAGNOSTIC_WIDTH`]).
     fn diagnostic_width(&self) -> usize;
 
+    /// At most this many cases per call. A batch larger than that runs a slice of cases at a
+    /// time through all its control instants (the slices in order, each slice's calls in
+    /// time order): the slice's blocks and the law's arrays then stay in the caches between
+    /// two calls, where the whole batch's would stream through memory at every instant. The
+    /// slices hold whole blocks; every slice but the last has the same size.
+    fn cases_per_call(&self) -> usize {
+        usize::MAX
+    }
+
+    /// Called on the thread that is about to call [`command`](Self::command) for a slice of
+    /// cases, before the slice's first call; [`leave`](Self::leave) after its last, on the same
+    /// thread, however the slice ended. (The bindings keep the interpreter's record of the
+    /// thread between the two: made and dropped at every call, it cost more than the call.)
+    fn enter(&mut self) {}
+
+    /// See [`enter`](Self::enter).
+    fn leave(&mut self) {}
+
     /// Writes the commanded generalized accelerations of every case at `inputs.t` into
     /// `command` (`n x D`) and its diagnostics into `diagnostics` (`n x width`).
     fn command(
@@ -195,6 +217,7 @@ struct Common<'a, const D: usize, P: PlantModel<D>> {
     cfg: &'a SimConfig,
     table: Option<&'a StageTable<D>>,
     nd: usize,
+    level: Level,
 }
 
 /// Starts the block of cases `first .. first + used` and writes its inputs at t = 0.
@@ -342,42 +365,97 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         cfg,
         table: table.as_ref(),
         nd,
+        level,
     };
     let w = level.lanes::<P::Blocks>();
-    let used = |b: usize| w.min(n - b * w);
-    let mut inputs = Inputs::<D>::new(n);
-    let mut command = vec![0.0; n * D];
-    let mut diagnostics = vec![0.0; n * nd];
-
-    let common = &common;
-    let jobs = inputs
-        .rows(w)
-        .into_iter()
-        .enumerate()
-        .map(|(b, rows)| -> Job<'_, Held> {
-            let job = Start {
-                common,
-                first: b * w,
-                used: used(b),
-                rows,
-            };
-            Box::new(move || kernel::dispatch(level, job))
-        })
-        .collect();
     let blocks = n.div_ceil(w);
-    // the whole loop runs on the pool: the law's call and the blocks' periods take turns on
-    // its threads, with no hand-over to and from the calling thread at every instant
+    // whole blocks per slice, all of them when the batch fits in one call
+    let per_call = law.cases_per_call();
+    let per_slice = if per_call >= n {
+        blocks
+    } else {
+        (per_call / w).max(1)
+    };
     let threads = pool.map_or_else(rayon::current_num_threads, |p| p.current_num_threads());
-    let group = blocks
-        .div_ceil(threads * GROUPS_PER_THREAD)
-        .clamp(1, MAX_GROUP);
-    let mut held = parallel::on_pool(pool, Box::new(|| parallel::each(jobs)));
     let mut buffers = outputs.blocks(w, nr, nx, out_nd);
-    let run = Box::new(|| -> Result<(), ExternalError<X::Error>> {
+    let mut first_block = 0;
+    while first_block < blocks {
+        let slice = first_block..blocks.min(first_block + per_slice);
+        let run = Slice {
+            common: &common,
+            w,
+            n,
+            blocks: slice.clone(),
+            threads,
+            cancel,
+        };
+        parallel::on_pool(
+            pool,
+            Box::new(|| {
+                law.enter();
+                let out = run.run(law, &mut buffers[slice.clone()]);
+                law.leave();
+                out
+            }),
+        )?;
+        first_block = slice.end;
+    }
+    drop(buffers);
+    Ok(outputs.finish(cfg, nx, out_nd, level))
+}
+
+/// A run of consecutive blocks of the batch, taken through all its control instants.
+struct Slice<'a, 'c, const D: usize, P: PlantModel<D>> {
+    common: &'a Common<'c, D, P>,
+    /// Lanes per block.
+    w: usize,
+    /// Cases in the batch.
+    n: usize,
+    blocks: std::ops::Range<usize>,
+    threads: usize,
+    cancel: &'a AtomicBool,
+}
+
+impl<const D: usize, P: PlantModel<D>> Slice<'_, '_, D, P> {
+    /// Starts the slice's blocks, then at each control instant calls the law on the slice's
+    /// cases and runs one period of every block still running, with the commands it returned.
+    fn run<X: ExternalLaw<D>>(
+        &self,
+        law: &mut X,
+        buffers: &mut [BlockBuffers<'_, D>],
+    ) -> Result<(), ExternalError<X::Error>> {
+        let (common, w, level) = (self.common, self.w, self.common.level);
+        let (cfg, nd) = (common.cfg, common.nd);
+        let first = self.blocks.start * w;
+        let m = self.n.min(self.blocks.end * w) - first;
+        let blocks = self.blocks.len();
+        let used = |b: usize| w.min(m - b * w);
+        let mut inputs = Inputs::<D>::new(m);
+        inputs.first = first;
+        let mut command = vec![0.0; m * D];
+        let mut diagnostics = vec![0.0; m * nd];
+        let jobs = inputs
+            .rows(w)
+            .into_iter()
+            .enumerate()
+            .map(|(b, rows)| -> Job<'_, Held> {
+                let job = Start {
+                    common,
+                    first: first + b * w,
+                    used: used(b),
+                    rows,
+                };
+                Box::new(move || kernel::dispatch(level, job))
+            })
+            .collect();
+        let mut held = parallel::each(jobs);
+        let group = blocks
+            .div_ceil(self.threads * GROUPS_PER_THREAD)
+            .clamp(1, MAX_GROUP);
         let mut running = vec![true; held.len()];
         let mut k = 0;
         while k <= cfg.steps && running.contains(&true) {
-            if cancel.load(Ordering::Relaxed) {
+            if self.cancel.load(Ordering::Relaxed) {
                 return Err(BatchError::Cancelled.into());
             }
             inputs.t = k as f64 * cfg.dt;
@@ -426,10 +504,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
             k += 1;
         }
         Ok(())
-    });
-    parallel::on_pool(pool, run)?;
-    drop(buffers);
-    Ok(outputs.finish(cfg, nx, out_nd, level))
+    }
 }
 
 /// Tasks per pool thread at each instant: enough that a thread whose blocks stop early finds
