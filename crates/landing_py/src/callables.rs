@@ -81,45 +81,17 @@ fn copy_rows(who: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, into: &mut [f64
 }
 
 /// A Python callable as the core's [`ExternalLaw`]: `step(t, k, first, e, de, position,
-/// velocity, acceleration, drift, inertia)`, each an (m, D) float64 array for the m cases from
-/// case `first` on (at most `per_call`: the core runs a larger batch a slice at a time) but the
-/// instant `t`, its index `k` and `first`, returns `(command, diagnostics)`, float64 arrays of
-/// shapes (m, D) and (m, width), C-contiguous. The Python layer
-/// (`landing.controllers.PythonLaw`) checks what the user's function returns and makes it so;
-/// the shapes are checked again here.
+/// velocity, acceleration, drift, inertia)`, the arrays (m, D) float64 for the m cases from row
+/// `first` on (at most `per_call`), returns `(command, diagnostics)`, C-contiguous float64 (m, D)
+/// and (m, width), checked by the Python layer (`landing.controllers.PythonLaw`) and again here.
+/// `thread`: the interpreter's record of the pool thread that calls it, kept from `enter` to
+/// `leave` with the GIL released (each call's `Python::attach` made and dropped one: 10 us).
 pub struct PyLaw {
     pub step: Py<PyAny>,
     pub width: usize,
     pub per_call: usize,
     pub handed: Handed,
-    pub thread: ThreadState,
-}
-
-/// The interpreter's record of a thread that is not Python's (a pool thread calling a law),
-/// kept from [`ExternalLaw::enter`] to [`ExternalLaw::leave`] with the GIL released: without
-/// it, every call's `Python::attach` made a fresh one and dropped it.
-#[derive(Default)]
-pub struct ThreadState(Option<(pyo3::ffi::PyGILState_STATE, usize)>);
-
-impl ThreadState {
-    fn enter(&mut self) {
-        // SAFETY: the C API's pattern for a foreign thread: register it, then release the GIL;
-        // `leave` restores and releases on the same thread (the driver calls both there)
-        unsafe {
-            let gil = pyo3::ffi::PyGILState_Ensure();
-            self.0 = Some((gil, pyo3::ffi::PyEval_SaveThread() as usize));
-        }
-    }
-
-    fn leave(&mut self) {
-        if let Some((gil, saved)) = self.0.take() {
-            // SAFETY: the state `enter` saved, on the thread that saved it
-            unsafe {
-                pyo3::ffi::PyEval_RestoreThread(saved as *mut pyo3::ffi::PyThreadState);
-                pyo3::ffi::PyGILState_Release(gil);
-            }
-        }
-    }
+    pub thread: Option<(pyo3::ffi::PyGILState_STATE, usize)>,
 }
 
 impl<const D: usize> ExternalLaw<D> for PyLaw {
@@ -134,39 +106,30 @@ impl<const D: usize> ExternalLaw<D> for PyLaw {
     }
 
     fn enter(&mut self) {
-        self.thread.enter();
+        // SAFETY: the C API's pattern for a foreign thread: register it, release the GIL;
+        // `leave` restores and releases on the same thread (the driver calls both there)
+        let gil = unsafe { pyo3::ffi::PyGILState_Ensure() };
+        self.thread = Some((gil, unsafe { pyo3::ffi::PyEval_SaveThread() } as usize));
     }
 
     fn leave(&mut self) {
-        self.thread.leave();
+        if let Some((gil, saved)) = self.thread.take() {
+            // SAFETY: the state `enter` saved, on the thread that saved it
+            unsafe { pyo3::ffi::PyEval_RestoreThread(saved as *mut pyo3::ffi::PyThreadState) };
+            unsafe { pyo3::ffi::PyGILState_Release(gil) };
+        }
     }
 
-    fn command(
-        &mut self,
-        i: &Inputs<D>,
-        command: &mut [f64],
-        diagnostics: &mut [f64],
-    ) -> PyResult<()> {
+    fn command(&mut self, i: &Inputs<D>, u: &mut [f64], diagnostics: &mut [f64]) -> PyResult<()> {
         Python::attach(|py| {
-            let head = vec![
-                i.t.into_pyobject(py)?.into_any(),
-                i.k.into_pyobject(py)?.into_any(),
-                i.first.into_pyobject(py)?.into_any(),
-            ];
-            let fields = [
-                &i.e,
-                &i.de,
-                &i.position,
-                &i.velocity,
-                &i.acceleration,
-                &i.drift,
-                &i.inertia,
-            ];
-            let (fields, m) = (fields.map(|v| v.as_slice()), i.e.len() / D);
-            let out = self.handed.call(self.step.bind(py), head, &fields, 0, m)?;
-            let (u, diag): (PyReadonlyArray2<'_, f64>, PyReadonlyArray2<'_, f64>) =
+            let head = (i.t, i.k, i.first).into_pyobject(py)?.into_iter().collect();
+            let m = i.cases();
+            let out = self
+                .handed
+                .call(self.step.bind(py), head, &i.fields(), 0, m)?;
+            let (a, diag): (PyReadonlyArray2<'_, f64>, PyReadonlyArray2<'_, f64>) =
                 out.extract()?;
-            copy_rows("the Python law's step (command)", &u, m, command)?;
+            copy_rows("the Python law's step (command)", &a, m, u)?;
             copy_rows("the Python law's step (diagnostics)", &diag, m, diagnostics)
         })
     }

@@ -126,7 +126,7 @@ impl<'py> Simulate<'_, 'py> {
                     step: step.clone().unbind(),
                     width,
                     handed: Handed::default(),
-                    thread: Default::default(),
+                    thread: None,
                 };
                 // always watched: every call of the law takes the GIL, so even a short
                 // horizon may run long

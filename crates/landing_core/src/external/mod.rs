@@ -76,6 +76,27 @@ impl<const D: usize> Inputs<D> {
         }
     }
 
+    /// The cases these inputs hold.
+    pub fn cases(&self) -> usize {
+        self.e.len() / D
+    }
+
+    /// The fields in the order of [`LawInput`]'s quantities: e, de, the reference's position,
+    /// velocity and acceleration, drift, inertia.
+    pub fn fields(&self) -> [&[f64]; 7] {
+        let Self {
+            e,
+            de,
+            position,
+            velocity,
+            acceleration,
+            drift,
+            inertia,
+            ..
+        } = self;
+        [e, de, position, velocity, acceleration, drift, inertia].map(|v| v.as_slice())
+    }
+
     /// Writes case `i`'s row of every field.
     fn write(&mut self, i: usize, input: &LawInput<D, f64>) {
         let rows = i * D..(i + 1) * D;
