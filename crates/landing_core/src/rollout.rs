@@ -846,47 +846,81 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
     pub(crate) fn end_substep(&mut self, set: &Setting<'_, D, R, P>, tj: f64, h: f64) -> bool {
         let plant = set.plant;
         let zero = R::zero();
-        let (x, next) = (&self.x, &self.next);
-        let mut landing = R::Mask::splat(false);
-        if let (Some(z0), Some(z1)) = (plant.altitude(x), plant.altitude(next)) {
+        if let (Some(z0), Some(z1)) = (plant.altitude(&self.x), plant.altitude(&self.next)) {
             let cross = self.live & !self.touched & z0.simd_gt(zero) & z1.simd_le(zero);
             if cross.any() {
-                let (q0, v0) = plant.coordinates(x);
-                let (q1, v1) = plant.coordinates(next);
-                let (s, q, v) = match plant.altitude_axis() {
-                    Some(axis) => locate_crossing((&q0, &v0), (&q1, &v1), axis, h, cross),
-                    // an altitude that is not a coordinate: the chord
-                    None => {
-                        let s = z0 / (z0 - z1);
-                        let at =
-                            |a: &SVector<R, D>, b: &SVector<R, D>| add(a, &scale_by(&sub(b, a), s));
-                        (s, at(&q0, &q1), at(&v0, &v1))
-                    }
-                };
-                self.td_time = R::select(cross, s * R::splat(h) + R::splat(tj), self.td_time);
-                self.td_position = select_vector(cross, &q, &self.td_position);
-                self.td_velocity = select_vector(cross, &v, &self.td_velocity);
-                self.touched = self.touched | cross;
-                if set.cfg.stop_at == Some(Event::Touchdown) {
-                    // the case ends at the event, frozen in the state there: the coordinates
-                    // as located, the other components (a lander's mass) along the chord
-                    let (qc, vc) = plant.coordinate_components();
-                    let mut at = <P::State as State<R>>::from_components(|c| {
-                        let (a, b) = (x.component(c), next.component(c));
-                        a + (b - a) * s
-                    });
-                    for i in 0..D {
-                        at.set_component(qc[i], q[i]);
-                        at.set_component(vc[i], v[i]);
-                    }
-                    self.next.select_assign(cross, &at);
-                    landing = cross;
-                }
+                return self.touch_down(set, tj, h, (z0, z1), cross);
             }
         }
+        self.settle(set, tj, h, None)
+    }
+
+    /// [`Block::end_substep`] for a substep in which the lanes `cross` reach the ground, out of
+    /// the hot path (once per case): the crossing is located and, under the touchdown event,
+    /// those lanes are frozen there.
+    #[cold]
+    #[inline(never)]
+    fn touch_down(
+        &mut self,
+        set: &Setting<'_, D, R, P>,
+        tj: f64,
+        h: f64,
+        (z0, z1): (R, R),
+        cross: R::Mask,
+    ) -> bool {
+        let plant = set.plant;
+        let (x, next) = (&self.x, &self.next);
+        let (q0, v0) = plant.coordinates(x);
+        let (q1, v1) = plant.coordinates(next);
+        let (s, q, v) = match plant.altitude_axis() {
+            Some(axis) => locate_crossing((&q0, &v0), (&q1, &v1), axis, h, cross),
+            // an altitude that is not a coordinate: the chord
+            None => {
+                let s = z0 / (z0 - z1);
+                let at = |a: &SVector<R, D>, b: &SVector<R, D>| add(a, &scale_by(&sub(b, a), s));
+                (s, at(&q0, &q1), at(&v0, &v1))
+            }
+        };
+        self.td_time = R::select(cross, s * R::splat(h) + R::splat(tj), self.td_time);
+        self.td_position = select_vector(cross, &q, &self.td_position);
+        self.td_velocity = select_vector(cross, &v, &self.td_velocity);
+        self.touched = self.touched | cross;
+        if set.cfg.stop_at != Some(Event::Touchdown) {
+            return self.settle(set, tj, h, None);
+        }
+        // the case ends at the event, frozen in the state there: the coordinates as located,
+        // the other components (a lander's mass) along the chord
+        let (qc, vc) = plant.coordinate_components();
+        let mut at = <P::State as State<R>>::from_components(|c| {
+            let (a, b) = (x.component(c), next.component(c));
+            a + (b - a) * s
+        });
+        for i in 0..D {
+            at.set_component(qc[i], q[i]);
+            at.set_component(vc[i], v[i]);
+        }
+        self.next.select_assign(cross, &at);
+        self.settle(set, tj, h, Some(cross))
+    }
+
+    /// The rest of [`Block::end_substep`]: the lanes `landing` end at the event; of the others
+    /// those whose state is non-finite or out of the domain stop, the rest take the new state.
+    #[inline(always)]
+    fn settle(
+        &mut self,
+        set: &Setting<'_, D, R, P>,
+        tj: f64,
+        h: f64,
+        landing: Option<R::Mask>,
+    ) -> bool {
+        let plant = set.plant;
         let next = &self.next;
         let finite = next.all_finite();
-        let bad = self.live & !landing & !(finite & plant.in_domain(next));
+        let ends = match landing {
+            None => self.live,
+            Some(landing) => self.live & !landing,
+        };
+        let bad = ends & !(finite & plant.in_domain(next));
         if bad.any() {
             self.stops
                 .mark(bad & !finite, tj + h, Divergence::NonFiniteState);
@@ -895,7 +929,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             self.stats.freeze(bad);
             self.live = self.live & !bad;
         }
-        if landing.any() {
+        if let Some(landing) = landing {
             self.x.select_assign(landing, &self.next);
             self.stats.freeze(landing);
             self.landed = self.landed | landing;
