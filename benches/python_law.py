@@ -12,8 +12,8 @@ Three tables:
 1. The same campaign, built-in against Python, on ``--cases`` cases (10^4 by default) at each
    ``--threads``: the ratio is the cost of writing the law in Python (the law at its default
    ``cases_per_call``).
-2. The same on one thread for ``cases_per_call`` from 256 to the whole batch (``None``): what
-   running a slice of cases at a time buys.
+2. The same at each ``--threads`` for ``cases_per_call`` from 256 to the whole batch
+   (``None``): what running a slice of cases at a time buys.
 3. Where the time of the default goes, on one thread: the function alone (timed inside the
    run), the built-in open-loop law on the same cases (the plant's periods without a law),
    and the rest (the engine's round trip). The function alone against the built-in law bounds
@@ -66,6 +66,58 @@ def mss_printed(t, e, de, ref, drift, inertia, params, memory):
     return ref.acceleration - drift + (cancel + reach)
 
 
+def mss_lean(t, e, de, ref, drift, inertia, params, memory):
+    """``mss_printed`` as a careful numpy user writes it: the same operations in the same order
+    (so the same bits), each result written into an array the function already holds (``out=``
+    and in-place operators) instead of a fresh temporary."""
+    b1, b2, q1, q2 = params["beta1"], params["beta2"], params["q1"], params["q2"]
+    a1, a2, g1, g2 = params["alpha1"], params["alpha2"], params["gamma1"], params["gamma2"]
+    abs1 = np.abs(e)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log1 = np.log(abs1)
+        p1 = np.multiply(q1, log1)
+        np.exp(p1, out=p1)
+        p2 = np.multiply(q2, log1, out=log1)
+        np.exp(p2, out=p2)
+        sign1 = np.sign(e)
+        s2 = np.multiply(b1, p1)
+        s2 += np.multiply(b2, p2)
+        s2 *= sign1
+        s2 += de
+        inv = np.divide(1.0, abs1)
+        c1 = np.multiply(b1, b1)
+        c1 *= q1
+        t1 = np.multiply(p1, p1)
+        t1 *= inv
+        c1 *= t1
+        c2 = np.multiply(b2, b2, out=t1)
+        c2 *= q2
+        c2 *= p2
+        c3 = np.multiply(b1, b2)
+        c3 *= np.add(q1, q2)
+        c3 *= p1
+        c2 += c3
+        p2 *= inv
+        c2 *= p2
+        c1 += c2
+        c1 *= sign1
+        cancel = np.where(abs1 > 0, c1, 0.0)
+        log2 = np.abs(s2, out=c3)
+        np.log(log2, out=log2)
+        r1 = np.multiply(g1, log2, out=p1)
+        np.exp(r1, out=r1)
+        r1 *= a1
+        r2 = np.multiply(g2, log2, out=log2)
+        np.exp(r2, out=r2)
+        r2 *= a2
+        r1 += r2
+        r1 *= np.sign(s2)
+    cancel -= r1
+    out = np.subtract(ref.acceleration, drift, out=c2)
+    out += cancel
+    return out
+
+
 def zeros(t, e, de, ref, drift, inertia, params, memory):
     return np.zeros_like(e)
 
@@ -96,6 +148,7 @@ def main() -> None:
     steps = round(t_final / dt)
     builtin = C.FixedTimeMSS(**GAINS)
     python = C.PythonLaw(mss_printed, params=GAINS)
+    careful = C.PythonLaw(mss_lean, params=GAINS)
     x0 = dispersed(args.cases)
     kw = dict(t_final=t_final, dt=dt, record_every=0)
 
@@ -104,6 +157,8 @@ def main() -> None:
     b = landing.simulate_batch(plant, python, x0, **kw)
     err = np.max(np.abs(b.final_state - a.final_state) / np.maximum(np.abs(a.final_state), 1e-300))
     assert err < 1e-9, f"the Python law's final states differ from the built-in law's by {err:.3g}"
+    c = landing.simulate_batch(plant, careful, x0, **kw)
+    assert np.array_equal(c.final_state, b.final_state), "the careful numpy law gives other bits"
 
     print(f"# {datetime.date.today()}  {platform.processor() or platform.machine()}  "
           f"{os.cpu_count()} cores  landing {landing.__version__}  numpy {np.__version__}")
@@ -116,6 +171,8 @@ def main() -> None:
                                                                                            threads=t, **kw)
         rows[f"PythonLaw, {threads} thread(s)"] = lambda t=threads: landing.simulate_batch(plant, python, x0,
                                                                                             threads=t, **kw)
+        rows[f"careful, {threads} thread(s)"] = lambda t=threads: landing.simulate_batch(plant, careful, x0,
+                                                                                          threads=t, **kw)
     times = {name: [] for name in rows}
     for r in range(args.repeat):
         names = list(rows)
@@ -124,46 +181,54 @@ def main() -> None:
     per = {name: statistics.median(v) / (args.cases * steps) * 1e9 for name, v in times.items()}
     for threads in args.threads:
         bi, py = per[f"built-in, {threads} thread(s)"], per[f"PythonLaw, {threads} thread(s)"]
-        print(f"   {threads} thread(s): built-in {bi:8.1f}   PythonLaw {py:8.1f}   ratio {py / bi:5.2f}")
+        ca = per[f"careful, {threads} thread(s)"]
+        print(f"   {threads} thread(s): built-in {bi:8.1f}   PythonLaw {py:8.1f}   ratio {py / bi:5.2f}   "
+              f"careful numpy {ca:8.1f}   ratio {ca / bi:5.2f}")
 
-    print(f"\n2. cases per call, {args.cases} Mars cases, 1 thread; median of {args.repeat}, ns per case-step")
-    sweep = {"built-in": builtin}
-    for per_call in (256, 512, 1024, 2048, 4096, None):
-        sweep[f"cases_per_call={per_call}"] = python.replace(cases_per_call=per_call)
-    times = {name: [] for name in sweep}
-    for r in range(args.repeat):
-        names = list(sweep)
-        for name in names[r % len(names):] + names[:r % len(names)]:
-            times[name].append(timed(lambda law=sweep[name]: landing.simulate_batch(plant, law, x0, threads=1, **kw)))
-    base = statistics.median(times["built-in"])
-    for name, v in times.items():
-        print(f"   {name:>22}: {statistics.median(v) / (args.cases * steps) * 1e9:8.1f}   "
-              f"ratio {statistics.median(v) / base:5.2f}")
+    for threads in args.threads:
+        print(f"\n2. cases per call, {args.cases} Mars cases, {threads} thread(s); median of {args.repeat}, "
+              "ns per case-step")
+        sweep = {"built-in": builtin}
+        for per_call in (256, 512, 1024, 2048, 4096, None):
+            sweep[f"cases_per_call={per_call}"] = python.replace(cases_per_call=per_call)
+        times = {name: [] for name in sweep}
+        for r in range(args.repeat):
+            names = list(sweep)
+            for name in names[r % len(names):] + names[:r % len(names)]:
+                times[name].append(timed(lambda law=sweep[name], t=threads: landing.simulate_batch(
+                    plant, law, x0, threads=t, **kw)))
+        base = statistics.median(times["built-in"])
+        for name, v in times.items():
+            print(f"   {name:>22}: {statistics.median(v) / (args.cases * steps) * 1e9:8.1f}   "
+                  f"ratio {statistics.median(v) / base:5.2f}")
 
     print(f"\n3. where the time goes, cases_per_call={python.cases_per_call}, 1 thread; median of {args.repeat}, "
           "ns per case-step")
     inside = [0.0]
 
-    def timed_law(*a):
-        start = time.perf_counter()
-        out = mss_printed(*a)
-        inside[0] += time.perf_counter() - start
-        return out
+    for label, function in (("printed", mss_printed), ("careful", mss_lean)):
 
-    spy = python.replace(function=timed_law)
-    parts: dict[str, list[float]] = {"function": [], "total": [], "open loop": [], "built-in": []}
-    for _ in range(args.repeat):
-        inside[0] = 0.0
-        parts["total"].append(timed(lambda: landing.simulate_batch(plant, spy, x0, threads=1, **kw)))
-        parts["function"].append(inside[0])
-        parts["open loop"].append(timed(lambda: landing.simulate_batch(plant, C.OpenLoop(), x0, threads=1, **kw)))
-        parts["built-in"].append(timed(lambda: landing.simulate_batch(plant, builtin, x0, threads=1, **kw)))
-    med = {k: statistics.median(v) / (args.cases * steps) * 1e9 for k, v in parts.items()}
-    print(f"   PythonLaw {med['total']:.1f} = function {med['function']:.1f} + plant and engine "
-          f"{med['total'] - med['function']:.1f}; open loop built-in {med['open loop']:.1f}; "
-          f"built-in law {med['built-in']:.1f}")
-    print(f"   bound on the ratio with no engine overhead: (function + open loop) / built-in = "
-          f"{(med['function'] + med['open loop']) / med['built-in']:.2f}")
+        def timed_law(*a, function=function):
+            start = time.perf_counter()
+            out = function(*a)
+            inside[0] += time.perf_counter() - start
+            return out
+
+        spy = python.replace(function=timed_law)
+        parts: dict[str, list[float]] = {"function": [], "total": [], "open loop": [], "built-in": []}
+        for _ in range(args.repeat):
+            inside[0] = 0.0
+            parts["total"].append(timed(lambda spy=spy: landing.simulate_batch(plant, spy, x0, threads=1, **kw)))
+            parts["function"].append(inside[0])
+            parts["open loop"].append(timed(lambda: landing.simulate_batch(plant, C.OpenLoop(), x0, threads=1,
+                                                                           **kw)))
+            parts["built-in"].append(timed(lambda: landing.simulate_batch(plant, builtin, x0, threads=1, **kw)))
+        med = {k: statistics.median(v) / (args.cases * steps) * 1e9 for k, v in parts.items()}
+        print(f"   {label}: PythonLaw {med['total']:.1f} = function {med['function']:.1f} + plant and engine "
+              f"{med['total'] - med['function']:.1f}; open loop built-in {med['open loop']:.1f}; "
+              f"built-in law {med['built-in']:.1f}; ratio {med['total'] / med['built-in']:.2f}")
+        print(f"   {label}: bound on the ratio with no engine overhead: (function + open loop) / built-in = "
+              f"{(med['function'] + med['open loop']) / med['built-in']:.2f}")
 
     print(f"\n4. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
           f"{dt} s, {max(args.threads)} thread(s); median of {args.repeat}, microseconds per control instant")

@@ -407,6 +407,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
             w,
             n,
             blocks: slice.clone(),
+            sliced: per_slice < blocks,
             threads,
             cancel,
         };
@@ -433,6 +434,8 @@ struct Slice<'a, 'c, const D: usize, P: PlantModel<D>> {
     /// Cases in the batch.
     n: usize,
     blocks: std::ops::Range<usize>,
+    /// Whether the batch runs in more than one slice.
+    sliced: bool,
     threads: usize,
     cancel: &'a AtomicBool,
 }
@@ -521,12 +524,23 @@ impl<const D: usize, P: PlantModel<D>> Slice<'_, '_, D, P> {
                     }
                 }));
             }
-            parallel::each(jobs);
+            if self.sliced && m < PARALLEL_SLICE {
+                jobs.into_iter().for_each(|job| job());
+            } else {
+                parallel::each(jobs);
+            }
             k += 1;
         }
         Ok(())
     }
 }
+
+/// A slice of fewer cases than this, of a batch run a slice at a time, advances its blocks on
+/// the thread that calls the law: at the default 1024 cases per call, handing each instant's
+/// periods to the pool's other threads and waiting for them cost more than they saved (10^4
+/// Mars cases, 2 threads: 194 against 141 ns per case-step; BENCHMARKS.md). A batch run whole
+/// spreads its periods over the pool, as before.
+const PARALLEL_SLICE: usize = 4096;
 
 /// Tasks per pool thread at each instant: enough that a thread whose blocks stop early finds
 /// others' work.
