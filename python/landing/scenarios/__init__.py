@@ -7,6 +7,7 @@ reproduce the seeds' experiments and ship as TOML files, which :meth:`Scenario.l
 """
 
 from landing.scenarios._presets import (
+    MARS_FAST_GAINS,
     MARS_FIXED_TIME_GAINS,
     MARS_NOMINAL_STATE,
     MARS_REALISTIC_DISPERSIONS,
@@ -26,6 +27,7 @@ from landing.scenarios._presets import (
     TETHER_RATE_SPREAD,
     TETHER_SETTLE_TOLERANCE,
     load_scenario,
+    mars_fast,
     mars_monte_carlo,
     mars_nominal,
     mars_realistic,
@@ -59,12 +61,14 @@ __all__ = [
     "preset_path",
     "load_scenario",
     "write_preset_files",
+    "MARS_FAST_GAINS",
     "MARS_FIXED_TIME_GAINS",
     "MARS_NOMINAL_STATE",
     "MARS_REALISTIC_DISPERSIONS",
     "MARS_REALISTIC_ENGINE",
     "MARS_REALISTIC_GAINS",
     "MARS_SUPER_TWISTING_C",
+    "mars_fast",
     "mars_nominal",
     "mars_super_twisting",
     "mars_monte_carlo",
