@@ -1,14 +1,15 @@
-//! A batch under a law computed outside the core, for every case at once.
+//! A batch under a law computed outside the core, for many cases at once.
 //!
 //! A built-in law runs inside each block's lanes, and a block runs through all its periods
 //! ([`crate::rollout::rollout_block`]). A law written in Python needs the other order: it is
-//! called once per control instant on the law inputs of every case of the batch, holding the
-//! interpreter, while the plant's periods between two calls run in parallel without it. So
-//! every block is started and kept ([`crate::rollout::Block`]: the plant's state, its
-//! integrator, the metric accumulators and the recording cursor), and each control instant is
-//! one call of the law on the gathered inputs, then one period of every block, in parallel,
-//! with the commands the call returned. The blocks' periods and metrics are the same code as a
-//! built-in law's, so a law computed outside gives the bits that law built in would.
+//! called once per control instant on the law inputs of many cases (the batch, or a slice of it:
+//! [`ExternalLaw::cases_per_call`]), holding the interpreter, while the plant's periods between
+//! two calls run without it. So every block of the slice is started and kept
+//! ([`crate::rollout::Block`]: the plant's state, its integrator, the metric accumulators and
+//! the recording cursor), and each control instant is one call of the law on the gathered
+//! inputs, then one period of every block, with the commands the call returned. The blocks'
+//! periods and metrics are the same code as a built-in law's, so a law computed outside gives
+//! the bits that law built in would.
 //!
 //! The law's memory (integrators, adaptive terms) is the law's own business, kept outside
 //! between calls; the core sees commands and diagnostics only.
@@ -36,7 +37,7 @@ use crate::rollout::{
     Block, BlockBuffers, MAX_DIAGNOSTIC_WIDTH, Period, Setting, SimConfig, StageTable,
 };
 
-/// The law inputs of every case of a batch at one control instant: `n x D` row-major arrays,
+/// The law inputs of the cases of a call at one control instant: `n x D` row-major arrays,
 /// case after case (the quantities of [`LawInput`]). A case that has stopped keeps its last
 /// inputs; its commands are ignored.
 #[derive(Clone, Debug)]
@@ -167,7 +168,8 @@ impl InputRows<'_> {
     }
 }
 
-/// A law computed outside the core: once per control instant, for every case of the batch.
+/// A law computed outside the core: once per control instant, for the cases of a call (the
+/// batch, or a slice of it).
 pub trait ExternalLaw<const D: usize>: Send {
     /// What the law's failure carries (the bindings: the Python exception).
     type Error: Send;
@@ -186,14 +188,15 @@ pub trait ExternalLaw<const D: usize>: Send {
 
     /// Called on the thread that is about to call [`command`](Self::command) for a slice of
     /// cases, before the slice's first call; [`leave`](Self::leave) after its last, on the same
-    /// thread, however the slice ended. (The bindings keep the interpreter's record of the
-    /// thread between the two: made and dropped at every call, it cost more than the call.)
+    /// thread, whether the slice ran to its end or stopped (cancelled, the law failed). (The
+    /// bindings keep the interpreter's record of the thread between the two: made and dropped
+    /// at every call, it cost more than the call.)
     fn enter(&mut self) {}
 
     /// See [`enter`](Self::enter).
     fn leave(&mut self) {}
 
-    /// Writes the commanded generalized accelerations of every case at `inputs.t` into
+    /// Writes the commanded generalized accelerations of the call's cases at `inputs.t` into
     /// `command` (`n x D`) and its diagnostics into `diagnostics` (`n x width`).
     fn command(
         &mut self,
@@ -347,9 +350,11 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
     }
 }
 
-/// Runs every case of the batch under `law`, which is called on the calling thread once per
-/// control instant (`steps + 1` times, the last at t_final, while a case still runs) with
-/// the inputs of every case; between two calls every block's period runs on the rayon pool.
+/// Runs every case of the batch under `law`, a slice of at most `law.cases_per_call()` cases at
+/// a time: the law is called once per control instant (`steps + 1` times, the last at t_final,
+/// while a case of the slice still runs) with the inputs of the slice's cases; between two
+/// calls every block's period of the slice runs (on the rayon pool for an unsliced batch or a
+/// large slice, on the calling thread for a small one: [`PARALLEL_SLICE`]).
 /// Cancelled, at the next instant, when `options.cancel` is raised; stopped when the law
 /// fails. The output and its bits are those [`crate::batch::run`] gives for the same law
 /// built in.
