@@ -182,11 +182,13 @@ def simulate_batch(
     """Run a batch. Returns t, states, controls, diagnostics, final_state, metrics (a dict of
     arrays), state_names, control_names, diagnostic_layout, axes and kernel (the level used).
 
-    ``controller`` is a compiled law, or a law computed in Python: a callable ``step(t, k, e,
-    de, position, velocity, acceleration, drift, inertia)`` (each (N, axes) but t and k),
-    called once per control instant, returning ``(command, diagnostics)``, float64 (N, axes)
-    and (N, width), with ``diagnostic_layout`` the names and widths of its signals. An
-    exception it raises is raised as it is."""
+    ``controller`` is a compiled law, or a law computed in Python: a callable ``step(t, k,
+    first, e, de, position, velocity, acceleration, drift, inertia)`` (each (m, axes) for the m
+    cases from row ``first`` on, but t, k and first) with an int attribute ``cases_per_call``:
+    a larger batch runs a slice of at most that many cases at a time through all its instants.
+    Called once per control instant of a slice, it returns ``(command, diagnostics)``, float64
+    (m, axes) and (m, width), with ``diagnostic_layout`` the names and widths of its signals.
+    An exception it raises is raised as it is."""
 
 def kernel_levels() -> list[str]:
     """The instruction-set levels this CPU supports, lowest first."""
