@@ -9,16 +9,29 @@ use landing_core::external::{ExternalLaw, ExternalPlant, Inputs, StateLayout};
 
 use crate::errors::invalid;
 
-/// The (N, width) arrays handed to Python at every call, reused from one call to the next: a
-/// fresh array at every call faults its pages in again (a quarter of a Python law's time at
-/// 10^4 cases). An array the callee kept a reference to (in its memory, a view of it) is left
-/// to it, and replaced by a new one.
+/// What the binding keeps for a Python callee between calls: the (N, width) arrays handed to
+/// it, reused (fresh ones fault their pages in at every call; one the callee kept is replaced);
+/// and, between a driver's two `on_thread` calls, the interpreter's record of the pool thread
+/// calling it, with the GIL released (each `Python::attach` made and dropped one: 10 us).
 #[derive(Default)]
 pub struct Handed {
     slots: Vec<Option<Py<PyArray2<f64>>>>,
+    thread: Option<(pyo3::ffi::PyGILState_STATE, usize)>,
 }
 
 impl Handed {
+    // SAFETY (both): the C API's pattern for a foreign thread, register it and release the GIL,
+    // then restore and release on the same thread (the drivers make both calls there)
+    fn on_thread(&mut self, entering: bool) {
+        if entering {
+            let gil = unsafe { pyo3::ffi::PyGILState_Ensure() };
+            self.thread = Some((gil, unsafe { pyo3::ffi::PyEval_SaveThread() } as usize));
+        } else if let Some((gil, saved)) = self.thread.take() {
+            unsafe { pyo3::ffi::PyEval_RestoreThread(saved as *mut pyo3::ffi::PyThreadState) };
+            unsafe { pyo3::ffi::PyGILState_Release(gil) };
+        }
+    }
+
     /// Slot `slot`'s array, holding `values` (`n x width`, row-major).
     fn array<'py>(
         &mut self,
@@ -84,14 +97,11 @@ fn copy_rows(who: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, into: &mut [f64
 /// velocity, acceleration, drift, inertia)`, the arrays (m, D) float64 for the m cases from row
 /// `first` on (at most `per_call`), returns `(command, diagnostics)`, C-contiguous float64 (m, D)
 /// and (m, width), checked by the Python layer (`landing.controllers.PythonLaw`) and again here.
-/// `thread`: the interpreter's record of the pool thread that calls it, kept from `enter` to
-/// `leave` with the GIL released (each call's `Python::attach` made and dropped one: 10 us).
 pub struct PyLaw {
     pub step: Py<PyAny>,
     pub width: usize,
     pub per_call: usize,
     pub handed: Handed,
-    pub thread: Option<(pyo3::ffi::PyGILState_STATE, usize)>,
 }
 
 impl<const D: usize> ExternalLaw<D> for PyLaw {
@@ -105,19 +115,8 @@ impl<const D: usize> ExternalLaw<D> for PyLaw {
         self.per_call
     }
 
-    fn enter(&mut self) {
-        // SAFETY: the C API's pattern for a foreign thread: register it, release the GIL;
-        // `leave` restores and releases on the same thread (the driver calls both there)
-        let gil = unsafe { pyo3::ffi::PyGILState_Ensure() };
-        self.thread = Some((gil, unsafe { pyo3::ffi::PyEval_SaveThread() } as usize));
-    }
-
-    fn leave(&mut self) {
-        if let Some((gil, saved)) = self.thread.take() {
-            // SAFETY: the state `enter` saved, on the thread that saved it
-            unsafe { pyo3::ffi::PyEval_RestoreThread(saved as *mut pyo3::ffi::PyThreadState) };
-            unsafe { pyo3::ffi::PyGILState_Release(gil) };
-        }
+    fn on_thread(&mut self, entering: bool) {
+        self.handed.on_thread(entering);
     }
 
     fn command(&mut self, i: &Inputs<D>, u: &mut [f64], diagnostics: &mut [f64]) -> PyResult<()> {
@@ -172,6 +171,10 @@ impl<const D: usize> ExternalPlant<D> for PyPlant<D> {
 
     fn hooks(&self) -> [bool; 3] {
         [1, 2, 3].map(|i| self.hooks[i].is_some())
+    }
+
+    fn on_thread(&mut self, entering: bool) {
+        self.handed.on_thread(entering);
     }
 
     fn derivative(&mut self, t: f64, x: &[f64], u: &[f64], xdot: &mut [f64]) -> PyResult<()> {

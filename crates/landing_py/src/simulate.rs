@@ -126,7 +126,6 @@ impl<'py> Simulate<'_, 'py> {
                     step: step.clone().unbind(),
                     width,
                     handed: Handed::default(),
-                    thread: None,
                 };
                 // always watched: every call of the law takes the GIL, so even a short
                 // horizon may run long

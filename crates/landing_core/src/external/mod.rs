@@ -186,15 +186,12 @@ pub trait ExternalLaw<const D: usize>: Send {
         usize::MAX
     }
 
-    /// Called on the thread that is about to call [`command`](Self::command) for a slice of
-    /// cases, before the slice's first call; [`leave`](Self::leave) after its last, on the same
-    /// thread, whether the slice ran to its end or stopped (cancelled, the law failed). (The
-    /// bindings keep the interpreter's record of the thread between the two: made and dropped
-    /// at every call, it cost more than the call.)
-    fn enter(&mut self) {}
-
-    /// See [`enter`](Self::enter).
-    fn leave(&mut self) {}
+    /// Called with `true` on the thread that is about to call [`command`](Self::command) for a
+    /// slice of cases, before the slice's first call, and with `false` after its last, on the
+    /// same thread, whether the slice ran to its end or stopped (cancelled, the law failed).
+    /// (The bindings keep the interpreter's record of the thread between the two: made and
+    /// dropped at every call, it cost more than the call.)
+    fn on_thread(&mut self, _entering: bool) {}
 
     /// Writes the commanded generalized accelerations of the call's cases at `inputs.t` into
     /// `command` (`n x D`) and its diagnostics into `diagnostics` (`n x width`).
@@ -419,9 +416,9 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         parallel::on_pool(
             pool,
             Box::new(|| {
-                law.enter();
+                law.on_thread(true);
                 let out = run.run(law, &mut buffers[slice.clone()]);
-                law.leave();
+                law.on_thread(false);
                 out
             }),
         )?;

@@ -124,6 +124,10 @@ pub trait ExternalPlant<const D: usize> {
     /// Which of the optional hooks the plant has: its model, its actuator, its domain.
     fn hooks(&self) -> [bool; 3];
 
+    /// Called with `true` on the thread that calls the hooks (and an external law) before the
+    /// first call, and with `false` after the last, as [`ExternalLaw::on_thread`].
+    fn on_thread(&mut self, _entering: bool) {}
+
     /// `x'` of every case at time `t`, state `x` (`n x dim`) and applied command `u` (`n x D`),
     /// without the disturbance, into `xdot` (`n x dim`).
     fn derivative(
@@ -309,6 +313,22 @@ fn at(v: &[f64], width: usize, i: usize) -> &[f64] {
 /// plant or the law fails. `options.threads` and `options.level` are not used (see the
 /// module's comment).
 pub fn run_external_plant<const D: usize, X: ExternalPlant<D>>(
+    plant: &mut X,
+    laws: Laws<'_, D, X::Error>,
+    x0: &[f64],
+    references: &PerCase<Reference<D>>,
+    disturbances: &PerCase<Disturbance<D>>,
+    cfg: &SimConfig,
+    options: &RunOptions<'_>,
+) -> Result<BatchOutput<D>, ExternalError<X::Error>> {
+    plant.on_thread(true);
+    let out = run_entered(plant, laws, x0, references, disturbances, cfg, options);
+    plant.on_thread(false);
+    out
+}
+
+/// [`run_external_plant`] between the plant's two `on_thread` calls.
+fn run_entered<const D: usize, X: ExternalPlant<D>>(
     plant: &mut X,
     mut laws: Laws<'_, D, X::Error>,
     x0: &[f64],
