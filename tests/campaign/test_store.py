@@ -166,6 +166,39 @@ def test_resume_after_an_interruption_equals_an_uninterrupted_run(tmp_path, monk
     assert ran == []
 
 
+def test_the_zarr_tree_is_created_with_the_store_and_never_again(tmp_path, monkeypatch, reference_run):
+    s = small()
+    path = tmp_path / "c"
+
+    class Interrupted(Exception):
+        pass
+
+    def no_chunk(self, *args, **kwargs):
+        raise Interrupted
+
+    # created, then stopped before any chunk is written: the whole tree is already there
+    with monkeypatch.context() as m:
+        m.setattr(CampaignStore, "write_chunk", no_chunk)
+        with pytest.raises(Interrupted):
+            landing.monte_carlo(s, 20, seed=3, chunk_size=5, store=path)
+    manifest = json.loads((path / "manifest.json").read_text())
+    assert manifest["chunks"] == [] and manifest["layout"]["arrays"][:3] == ["final_state", "states", "controls"]
+    ds = xr.open_zarr(path / "trajectories.zarr")
+    assert ds["states"].shape == reference_run.states.shape
+    assert ds["controls"].shape == reference_run.controls.shape
+    assert ds["final_state"].shape == reference_run.result.final_state.shape
+    assert_same_bits(ds["time"].values, reference_run.t, "the time grid written at creation")
+    tree = {p: (p.stat().st_ino, p.stat().st_mtime_ns, p.read_bytes())
+            for p in (path / "trajectories.zarr").rglob("*") if p.is_file()}
+    assert any(p.name in (".zarray", "zarr.json") for p in tree)
+
+    # every chunk then writes regions of it: no file of the tree is replaced
+    assert_same_campaign(landing.monte_carlo(s, 20, seed=3, store=path), reference_run)
+    after = {p: (p.stat().st_ino, p.stat().st_mtime_ns, p.read_bytes()) for p in tree}
+    assert after == tree
+    assert_same_campaign(landing.load(path, scenario=s), reference_run)
+
+
 def test_a_store_of_another_campaign_is_refused(tmp_path):
     s = small()
     path = tmp_path / "c"

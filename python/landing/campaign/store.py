@@ -20,7 +20,8 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
       trajectories.zarr/      states (case, time, state), controls (case, time, control),
                               diagnostics (case, time[, axis]) as kept, final_state (case,
                               state); coordinates case, time (s), state, control, axis and the
-                              components' units; written chunk by chunk (region writes)
+                              components' units; created once with the store (shaped
+                              after one case), then written chunk by chunk (region writes)
 
 ``xarray.open_zarr(path / "trajectories.zarr")`` and ``pandas.read_parquet(path / "chunks" /
 "metrics")`` read it without this package; :func:`read_campaign_store` opens it for the
@@ -52,7 +53,7 @@ import json
 import os
 import platform
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
@@ -61,7 +62,14 @@ from typing import Any, Optional, Union
 import numpy as np
 
 from landing._core import __version__
-from landing.errors import LandingError, ParameterError, ParameterTypeError, StoreError, StoreWarning
+from landing.errors import (
+    DivergenceWarning,
+    LandingError,
+    ParameterError,
+    ParameterTypeError,
+    StoreError,
+    StoreWarning,
+)
 from landing.results import Metrics, SimulationResult, dataset_coords, flat_columns, flat_metric_units, require_io
 from landing.scenarios import Scenario, files
 
@@ -310,9 +318,11 @@ class CampaignStore:
 
     @staticmethod
     def open(path: Union[str, os.PathLike], key: CampaignKey, *, threads: Optional[int], check_bounds: bool,
-             record_every: int) -> CampaignStore:
+             record_every: int, one_case: Callable[[], SimulationResult]) -> CampaignStore:
         """Open (resume) the campaign at ``path`` or create it; a store written by another
-        campaign is refused with what differs."""
+        campaign is refused with what differs. A new store's Zarr tree is created here, once,
+        with the shapes of ``one_case()`` (one case of the campaign run: the time grid, the
+        names, the diagnostics and the metric columns as the core gives them)."""
         require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
         path = Path(path)
         prov_path = path / PROVENANCE
@@ -328,7 +338,7 @@ class CampaignStore:
         lock.acquire()
         try:
             store = CampaignStore._open_locked(path, key, threads=threads, check_bounds=check_bounds,
-                                               record_every=record_every)
+                                               record_every=record_every, one_case=one_case)
         except BaseException:
             lock.release()
             raise
@@ -343,7 +353,7 @@ class CampaignStore:
 
     @staticmethod
     def _open_locked(path: Path, key: CampaignKey, *, threads: Optional[int], check_bounds: bool,
-                     record_every: int) -> CampaignStore:
+                     record_every: int, one_case: Callable[[], SimulationResult]) -> CampaignStore:
         prov_path = path / PROVENANCE
         if prov_path.exists():
             prov = json.loads(prov_path.read_text())
@@ -380,6 +390,10 @@ class CampaignStore:
             }
             _write_json_atomic(prov_path, prov)
             store = CampaignStore(path, key)
+        if not store.layout:
+            # a new store (or one whose creation was interrupted before its manifest): its Zarr
+            # tree for the whole campaign, then the manifest that records its layout
+            store._create_trajectories(one_case())
             store._write_manifest()
         prov["sessions"].append({"started": _now(), "machine": machine(), "threads": threads,
                                  "threads_used": threads or os.cpu_count(), "kernel": None,
@@ -448,7 +462,8 @@ class CampaignStore:
         return zarr.open_group(str(self.path / TRAJECTORIES), mode=mode)
 
     def _create_trajectories(self, part: SimulationResult) -> None:
-        """The Zarr store's arrays, for the whole campaign, from the first chunk's shapes; the
+        """The Zarr store's arrays, for the whole campaign, from one case's shapes (at the
+        store's creation; chunks then write regions of them, never the tree); the
         chunking along ``case`` is the campaign's (a divisor of it for large chunks), so each
         campaign chunk writes whole Zarr chunks."""
         zarr, xr = require_io("zarr", "xarray", what="the campaign store")
@@ -514,8 +529,6 @@ class CampaignStore:
     def _write_chunk(self, index: int, start: int, stop: int, part: SimulationResult, x0: np.ndarray,
                      draws: Optional[np.ndarray]) -> None:
         pa, pq = require_io("pyarrow", "pyarrow.parquet", what="the campaign store")
-        if not self.layout:
-            self._create_trajectories(part)
         case = np.arange(start, stop, dtype=np.int64)
         axes = tuple(self.layout["axis_names"])
         files = []
@@ -714,7 +727,15 @@ def open_campaign_store(
             chunk_size = default_chunk_size(n)
     key = CampaignKey.of(scenario, seed=seed, n=n, chunk_size=chunk_size, record_every=record_every,
                          keep=keep, x0=x0)
-    return CampaignStore.open(path, key, threads=threads, check_bounds=check_bounds, record_every=record_every)
+
+    def one_case() -> SimulationResult:
+        # case 0 as the campaign runs it: what the new store's Zarr tree is shaped after
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", DivergenceWarning)
+            return scenario.simulate_cases(x0[:1], 0, n, seed=seed, threads=1, record_every=record_every)
+
+    return CampaignStore.open(path, key, threads=threads, check_bounds=check_bounds, record_every=record_every,
+                              one_case=one_case)
 
 
 def _digest(columns: Mapping[str, Any]) -> str:
