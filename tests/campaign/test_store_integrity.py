@@ -5,7 +5,11 @@ campaign is the uninterrupted run's bit for bit."""
 
 from __future__ import annotations
 
+import os
+import pickle
 import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -161,3 +165,49 @@ def test_a_full_disk_is_a_store_error_naming_the_file_and_the_resume_completes(t
         with pytest.raises(StoreError, match=r"writing chunk \d .* failed .*: No space left on device; free space"):
             landing.monte_carlo(small(), N, seed=3, chunk_size=CHUNK, store=path)
     assert_same_campaign(landing.monte_carlo(small(), N, seed=3, store=path), whole)
+
+
+def _read_only_copy(store: Path, where: Path) -> Path:
+    """A copy of ``store`` no one may write: every file 0444, every folder 0555."""
+    copy = where / "read-only"
+    shutil.copytree(store, copy)
+    for p in sorted(copy.rglob("*"), reverse=True) + [copy]:
+        p.chmod(0o555 if p.is_dir() else 0o444)
+    return copy
+
+
+def _without_write_access() -> list[str]:
+    """The command prefix that runs a process subject to file modes: none for a user that is not
+    root; for root, setpriv dropping the capabilities that override them (the store's owner is
+    then refused writes by its 0444 and 0555 modes, like any user)."""
+    if os.geteuid() != 0:
+        return []
+    setpriv = shutil.which("setpriv")
+    if setpriv is None:
+        pytest.skip("running as root, which ignores file modes, and setpriv (util-linux) is missing to drop that")
+    caps = "-dac_override,-dac_read_search,-fowner"
+    return [setpriv, f"--inh-caps={caps}", f"--bounding-set={caps}", "--"]
+
+
+@pytest.mark.skipif(os.name != "posix", reason="file modes and capabilities are POSIX")
+def test_a_complete_store_reads_without_write_access(store, whole, tmp_path):
+    copy = _read_only_copy(store, tmp_path)
+    prefix = _without_write_access()
+    try:
+        # the prefix does take write access away: the child cannot create a file in the copy
+        probe = subprocess.run(prefix + [sys.executable, "-c", f"open({str(copy / 'x')!r}, 'w')"],
+                               capture_output=True, text=True)
+        assert probe.returncode != 0 and "Permission denied" in probe.stderr
+        loaded = subprocess.run(
+            prefix + [sys.executable, "-c",
+                      f"import pickle, sys, landing; pickle.dump(landing.load({str(copy)!r}), sys.stdout.buffer)"],
+            capture_output=True)
+        assert loaded.returncode == 0, loaded.stderr.decode()
+        assert_same_campaign(pickle.loads(loaded.stdout), whole)
+        for args in (["report", str(copy), "--out", ""], ["verify", str(copy), "fuel_used >= 0", "--p", "0.5"]):
+            cli = subprocess.run(prefix + [sys.executable, "-m", "landing", *args], capture_output=True, text=True)
+            assert cli.returncode == 0 and cli.stderr == "", (args, cli.stderr)
+        assert not (copy / "x").exists()
+    finally:
+        for p in [copy, *copy.rglob("*")]:
+            p.chmod(0o755 if p.is_dir() else 0o644)
