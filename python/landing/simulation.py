@@ -13,6 +13,7 @@ import numpy as np
 
 from landing import _core
 from landing._internal.args import choice, integer, real, real_array
+from landing._internal.limits import LIMITS
 from landing._internal.user_law import LawStep, per_axis
 from landing.controllers import Controller, PythonLaw
 from landing.disturbances import DisturbanceLike, compiled
@@ -44,8 +45,9 @@ class RunOptions:
     a :class:`~landing.scenarios.Scenario` holds one for its settings.
 
     Checked when made, each field by the rule the messages name (``t_final = 0 violates
-    t_final > 0``); what relates them (t_final a whole number of steps, the cut-off below the
-    Nyquist frequency) the core checks when it runs them. ``options.replace(dt=1e-2)`` is a
+    t_final > 0``), and the step count t_final / dt against the core's cap; what else relates
+    them (t_final a whole number of steps, the cut-off below the Nyquist frequency) the core
+    checks when it runs them. ``options.replace(dt=1e-2)`` is a
     copy, checked again.
     """
 
@@ -74,6 +76,12 @@ class RunOptions:
             "record_every": integer("record_every", self.record_every, minimum=least["record_every"],
                                     maximum=2**63 - 1),
         }
+        steps = checked["t_final"] / checked["dt"]
+        if steps > LIMITS["max_steps"]:
+            # the core's cap, checked here too so that a campaign's memory estimate never sees it
+            raise ParameterError(
+                f"t_final = {checked['t_final']:g} violates t_final / dt <= 2^{LIMITS['max_steps'].bit_length() - 1} "
+                f"(max_steps; dt = {checked['dt']:g}: {steps:.3g} steps); see landing._core.LIMITS")
         if self.settle_tolerance is not None:
             # 0 is a tolerance too (settled means exactly on the reference); None is relative
             checked["settle_tolerance"] = real("settle_tolerance", self.settle_tolerance, nonnegative=True)

@@ -55,6 +55,17 @@ def _nominal_text() -> str:
     (("t_final = 60.0", "t_final = 60.0\nhorizon = 3"), r"mine\.toml: horizon: unknown key"),
     (("x0 = [", "x0 = [1.0, "), r"mine\.toml: x0 = .* violates x0 a list of 7 finite numbers"),
     (("dt = 0.001", "dt = 0.001 ="), r"mine\.toml: not valid TOML"),
+    # the probe's files (issue 24): nesting beyond the parser's recursion, integers beyond a
+    # double or beyond Python's printing, a horizon beyond the step cap (not a memory refusal)
+    (("t_final = 60.0", "t_final = 60.0\nx = " + "[" * 100_000 + "]" * 100_000),
+     r"mine\.toml: not a scenario file: its arrays or tables are nested too deeply"),
+    (("t_final = 60.0", "t_final = 60.0\nx = " + "{a = " * 20_000 + "1" + "}" * 20_000),
+     r"mine\.toml: not a scenario file: its arrays or tables are nested too deeply"),
+    (("alpha1 = 4.89", "alpha1 = " + "9" * 5000), r"mine\.toml: not valid TOML \(Exceeds the limit"),
+    (("t_final = 60.0", f"t_final = {10**400}"), r"mine\.toml: t_final = about 10\^400 violates finite values"),
+    (("alpha1 = 4.89", f"alpha1 = {10**400}"), r"mine\.toml: controller: .*alpha1 = about 10\^400 violates finite"),
+    (("x0 = [", f"x0 = [{10**400}, "), r"mine\.toml: x0 = .* must be a list of numbers"),
+    (("t_final = 60.0", f"t_final = {10**300}"), r"mine\.toml: t_final = 1e\+300 violates t_final / dt <= 2\^40"),
 ])
 def test_a_bad_file_is_refused_naming_the_file_the_key_the_value_and_the_rule(tmp_path, edit, pattern):
     old, new = edit

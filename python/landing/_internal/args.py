@@ -11,6 +11,7 @@ the value and the rule.
 
 from __future__ import annotations
 
+import math
 import numbers
 import operator
 from collections.abc import Sequence
@@ -21,16 +22,31 @@ import numpy as np
 from landing._internal.limits import LIMITS
 from landing.errors import ParameterError, ParameterTypeError
 
-__all__ = ["integer", "real", "real_array", "boolean", "choice", "finite_array", "pair", "short"]
+__all__ = ["integer", "real", "real_array", "boolean", "choice", "finite_array", "pair", "short", "number_text"]
 
 #: numpy dtype kinds that hold real numbers (bool, complex, strings, dates and objects do not).
 _REAL_KINDS = frozenset("iuf")
 
 
 def short(value: Any, limit: int = 80) -> str:
-    """``repr(value)``, cut to ``limit`` characters for the messages."""
-    text = repr(value)
+    """``repr(value)``, cut to ``limit`` characters for the messages (a huge integer as its
+    order of magnitude)."""
+    if isinstance(value, int) and not isinstance(value, bool):
+        return number_text(value)
+    try:
+        text = repr(value)
+    except ValueError:  # a container of integers of more than 4300 digits
+        return f"a {type(value).__name__} too large to print"
     return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def number_text(v: int) -> str:
+    """An integer for a message: as written up to 20 digits, beyond that its order of
+    magnitude (``about 10^300``: a 300-digit number helps no one, and Python refuses to print
+    one of more than 4300 digits)."""
+    if abs(v) < 10**20:
+        return str(v)
+    return f"about {'-' if v < 0 else ''}10^{int(math.log10(abs(v)))}"
 
 
 def _prefix(owner: Optional[str]) -> str:
@@ -56,12 +72,12 @@ def integer(
     except TypeError:
         raise ParameterTypeError(f"{p}{name} must be an integer, got {short(value)}") from None
     if minimum is not None and v < minimum:
-        raise ParameterError(f"{p}{name} = {v} violates {name} >= {minimum}")
+        raise ParameterError(f"{p}{name} = {number_text(v)} violates {name} >= {minimum}")
     if maximum is not None and v > maximum:
-        raise ParameterError(f"{p}{name} = {v} violates {name} <= {maximum}")
+        raise ParameterError(f"{p}{name} = {number_text(v)} violates {name} <= {maximum}")
     if cap is not None and v > LIMITS[cap]:
         raise ParameterError(
-            f"{p}{name} = {v} violates {name} <= {cap} ({LIMITS[cap]}); see landing._core.LIMITS"
+            f"{p}{name} = {number_text(v)} violates {name} <= {cap} ({LIMITS[cap]}); see landing._core.LIMITS"
         )
     return int(v)
 
@@ -82,7 +98,11 @@ def real(
         value = value[()]
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise ParameterTypeError(f"{p}{name} must be a real number, got {short(value)}")
-    v = float(value)
+    try:
+        v = float(value)
+    except OverflowError:  # an integer beyond the largest double
+        raise ParameterError(f"{p}{name} = {short(value)} violates finite values "
+                             "(a real number within the doubles, |x| < 1.8e308)") from None
     if finite and not np.isfinite(v):
         raise ParameterError(f"{p}{name} = {v} violates finite values")
     if positive and not v > 0:
@@ -138,7 +158,10 @@ def real_array(
     try:
         # np.asarray keeps a scalar 0-d (np.ascontiguousarray would make it (1,))
         arr = np.asarray(raw, dtype=np.float64, order="C")
-    except (TypeError, ValueError, OverflowError) as exc:
+    except OverflowError:  # integers beyond the largest double
+        raise ParameterError(f"{p}{name} = {short(value)} violates finite values (real numbers within the doubles, "
+                             "|x| < 1.8e308)") from None
+    except (TypeError, ValueError) as exc:
         raise ParameterTypeError(
             f"{p}{name} must be {expected}, got {short(value)}"
         ) from exc

@@ -59,6 +59,7 @@ def require_memory(what: str, nbytes: int, *, available: Optional[int] = None,
     free = available_memory() if available is None else available
     if free is not None and nbytes > free:
         raise MemoryError(
-            f"{what} needs {format_bytes(nbytes)} ({nbytes} bytes) but only {format_bytes(free)} "
+            f"{what} needs {format_bytes(nbytes)} ({nbytes if nbytes < 10**20 else f'{nbytes:.3g}'} bytes) but "
+            f"only {format_bytes(free)} "
             f"of memory is available; {hint}"
         )

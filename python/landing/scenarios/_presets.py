@@ -20,7 +20,7 @@ from landing.errors import ParameterError
 from landing.gravity import Harmonic2
 from landing.reference import Cubic
 from landing.scenarios._scenario import Scenario
-from landing.scenarios.files import FileError, scenario_from_dict, tomllib
+from landing.scenarios.files import FileError, read_toml, scenario_from_dict
 
 __all__ = [
     "PRESETS",
@@ -509,9 +509,7 @@ def load_scenario(spec: Union[str, Path]) -> Scenario:
             f"{spec}: no such file, and not a preset (the presets: {', '.join(sorted(PRESETS))})"
         )
     try:
-        d = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise FileError(f"{path}: not valid TOML ({exc})") from None
+        text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise FileError(f"{path}: cannot be read ({exc})") from None
-    return scenario_from_dict(d, str(path))
+    return scenario_from_dict(read_toml(text, str(path)), str(path))

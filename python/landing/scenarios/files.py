@@ -55,7 +55,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - exercised on Python < 3.11 only
     import tomli as tomllib
 
-__all__ = ["FileError", "dumps", "scenario_to_dict", "scenario_to_toml", "scenario_from_dict", "tomllib"]
+__all__ = ["FileError", "dumps", "read_toml", "scenario_to_dict", "scenario_to_toml", "scenario_from_dict", "tomllib"]
 
 #: The part tables of a file and the module their ``kind`` is looked up in.
 SECTIONS: dict[str, ModuleType] = {
@@ -251,6 +251,18 @@ def dumps(d: Mapping[str, Any]) -> str:
 
 # ---------------------------------------------------------------------------------------------
 # reading
+
+
+def read_toml(text: str, source: str) -> dict[str, Any]:
+    """The TOML ``text`` of the file ``source`` as a dict; what is not TOML, or nested more
+    deeply than the parser can follow (its recursion), is a :class:`FileError` naming the file."""
+    try:
+        return tomllib.loads(text)
+    except ValueError as exc:  # a TOMLDecodeError, or a value Python cannot hold (an integer of 5000 digits)
+        raise FileError(f"{source}: not valid TOML ({exc})") from None
+    except RecursionError:
+        raise FileError(f"{source}: not a scenario file: its arrays or tables are nested too deeply to read "
+                        "(a scenario nests a few levels)") from None
 
 
 def _where(source: str, path: str) -> str:
@@ -455,7 +467,7 @@ def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Scen
     plant = parts["plant"]
     try:
         x0 = np.asarray(d["x0"], dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise FileError(f"{source}: x0 = {d['x0']!r} must be a list of numbers") from None
     if x0.shape != (plant.state_dim,) or not np.all(np.isfinite(x0)):
         raise FileError(
@@ -468,7 +480,7 @@ def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Scen
     if "theta" in d:
         settings["theta"] = tuple(float(v) for v in d["theta"])
     for key in ("t_final", "dt", "settle_tolerance", "chatter_cutoff"):
-        if key in settings:
+        if key in settings:  # checked by _check_settings: real numbers within the doubles
             settings[key] = float(settings[key])
     try:
         return Scenario(x0=x0, **settings, **parts)
