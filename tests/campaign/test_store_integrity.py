@@ -142,6 +142,56 @@ def test_a_provenance_edited_against_its_data_is_refused(what, store):
     assert str(store) in str(info.value) or "store" in str(info.value)
 
 
+RECORD_DAMAGE = {
+    # the probe's foreign errors (issue 24): JSONDecodeError, TypeError, KeyError, AttributeError,
+    # FileNotFoundError from a store's records and tree
+    "provenance not JSON": (lambda s: (s / "provenance.json").write_text("{not json"),
+                            r"its provenance\.json \(.*provenance\.json\) cannot be read"),
+    "provenance a list": (lambda s: (s / "provenance.json").write_text("[]"),
+                          r"its provenance\.json \(.*\) is not a JSON object"),
+    "the seed gone from the provenance": (lambda s: edit(s / "provenance.json", lambda d: d["key"].pop("seed")),
+                                          r"its provenance\.json \(.*\) does not record the campaign"),
+    "n a string": (lambda s: edit(s / "provenance.json", lambda d: d["key"].update(n="twenty")),
+                   r"records key\.n = 'twenty', which must be an integer >= 1"),
+    "manifest deleted": (lambda s: (s / "manifest.json").unlink(), r"its manifest\.json is missing \(.*manifest"),
+    "manifest a list": (lambda s: (s / "manifest.json").write_text("[1, 2]"),
+                        r"its manifest\.json \(.*\) is not a JSON object"),
+    "a chunk's bounds edited": (lambda s: edit(s / "manifest.json", lambda d: d["chunks"][1].update(start="five")),
+                                r"its manifest\.json \(.*\) records a chunk that is not one of the campaign's 4"),
+    "a chunk's stop gone": (lambda s: edit(s / "manifest.json", lambda d: d["chunks"][0].pop("stop")),
+                            r"records a chunk that is not one of the campaign's 4"),
+    "the Zarr tree deleted": (lambda s: shutil.rmtree(s / "trajectories.zarr"),
+                              r"its Zarr tree is damaged: .*trajectories\.zarr.* cannot be read"),
+    "a flipped byte in a coordinate's metadata": (
+        lambda s: flip(s / "trajectories.zarr" / "axis" / ".zarray", 0.2),
+        r"its Zarr tree is damaged: .*axis/\.zarray does not match its checksum"),
+    "the time coordinate truncated": (
+        lambda s: (s / "trajectories.zarr" / "time" / "0").write_bytes(b""),
+        r"its Zarr tree is damaged: .*time/0 does not match its checksum"),
+}
+
+
+@pytest.mark.parametrize("what", list(RECORD_DAMAGE))
+def test_a_damaged_record_or_tree_is_a_store_error_naming_the_file(what, store, whole, capsys):
+    damage, pattern = RECORD_DAMAGE[what]
+    damage(store)
+    with pytest.raises(StoreError, match=pattern) as info:
+        landing.load(store)
+    assert f"store = '{store}'" in str(info.value) and "run the campaign again" in str(info.value)
+    from landing.cli import main
+
+    assert main(["report", str(store), "--out", ""]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and str(store) in err[0], err
+    if what == "manifest deleted":
+        # a store with no manifest is one whose creation was interrupted: a resume runs every chunk
+        assert_same_campaign(landing.monte_carlo(small(), N, seed=3, store=store), whole)
+    else:
+        # a resume is refused the same way, not with a foreign error
+        with pytest.raises(StoreError, match=pattern):
+            landing.monte_carlo(small(), N, seed=3, store=store)
+
+
 def test_a_store_of_an_unknown_format_is_refused(store):
     edit(store / "manifest.json", lambda d: d.update(format=99))
     with pytest.raises(StoreError, match="format 99 is not this version's"):

@@ -335,7 +335,14 @@ class MonteCarloResult:
 
     def report(self, requirement: Optional[str] = None, p: float = 0.9973, confidence: float = 0.9) -> str:
         """The campaign in words: its statistics, landings, dispersed parameters, the theory's
-        checks, and with ``requirement`` its verification (:meth:`verify`)."""
+        checks, and with ``requirement`` its verification (:meth:`verify`). A statistic of no
+        undiverged case reads nan, without numpy's warnings about empty slices."""
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", "All-NaN slice|Mean of empty slice|invalid value encountered",
+                                    RuntimeWarning)
+            return self._report(requirement, p, confidence)
+
+    def _report(self, requirement: Optional[str], p: float, confidence: float) -> str:
         m = self.metrics
         n = self.n_cases
         lines = [

@@ -8,8 +8,9 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
                               date and kernel level
       manifest.json           the completed chunks (replaced atomically after each chunk's
                               files are on disk), each with the SHA-256 of its metrics, its
-                              initial states and its trajectories (of their content), and the
-                              layout of the metric columns
+                              initial states and its trajectories (of their content), the
+                              layout of the metric columns and the SHA-256 of each file of the
+                              Zarr tree as created (its metadata and coordinates)
       chunks/metrics/part-000000.parquet   per-case metrics of chunk 0 (index ``case``;
                               per-axis columns split with the axis names: final_error_x ...)
       chunks/initial/part-000000.parquet   the chunk's initial states (x0_<state>) and
@@ -62,6 +63,7 @@ from typing import Any, Optional, Union
 import numpy as np
 
 from landing._core import __version__
+from landing._internal.args import short
 from landing.errors import (
     DivergenceWarning,
     LandingError,
@@ -170,8 +172,9 @@ def _scenario_text(scenario: Scenario) -> str:
 def _scenario_from_text(text: str) -> Optional[Scenario]:
     """The scenario back from its TOML text, or None when the text is not a scenario file."""
     try:
-        return files.scenario_from_dict(files.tomllib.loads(text), "<the store's provenance.json>")
-    except (files.tomllib.TOMLDecodeError, LandingError):
+        return files.scenario_from_dict(files.read_toml(text, "<the store's provenance.json>"),
+                                        "<the store's provenance.json>")
+    except LandingError:
         return None
 
 
@@ -239,12 +242,47 @@ class CampaignKey:
             if mine == theirs:
                 continue
             if f.name == "scenario":
-                out.append("scenario: the store's is\n" + _indent(theirs) + "\n  this one is\n" + _indent(mine))
+                out.append("scenario: " + _scenario_differences(theirs, mine))
             elif f.name == "x0_sha256":
                 out.append("initial states: they differ from the store's")
             else:
                 out.append(f"{f.name}: {theirs!r} in the store, {mine!r} here")
         return out
+
+
+def _flat(d: Any, prefix: str = "") -> dict[str, Any]:
+    """A parsed TOML document as {dotted key: value}."""
+    if isinstance(d, dict):
+        out: dict[str, Any] = {}
+        for k, v in d.items():
+            out.update(_flat(v, f"{prefix}.{k}" if prefix else str(k)))
+        return out
+    if isinstance(d, list) and d and all(isinstance(v, dict) for v in d):
+        out = {}
+        for i, v in enumerate(d):
+            out.update(_flat(v, f"{prefix}[{i}]"))
+        return out
+    return {prefix: d}
+
+
+def _scenario_differences(theirs: str, mine: str) -> str:
+    """Where two scenarios' TOML texts differ, key by key, on one line (the texts whole when
+    one does not parse)."""
+    try:
+        a, b = _flat(files.read_toml(theirs, "<the store's>")), _flat(files.read_toml(mine, "<this one>"))
+    except LandingError:
+        return "the store's is\n" + _indent(theirs) + "\n  this one is\n" + _indent(mine)
+    keys = [k for k in dict.fromkeys([*a, *b]) if a.get(k, _MISSING) != b.get(k, _MISSING)]
+    return "; ".join(f"{k} = {short(a.get(k, _MISSING))} in the store's, {short(b.get(k, _MISSING))} in this one's"
+                     for k in keys)
+
+
+class _Missing:
+    def __repr__(self) -> str:
+        return "(none)"
+
+
+_MISSING = _Missing()
 
 
 def _indent(text: str) -> str:
@@ -279,6 +317,77 @@ def _write_json_atomic(path: Path, data: Any) -> None:
         os.fsync(f.fileno())
     os.replace(tmp, path)
     _fsync_dir(path.parent)
+
+
+#: What to do about a store whose record cannot be read.
+_REMEDY_RECORD = ("restore the file from a copy, or delete the directory and run the campaign again "
+                  "(the Parquet parts and the Zarr tree stay readable without this package)")
+
+
+def _read_record(store: Path, name: str) -> dict[str, Any]:
+    """``provenance.json`` or ``manifest.json`` of the store at ``store`` as a dict: a file that
+    is missing, unreadable, not JSON or not a JSON object is a StoreError naming it."""
+    path = store / name
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise StoreError(f"store = '{store}': its {name} is missing ({path}); {_REMEDY_RECORD}") from None
+    except (OSError, UnicodeDecodeError, ValueError, RecursionError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else f"{type(exc).__name__}: {exc}"
+        raise StoreError(f"store = '{store}': its {name} ({path}) cannot be read ({why}); {_REMEDY_RECORD}") from None
+    if not isinstance(data, dict):
+        raise StoreError(f"store = '{store}': its {name} ({path}) is not a JSON object; {_REMEDY_RECORD}")
+    return data
+
+
+def _is_int(v: Any) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def _key_of(store: Path, prov: Mapping[str, Any]) -> CampaignKey:
+    """The campaign key a store's provenance records, each field of the type it must have."""
+    key = prov.get("key")
+    rules: dict[str, tuple[str, Callable[[Any], bool]]] = {
+        "version": ("a string", lambda v: isinstance(v, str)),
+        "scenario": ("a string", lambda v: isinstance(v, str)),
+        "seed": ("an integer >= 0", lambda v: _is_int(v) and v >= 0),
+        "n": ("an integer >= 1", lambda v: _is_int(v) and v >= 1),
+        "chunk_size": ("an integer >= 1", lambda v: _is_int(v) and v >= 1),
+        "record_every": ("an integer >= 0", lambda v: _is_int(v) and v >= 0),
+        "keep": ("a list of signal names", lambda v: isinstance(v, list) and all(isinstance(x, str) for x in v)),
+        "x0_sha256": ("a string", lambda v: isinstance(v, str)),
+    }
+    file = store / PROVENANCE
+    if not isinstance(key, dict) or set(key) != set(rules):
+        raise StoreError(f"store = '{store}': its {PROVENANCE} ({file}) does not record the campaign (its 'key' "
+                         f"must hold {sorted(rules)}); {_REMEDY_RECORD}")
+    for name, (rule, ok) in rules.items():
+        if not ok(key[name]):
+            raise StoreError(f"store = '{store}': its {PROVENANCE} ({file}) records key.{name} = "
+                             f"{short(key[name])}, which must be {rule}; {_REMEDY_RECORD}")
+    return CampaignKey.from_json(key)
+
+
+def _chunks_of(store: Path, manifest: Mapping[str, Any], key: CampaignKey) -> dict[int, dict[str, Any]]:
+    """The completed chunks a store's manifest records, each where the campaign's chunking puts
+    it (chunk i holds cases i * chunk_size up to the next chunk's or n)."""
+    file = store / MANIFEST
+    chunks = manifest.get("chunks")
+    layout = manifest.get("layout", {})
+    if not isinstance(chunks, list) or not isinstance(layout, dict):
+        raise StoreError(f"store = '{store}': its {MANIFEST} ({file}) does not list the chunks; {_REMEDY_RECORD}")
+    n_chunks = -(-key.n // key.chunk_size)
+    out: dict[int, dict[str, Any]] = {}
+    for c in chunks:
+        index: Any = c.get("index") if isinstance(c, dict) else None
+        if (not isinstance(c, dict) or not _is_int(index) or not 0 <= index < n_chunks or index in out
+                or c.get("start") != index * key.chunk_size
+                or c.get("stop") != min(key.n, (index + 1) * key.chunk_size)
+                or not isinstance(c.get("sha256", {}), dict)):
+            raise StoreError(f"store = '{store}': its {MANIFEST} ({file}) records a chunk that is not one of the "
+                             f"campaign's {n_chunks} ({short(c)}); {_REMEDY_RECORD}")
+        out[int(index)] = c
+    return out
 
 
 def _part(index: int) -> str:
@@ -356,8 +465,11 @@ class CampaignStore:
                      record_every: int, one_case: Callable[[], SimulationResult]) -> CampaignStore:
         prov_path = path / PROVENANCE
         if prov_path.exists():
-            prov = json.loads(prov_path.read_text())
-            stored = CampaignKey.from_json(prov["key"])
+            prov = _read_record(path, PROVENANCE)
+            stored = _key_of(path, prov)
+            if not isinstance(prov.get("sessions"), list):
+                raise StoreError(f"store = '{path}': its {PROVENANCE} ({prov_path}) does not list its sessions; "
+                                 f"{_REMEDY_RECORD}")
             diffs = key.differences(stored)
             if diffs:
                 raise ParameterError(
@@ -367,9 +479,9 @@ class CampaignStore:
                     + "\nuse another directory, or delete this one to start again"
                 )
             # no manifest yet: created, then stopped before anything completed
-            manifest = json.loads((path / MANIFEST).read_text()) if (path / MANIFEST).is_file() else {"chunks": []}
-            store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]},
-                                  manifest.get("layout", {}))
+            manifest = _read_record(path, MANIFEST) if (path / MANIFEST).exists() else {"chunks": []}
+            store = CampaignStore(path, key, _chunks_of(path, manifest, key), manifest.get("layout", {}))
+            store.check_tree()
         else:
             (path / METRICS_DIR).mkdir(parents=True, exist_ok=True)
             (path / INITIAL_DIR).mkdir(parents=True, exist_ok=True)
@@ -459,7 +571,49 @@ class CampaignStore:
 
     def _zarr_group(self, mode: str) -> Any:
         zarr = require_io("zarr", what="the campaign store")
-        return zarr.open_group(str(self.path / TRAJECTORIES), mode=mode)
+        root = self.path / TRAJECTORIES
+        try:
+            return zarr.open_group(str(root), mode=mode)
+        except Exception as exc:  # noqa: BLE001 - any failure to open it is damage, named
+            raise StoreError(
+                f"store = '{self.path}': its Zarr tree ({root}) cannot be opened ({type(exc).__name__}: {exc}); "
+                "delete the directory and run the campaign again") from None
+
+    def check_tree(self) -> None:
+        """The Zarr tree as created: each of its files (metadata, coordinates) the checksum the
+        manifest records, every array of the layout and the coordinates readable (what
+        ``xarray.open_zarr`` needs), the ``case`` coordinate the campaign's cases."""
+        if not self.layout:
+            return
+        root = self.path / TRAJECTORIES
+        for rel, expected in self.layout.get("tree_sha256", {}).items():
+            file = root / rel
+            try:
+                ok = hashlib.sha256(file.read_bytes()).hexdigest() == expected
+                why = "does not match its checksum in the manifest"
+            except OSError as exc:
+                ok, why = False, f"cannot be read ({exc.strerror})"
+            if not ok:
+                raise StoreError(f"store = '{self.path}': its Zarr tree is damaged: {file} {why}; delete the "
+                                 "directory and run the campaign again")
+        group = self._zarr_group("r")
+        names = list(self.layout["arrays"]) + ["case", "time", "state", "state_units"]
+        if self.layout["control_names"]:
+            names += ["control", "control_units"]
+        try:
+            present = set(group.array_keys())
+            arrays = {name: group[name] for name in names if name in present}
+            for name in present - set(arrays):
+                group[name]  # noqa: B018 - its metadata read: a damaged one fails here
+            case = arrays["case"][:] if "case" in arrays else None
+        except Exception as exc:  # noqa: BLE001 - any failure to read it is damage, named
+            raise StoreError(f"store = '{self.path}': its Zarr tree ({root}) is damaged ({type(exc).__name__}: "
+                             f"{exc}); delete the directory and run the campaign again") from None
+        missing = [name for name in names if name not in arrays]
+        if missing or case is None or not np.array_equal(case, np.arange(self.key.n)):
+            what = f"lacks {missing}" if missing else "has not the campaign's cases as its case coordinate"
+            raise StoreError(f"store = '{self.path}': its Zarr tree ({root}) {what}; delete the directory and run "
+                             "the campaign again")
 
     def _create_trajectories(self, part: SimulationResult) -> None:
         """The Zarr store's arrays, for the whole campaign, from one case's shapes (at the
@@ -499,7 +653,11 @@ class CampaignStore:
                 zc = next(d for d in range(zc - 1, 0, -1) if self.key.chunk_size % d == 0)
             _zarr_create(group, name, (n,) + tail, (zc,) + tail, np.float64, dims, attrs)
         zarr.consolidate_metadata(str(root))
+        # the tree as created (metadata and coordinates; chunks only ever add their own files)
+        tree = {p.relative_to(root).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest()
+                for p in sorted(root.rglob("*")) if p.is_file()}
         self.layout = {
+            "tree_sha256": tree,
             "arrays": list(arrays),
             "diagnostics": [name for name in part.diagnostics if name in arrays],
             "state_names": list(part.state_names),
@@ -720,9 +878,8 @@ def open_campaign_store(
     require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
     path = Path(path)
     if chunk_size is None:
-        prov_path = path / PROVENANCE
-        if prov_path.is_file():
-            chunk_size = int(json.loads(prov_path.read_text())["key"]["chunk_size"])
+        if (path / PROVENANCE).exists():
+            chunk_size = _key_of(path, _read_record(path, PROVENANCE)).chunk_size
         else:
             chunk_size = default_chunk_size(n)
     key = CampaignKey.of(scenario, seed=seed, n=n, chunk_size=chunk_size, record_every=record_every,
@@ -773,8 +930,8 @@ def read_campaign_store(
     prov_path = path / PROVENANCE
     if not prov_path.is_file():
         raise ParameterError(f"path = '{path}' is not a campaign store: it has no {PROVENANCE}")
-    prov = json.loads(prov_path.read_text())
-    key = CampaignKey.from_json(prov["key"])
+    prov = _read_record(path, PROVENANCE)
+    key = _key_of(path, prov)
     text = key.scenario
     if scenario is None:
         scenario = _scenario_from_text(text)
@@ -785,14 +942,15 @@ def read_campaign_store(
             )
     elif _scenario_text(scenario) != text:
         raise ParameterError(
-            f"scenario = {scenario.name!r} is not the scenario of the store at '{path}': the store's is\n"
-            + _indent(text) + "\n  the one given is\n" + _indent(_scenario_text(scenario))
+            f"scenario = {scenario.name!r} is not the scenario of the store at '{path}': "
+            + _scenario_differences(text, _scenario_text(scenario))
         )
-    manifest = json.loads((path / MANIFEST).read_text())
+    manifest = _read_record(path, MANIFEST)
     if manifest.get("format") != STORE_FORMAT or prov.get("format", STORE_FORMAT) != STORE_FORMAT:
-        raise StoreError(f"store = '{path}': format {manifest.get('format')!r} is not this version's "
-                         f"({STORE_FORMAT}); read it with the landing version that wrote it ({key.version})")
-    store = CampaignStore(path, key, {int(c["index"]): c for c in manifest["chunks"]}, manifest.get("layout", {}))
+        raise StoreError(f"store = '{path}': format {short(manifest.get('format'))} is not this version's "
+                         f"({STORE_FORMAT}); read it with the landing version that wrote it ({short(key.version)})")
+    store = CampaignStore(path, key, _chunks_of(path, manifest, key), manifest.get("layout", {}))
+    store.check_tree()
     complete = len(store.completed) == store.n_chunks
     if not complete and not partial:
         raise ParameterError(
