@@ -108,3 +108,44 @@ def test_mc_takes_record_every_and_keep_as_monte_carlo_does(tmp_path, capsys):
     assert "no figures: the states were not kept" in capsys.readouterr().out
     assert cli.main(["mc", str(path), "--cases", "4", "--keep", "state", "--out", ""]) == 2
     assert "'state' is not one of" in capsys.readouterr().err
+
+
+def _short_nominal() -> str:
+    return _nominal_text().replace("t_final = 60.0", "t_final = 0.5").replace("dt = 0.001", "dt = 0.01")
+
+
+# the probe's command lines (issue 24): each exits with its code and one stderr line naming the
+# file, whether the fault is found while reading the file or later, while running it
+BAD_RUNS = {
+    "arrays nested beyond the parser's recursion": (
+        lambda t: t + "x = " + "[" * 100_000 + "]" * 100_000 + "\n", ["run"], 2, "nested too deeply"),
+    "an integer beyond a double": (
+        lambda t: t.replace("t_final = 0.5", f"t_final = {10**400}"), ["run"], 2, "violates finite values"),
+    "a horizon beyond the step cap, in a campaign (not a memory refusal of 10^288 PiB)": (
+        lambda t: t.replace("t_final = 0.5", f"t_final = {10**300}"), ["mc", "--cases", "3"], 2,
+        "t_final = 1e+300 violates t_final / dt <= 2^40"),
+    "a step longer than the horizon (found by the core, when it runs)": (
+        lambda t: t.replace("dt = 0.01", "dt = 1e300"), ["run"], 2, "t_final = 0.5 violates t_final >= dt"),
+    "a case count of 300 digits": (
+        lambda t: t, ["mc", "--cases", str(10**300)], 2, "n = about 10^300 violates n <= max_cases"),
+}
+
+
+@pytest.mark.parametrize("what", list(BAD_RUNS))
+def test_a_bad_file_or_argument_exits_with_one_line_naming_the_file(what, tmp_path, capsys):
+    edit, command, code, rule = BAD_RUNS[what]
+    path = write_file(tmp_path, edit(_short_nominal()))
+    assert cli.main([command[0], str(path), *command[1:], "--out", ""]) == code
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and str(path) in err[0] and rule in err[0], err
+    assert len(err[0]) < 400  # no number of hundreds of digits
+
+
+def test_warnings_are_one_line_each(tmp_path, capsys):
+    # every case diverges (an initial position of 1e200 m): flagged, said in one line, and the
+    # report's statistics of no case are nan without numpy's warnings
+    path = write_file(tmp_path, preset("mars_monte_carlo").to_toml().replace("t_final = 60.0", "t_final = 0.5")
+                      .replace("mean = [-2000.0,", "mean = [1e200,"))
+    assert cli.main(["mc", str(path), "--cases", "3", "--out", "", "--no-progress"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err and all(line.startswith("landing: DivergenceWarning: 3 of 3 cases diverged") for line in err), err

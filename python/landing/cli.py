@@ -19,6 +19,7 @@ import os
 import sys
 import time
 import traceback
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, Optional, Union
@@ -26,10 +27,10 @@ from typing import Any, Optional, Union
 from landing import controllers, plots, theory
 from landing.campaign import MonteCarloResult, load, monte_carlo
 from landing.campaign.dask import connect
-from landing.errors import LandingError, SimulationError
+from landing.errors import LandingError, SimulationError, StoreError
 from landing.results import SimulationResult
 from landing.scenarios import PRESETS, FileError, Scenario, preset
-from landing.scenarios.files import scenario_from_dict, tomllib
+from landing.scenarios.files import read_toml, scenario_from_dict
 from landing.tune import tune
 
 EXIT_OK = 0
@@ -148,9 +149,10 @@ def _tune_config(path: str) -> tuple[Scenario, dict[str, Any]]:
     if not file.exists():
         raise FileError(f"{path}: no such file")
     try:
-        d = tomllib.loads(file.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise FileError(f"{path}: not valid TOML ({exc})") from None
+        text = file.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise FileError(f"{path}: cannot be read ({exc})") from None
+    d = read_toml(text, path)
     spec = d.pop("tune", None)
     if not isinstance(spec, dict):
         raise FileError(f"{path}: missing the [tune] table (gains, objective, constraints, cases, budget, seed)")
@@ -278,11 +280,41 @@ def parser() -> argparse.ArgumentParser:
     return ap
 
 
+def _subject(args: argparse.Namespace) -> Optional[str]:
+    """The file or directory a command reads (a scenario or tuning file, a store): what its
+    error messages name."""
+    for name in ("store", "scenario", "config"):
+        value = getattr(args, name, None)
+        if value is not None:
+            return str(value)
+    return None
+
+
+def _one_line(exc: BaseException, subject: Optional[str]) -> str:
+    """An error's message on one line, naming ``subject`` when it does not already."""
+    text = str(exc)
+    if not text.strip():
+        text = type(exc).__name__
+    text = " ".join(line.strip() for line in text.splitlines() if line.strip())
+    if subject and subject not in text:
+        text = f"{subject}: {text}"
+    return text
+
+
+def _show_warning(message: Union[Warning, str], category: type[Warning], filename: str, lineno: int,
+                  file: Any = None, line: Optional[str] = None) -> None:
+    """A warning as one line on stderr (not the source line Python shows by default)."""
+    text = " ".join(str(message).split())
+    print(f"landing: {category.__name__}: {text}", file=sys.stderr)
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Runs the command line; returns the exit code (the console script exits with it)."""
     args = parser().parse_args(argv)  # exits with 2 on a bad command line
     try:
-        return args.run(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            return int(args.run(args))
     except KeyboardInterrupt as exc:
         # a campaign says what it kept and how to resume
         print(f"landing: interrupted{': ' + str(exc) if str(exc) else ''}", file=sys.stderr)
@@ -292,14 +324,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         sys.stdout = open(os.devnull, "w")  # noqa: SIM115 - keeps the exit flush quiet
         return EXIT_OK
     except Exception as exc:  # noqa: BLE001 - the command line reports every failure
-        # the library's input errors (a file, key, value or argument that breaks a rule) are
-        # LandingErrors; anything else, a failed run included, is a failure
-        bad_input = isinstance(exc, LandingError) and not isinstance(exc, SimulationError)
+        # the library's input errors (a file, key, value or argument that breaks a rule, a
+        # store that cannot be used) are LandingErrors; anything else, a failed run or a store's
+        # disk failing it included, is a failure
+        bad_input = (isinstance(exc, LandingError) and not isinstance(exc, SimulationError)
+                     and not (isinstance(exc, StoreError) and isinstance(exc.__cause__, OSError)))
         if args.traceback:
             traceback.print_exc()
         else:
             what = "error" if bad_input else f"failed: {type(exc).__name__}"
-            print(f"landing: {what}: {exc}", file=sys.stderr)
+            print(f"landing: {what}: {_one_line(exc, _subject(args))}", file=sys.stderr)
         return EXIT_BAD_INPUT if bad_input else EXIT_FAILURE
 
 
