@@ -155,3 +155,38 @@ def test_overflowing_or_missing_inputs_are_parameter_errors_naming_them():
         landing.scenarios.tether_comparison(law=None)
     # and an ordinary band is the closed form (c1 dt)^(1/(1 - e1))
     assert landing.theory.chattering_band(4.0, 0.5, 0.01) == pytest.approx(0.04**2, rel=1e-15)
+
+
+@pytest.mark.parametrize("call, error, pattern", [
+    # the second probe (issue 24): a TypeError from deep inside, a message naming the Cubic's T
+    # instead of the argument, an integer beyond a double taken for a wrong type
+    (lambda: landing.monte_carlo(landing.scenarios.preset("mars_nominal"), 2, keep=3), landing.ParameterTypeError,
+     r"keep must be a signal's name or a sequence of them, among \('states', 'controls', 'diagnostics'\), got 3"),
+    (lambda: landing.monte_carlo(landing.scenarios.preset("mars_nominal"), 2, keep=None), landing.ParameterTypeError,
+     r"keep must be .* got None"),
+    (lambda: landing.scenarios.seed000_reference(t_end=0), landing.ParameterError,
+     r"seed000_reference: t_end = 0 violates t_end > 0"),
+    (lambda: landing.scenarios.seed002_reference(t_end=float("nan")), landing.ParameterError,
+     r"seed002_reference: t_end = nan violates finite values"),
+    (lambda: landing.scenarios.seed000_reference(t_end=10**400), landing.ParameterError,
+     r"seed000_reference: t_end = about 10\^400 violates finite values"),
+    (lambda: landing.controllers.PDSlidingMode(lambda_=1.0, k=10**400), landing.ParameterError,
+     r"k = about 10\^400 violates finite values"),
+    (lambda: landing.simulate(landing.scenarios.preset("mars_nominal").plant,
+                              landing.scenarios.preset("mars_nominal").controller, NOMINAL, t_final=1e300, dt=0.01),
+     landing.ParameterError, r"t_final = 1e\+300 violates t_final / dt <= 2\^40"),
+])
+def test_extreme_inputs_are_the_library_s_errors_naming_the_argument(call, error, pattern):
+    with pytest.raises(error, match=pattern):
+        call()
+
+
+@pytest.mark.xfail(strict=True, reason="issue 24 item 6, in the core: a finite state beyond the plant's "
+                                       "domain (1e200 m) gives an infinite metric on a case not flagged diverged")
+def test_a_finite_but_huge_initial_state_is_flagged_or_its_metrics_finite():
+    s = landing.scenarios.preset("seed000_pd_sign")
+    x0 = np.asarray(s.x0, dtype=float).copy()
+    x0[2] = 1e200
+    r = s.replace(t_final=50 * s.dt).simulate_batch(x0[None, :])
+    m = r.metrics
+    assert bool(m["diverged"][0]) or np.isfinite(m["final_position_error"][0])

@@ -12,13 +12,13 @@ from typing import Any, Optional, Union
 
 import numpy as np
 
-from landing._internal.args import boolean, integer
+from landing._internal.args import boolean, integer, short
 from landing._internal.limits import available_memory, format_bytes, require_memory
 from landing._internal.progress import ProgressBar
 from landing.campaign._assembly import Assembly, assemble_campaign, finish_campaign
 from landing.campaign.result import MonteCarloResult
 from landing.campaign.store import CampaignStore, default_chunk_size, open_campaign_store, read_campaign_store
-from landing.errors import DivergenceWarning, ParameterError
+from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
 from landing.results import SIGNALS, SimulationResult, describe_diverged
 from landing.scenarios import Scenario
 
@@ -26,6 +26,9 @@ __all__ = ["campaign_bytes", "load", "monte_carlo"]
 
 
 def _keep(keep: Union[str, Sequence[str]]) -> tuple[str, ...]:
+    if not isinstance(keep, (str, Sequence, np.ndarray)) or not all(isinstance(k, str) for k in keep):
+        raise ParameterTypeError(f"keep must be a signal's name or a sequence of them, among {SIGNALS}, "
+                                 f"got {short(keep)}")
     items = (keep,) if isinstance(keep, str) else tuple(keep)
     bad = [k for k in items if k not in SIGNALS]
     if bad:

@@ -260,6 +260,7 @@ SEED000_OFFSET = np.array([10.0, 10.0, 10.0])
 
 def seed000_reference(t_end: float = 8000.0) -> Cubic:
     """The cubic of seed 000 eq. 8-10 through the Table 1 boundary states."""
+    t_end = real("t_end", t_end, positive=True, owner="seed000_reference")
     return Cubic.from_boundary([3200.0, 1300.0, 9000.0], [-1.2, 0.2, -1.0], [2837.0, 928.1, 5708.0], [0.0, 0.0, 0.0],
                                t_end)
 
@@ -278,6 +279,7 @@ SEED002_OFFSET = np.array([50.0, 50.0, 50.0])
 def seed002_reference(t_end: float = 4000.0) -> Cubic:
     """The cubic of seed 002 eq. 5-8 from (550, 500, 8200) m, (-1.7, 0.7, -1.5) m/s to rest at
     (20, 80, 2000) m."""
+    t_end = real("t_end", t_end, positive=True, owner="seed002_reference")
     return Cubic.from_boundary([550.0, 500.0, 8200.0], [-1.7, 0.7, -1.5], [20.0, 80.0, 2000.0], [0.0, 0.0, 0.0], t_end)
 
 
