@@ -149,3 +149,32 @@ def test_warnings_are_one_line_each(tmp_path, capsys):
     assert cli.main(["mc", str(path), "--cases", "3", "--out", "", "--no-progress"]) == 0
     err = capsys.readouterr().err.splitlines()
     assert err and all(line.startswith("landing: DivergenceWarning: 3 of 3 cases diverged") for line in err), err
+
+
+@pytest.mark.io
+def test_a_full_disk_exits_1_with_one_line_naming_the_store_and_the_remedy(tmp_path, capsys, monkeypatch):
+    # a failure, not bad input: exit 1 (bad input is 2), one line naming the file and saying how
+    # to resume; the same command then completes the campaign
+    import errno
+    import os
+
+    text = preset("mars_monte_carlo").to_toml().replace("t_final = 60.0", "t_final = 1.0")
+    path = write_file(tmp_path, text)
+    store = tmp_path / "campaign"
+    real = os.replace
+
+    def full(src, dst, *args, **kwargs):
+        if os.path.basename(dst) == "part-000001.parquet":
+            raise OSError(errno.ENOSPC, "No space left on device", str(dst))
+        return real(src, dst, *args, **kwargs)
+
+    args = ["mc", str(path), "--cases", "6", "--chunk-size", "2", "--store", str(store), "--no-progress",
+            "--out", ""]
+    with monkeypatch.context() as m:
+        m.setattr(os, "replace", full)
+        assert cli.main(args) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1, err
+    assert "part-000001.parquet" in err[0] and "No space left on device" in err[0] and "free space" in err[0]
+    assert cli.main(args) == 0
+    assert "6 cases" in capsys.readouterr().out

@@ -258,8 +258,10 @@ impl FromParams for Dispersion {
             .zip(&values)
             .find(|(_, v)| v.len() != 1 && v.len() != dim)
         {
+            // both named: the message holds whichever of the two the user meant to change
+            let widest = params[values.iter().position(|v| v.len() == dim).unwrap_or(0)].name;
             return Err(ReadError::value(format!(
-                "{} has {} components and another parameter {dim}",
+                "{} has {} components and {widest} {dim}: give each one value, or {dim}",
                 q.name,
                 v.len()
             )));

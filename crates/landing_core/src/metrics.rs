@@ -37,10 +37,12 @@ pub enum Divergence {
     /// The state became NaN or infinite.
     NonFiniteState = 3,
     /// The state left the plant's domain ([`crate::plant::Plant::in_domain`]): no mass left,
-    /// beyond the plant's range, inside a singularity.
+    /// beyond the plant's range, inside a singularity, or a component beyond [`MAX_STATE`] in
+    /// magnitude (every plant's).
     OutOfDomain = 4,
-    /// A metric accumulated over the run is not finite (a safety net: the bound on the command
-    /// should make this impossible).
+    /// A metric accumulated over the run, or the final error's norm, is not finite (a safety
+    /// net: the bounds on the command and the state make this impossible but for a reference
+    /// beyond [`MAX_STATE`]).
     NonFiniteMetric = 5,
 }
 
@@ -48,6 +50,12 @@ pub enum Divergence {
 /// [`Divergence::CommandOutOfRange`]); 1e100 is far beyond any physical actuator, and its
 /// square summed over 2^40 periods is still finite.
 pub const MAX_COMMAND: f64 = 1e100;
+
+/// Largest magnitude of a state component a case may reach, whatever the plant: beyond it a
+/// finite state could give infinite errors and metrics (|e|^2 of a 1e200 m position overflows),
+/// so the case stops there as [`Divergence::OutOfDomain`]. Like [`MAX_COMMAND`], far beyond any
+/// physical plant (docs/parameters.md).
+pub const MAX_STATE: f64 = 1e100;
 
 impl Divergence {
     /// The reason codes' names, indexed by code (0: not diverged).

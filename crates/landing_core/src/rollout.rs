@@ -32,7 +32,7 @@ use crate::lanes::{
 };
 use crate::limits::MAX_STEPS;
 use crate::metrics::{
-    CaseMetrics, CommandStats, Diverged, Divergence, HighPass, MAX_COMMAND, Touchdown,
+    CaseMetrics, CommandStats, Diverged, Divergence, HighPass, MAX_COMMAND, MAX_STATE, Touchdown,
 };
 use crate::navigation::Navigator;
 use crate::plant::Plant;
@@ -915,13 +915,16 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
     ) -> bool {
         let plant = set.plant;
         let next = &self.next;
-        let finite = next.all_finite();
+        // |x_i| <= MAX_STATE is false for a NaN too: one compare per component in the common
+        // case, the reason told apart only when a lane stops
+        let within = next.all_within(R::splat(MAX_STATE));
         let ends = match landing {
             None => self.live,
             Some(landing) => self.live & !landing,
         };
-        let bad = ends & !(finite & plant.in_domain(next));
+        let bad = ends & !(within & plant.in_domain(next));
         if bad.any() {
+            let finite = next.all_finite();
             self.stops
                 .mark(bad & !finite, tj + h, Divergence::NonFiniteState);
             self.stops
@@ -1015,8 +1018,14 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                     velocity: SVector::from_fn(|c, _| self.td_velocity[c].lane(i)),
                 });
             }
-            if finished.lane(i) && !m.accumulations_finite() {
-                // the safety net behind MAX_COMMAND: no non-finite statistic goes unflagged
+            let final_error: SVector<f64, D> = SVector::from_fn(|c, _| e[c].lane(i));
+            let final_rate_error: SVector<f64, D> = SVector::from_fn(|c, _| de[c].lane(i));
+            // |e| of a state within MAX_STATE is finite, but a reference far beyond it is not
+            let errors_finite = final_error.norm_squared().is_finite()
+                && final_rate_error.norm_squared().is_finite();
+            if finished.lane(i) && !(errors_finite && m.accumulations_finite()) {
+                // the safety net behind MAX_COMMAND and MAX_STATE: no non-finite statistic
+                // goes unflagged
                 m.diverged = Some(Diverged {
                     time: cfg.t_final(),
                     reason: Divergence::NonFiniteMetric,
@@ -1041,8 +1050,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                     m.fuel_to_settle = m0.lane(i) - ms.lane(i);
                 }
             }
-            m.final_error = SVector::from_fn(|c, _| e[c].lane(i));
-            m.final_rate_error = SVector::from_fn(|c, _| de[c].lane(i));
+            m.final_error = final_error;
+            m.final_rate_error = final_rate_error;
             if let (Some(m0), Some(mf)) = (self.m0, mass) {
                 m.fuel_used = m0.lane(i) - mf.lane(i);
             }

@@ -19,6 +19,9 @@ pub trait State<R: Real>: Copy + Send + Sync + 'static {
     /// Whether every component is finite, per lane.
     fn all_finite(&self) -> R::Mask;
 
+    /// Whether every component is at most `bound` in magnitude, per lane (false for a NaN).
+    fn all_within(&self, bound: R) -> R::Mask;
+
     // The integrators' updates work in place: a state of the flexible tether over a block of
     // lanes is kilobytes, and a value returned per update was a memcpy the compiler kept.
 
@@ -59,6 +62,15 @@ impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     #[inline(always)]
     fn all_finite(&self) -> R::Mask {
         all_finite(self)
+    }
+
+    #[inline(always)]
+    fn all_within(&self, bound: R) -> R::Mask {
+        let mut m = self[0].abs().simd_le(bound);
+        for i in 1..N {
+            m = m & self[i].abs().simd_le(bound);
+        }
+        m
     }
 
     // explicit loops, not closures: a closure this often called is not always inlined, and

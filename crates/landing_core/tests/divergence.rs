@@ -8,7 +8,7 @@ use landing_core::disturbance::Disturbance;
 use landing_core::gravity::PointMass;
 use landing_core::integrator::IntegratorKind;
 use landing_core::math::Switch;
-use landing_core::metrics::{Divergence, MAX_COMMAND};
+use landing_core::metrics::{Divergence, MAX_COMMAND, MAX_STATE};
 use landing_core::plant::{MarsLander, SmallBody};
 use landing_core::reference::Reference;
 use nalgebra::{SVector, Vector3};
@@ -150,6 +150,54 @@ fn a_law_cancelling_a_singular_gravity_gives_a_non_finite_command() {
         (stop.reason, stop.time),
         (Divergence::NonFiniteCommand, 0.0)
     );
+}
+
+#[test]
+fn a_finite_state_beyond_the_state_limit_is_out_of_domain() {
+    // A probe at rest 1e200 m out on a small body: every component finite, but |e|^2 would
+    // overflow; it stops at the end of its first step. One just inside the limit runs on.
+    let law: AnyLaw<3> = open_loop([0.0, 0.0, 0.0]);
+    let b = Batch {
+        plants: PerCase::shared(SmallBody::new(PointMass { mu: 4.463e5 }, 0.0)),
+        laws: PerCase::shared(law),
+        references: PerCase::shared(Reference::default()),
+        disturbances: PerCase::shared(Disturbance::none()),
+        x0: vec![
+            SVector::from([0.0, 0.0, 1e200, 0.0, 0.0, 0.0]),
+            SVector::from([0.0, 0.0, 0.5 * MAX_STATE, 0.0, 0.0, 0.0]),
+        ],
+    };
+    let cfg = SimConfig::new(1.0, 0.5, 1, 0, 0).unwrap();
+    let out = run_with_threads(&b, &cfg, Some(1)).unwrap();
+    let stop = out.metrics[0]
+        .diverged
+        .expect("1e200 m is beyond every plant's range");
+    assert_eq!((stop.reason, stop.time), (Divergence::OutOfDomain, 0.5));
+    assert!(out.metrics[0].final_error.iter().all(|v| v.is_nan()));
+    let inside = &out.metrics[1];
+    assert!(inside.diverged.is_none());
+    assert!(inside.final_error.norm().is_finite());
+}
+
+#[test]
+fn a_reference_beyond_the_state_limit_flags_the_final_error() {
+    // The state stays put, the reference is 1e200 m away: the error is finite per axis but
+    // its norm is not, so the case is flagged rather than reporting an infinite metric.
+    let far: Reference<3> = Reference::Constant {
+        position: Vector3::new(1e200, 1e200, 0.0),
+        velocity: Vector3::zeros(),
+    };
+    let b = Batch {
+        plants: PerCase::shared(SmallBody::new(PointMass { mu: 0.0 }, 0.0)),
+        laws: PerCase::shared(open_loop([0.0, 0.0, 0.0])),
+        references: PerCase::shared(far),
+        disturbances: PerCase::shared(Disturbance::none()),
+        x0: vec![SVector::from([1e4, 0.0, 0.0, 0.0, 0.0, 0.0])],
+    };
+    let cfg = SimConfig::new(1.0, 0.5, 1, 0, 0).unwrap();
+    let out = run_with_threads(&b, &cfg, Some(1)).unwrap();
+    let stop = out.metrics[0].diverged.expect("|e| overflows");
+    assert_eq!(stop.reason, Divergence::NonFiniteMetric);
 }
 
 #[test]
