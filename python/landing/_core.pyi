@@ -35,8 +35,9 @@ MAX_COMMAND: float
 #: families "plant", "law", "gravity", "disturbance" (its component kinds, each with
 #: ``"random"``: whether it draws random numbers), "reference", "dispersion" and "fuzzy" (the
 #: Mamdani system's table, "mamdani", and its membership shapes). Each parameter is a dict
-#: ``{"name", "shape", "unit", "rule", "required", "doc"}``: shape one of "scalar",
+#: ``{"name", "shape", "unit", "rule", "required", "per_case", "doc"}``: shape one of "scalar",
 #: "per_axis", "per_component", "choice", "flag", "count", "nested", "list", "fuzzy_system";
+#: per_case whether it may be given one row per case (scalars, per-axis and a sensor's);
 #: unit in SI ("1" dimensionless, "" not a number; "q" the plant's generalized coordinate, m or
 #: rad); rule the inequality the core enforces ("" if only finiteness). A choice or a count
 #: adds ``"choices"``; a nested table or a list adds ``"family"`` (the family of its kind), or

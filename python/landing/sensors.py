@@ -8,9 +8,11 @@ estimate. The physics, the events and the tracking metrics keep the true state; 
 ``navigation_velocity_error`` measure what the law read against it, and a run that records
 keeps it beside the law's diagnostics as ``estimated_position`` and ``estimated_velocity``.
 
-Both are shared by every case of a batch. The noise is drawn from each case's own
-counter-based stream, so a case's measurements do not depend on the thread count, the batch or
-the chunking. The models (docs/parameters.md, "sensing"):
+Every number of both may be given per case, ``(N, K)`` or ``(N, 1)`` rows (a campaign's
+chunks take their own rows), and dispersed (``scenario.disperse({"plant.sensor.bias":
+Normal(0.0, 0.5)})``: one draw per case for every component, or one per component); whether
+there is a filter is the batch's. The noise is drawn from each case's own counter-based stream,
+so a case's measurements do not depend on the thread count, the batch or the chunking. The models (docs/parameters.md, "sensing"):
 
 * measurement at control instant k: ``y_k = [q_k, q'_k] + bias + w_k + std * n_k`` per
   component, with ``w_0 = 0`` and ``w_(k+1) = w_k + random_walk * sqrt(dt) * m_k`` (``n_k``

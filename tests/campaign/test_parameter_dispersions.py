@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import landing
-from _cases import assert_same_campaign, crash_after_chunks, small_campaign
+from _cases import assert_same_bits, assert_same_campaign, crash_after_chunks, small_campaign
 from _user_laws import pd
 from landing import controllers as C
 from landing import disturbances as W
@@ -218,3 +218,39 @@ def test_the_tuner_evaluates_each_candidate_on_the_campaigns_draws():
     with pytest.raises(ParameterError, match="is tuned and the scenario disperses it"):
         landing.tune(s.disperse({"controller.alpha1": Uniform(4.0, 6.0)}), gains={"alpha1": (3.0, 6.0)},
                      objective="mean(fuel_used)", cases=4, budget=6)
+
+
+def test_a_sensor_s_numbers_are_dispersed_per_case_and_per_component(tmp_path):
+    # a bias alone (no white noise, no walk) is what the law reads on top of the truth: each
+    # case's navigation error at the end is its own draw (to the rounding of (q + b) - q, q of
+    # 1e3 m), one for every component or one per
+    # component; the campaign chunked, stored and resumed equals the whole batch
+    from landing.sensors import KalmanFilter, Noise
+
+    s = small_campaign()
+    sensed = s.replace(plant=s.plant.replace(sensor=Noise(bias=0.0)))
+    d = sensed.disperse({"plant.sensor.bias": Normal(0.0, [0.5, 0.5, 0.5, 0.05, 0.05, 0.05])})
+    whole = landing.monte_carlo(d, N, seed=4, progress=False, check_bounds=False)
+    bias = whole.metrics["param.plant.sensor.bias"]
+    assert bias.shape == (N, 6) and np.unique(bias).size == 6 * N
+    np.testing.assert_allclose(whole.metrics["navigation_position_error"], bias[:, :3], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(whole.metrics["navigation_velocity_error"], bias[:, 3:], rtol=0, atol=1e-9)
+    chunked = landing.monte_carlo(d, N, seed=4, chunk_size=5, threads=2, progress=False, check_bounds=False)
+    assert_same_campaign(whole, chunked)
+    store = tmp_path / "sensed"
+    landing.monte_carlo(d, N, seed=4, chunk_size=5, store=store, progress=False, check_bounds=False)
+    assert_same_campaign(whole, landing.load(store))
+    # one draw for every component; a filter's process noise per case
+    one = sensed.disperse({"plant.sensor.bias": Uniform(-1.0, 1.0)})
+    m = landing.monte_carlo(one, N, seed=4, progress=False, check_bounds=False).metrics
+    assert m["param.plant.sensor.bias"].shape == (N,)
+    np.testing.assert_allclose(m["navigation_position_error"], np.repeat(m["param.plant.sensor.bias"][:, None], 3, 1),
+                               rtol=0, atol=1e-9)
+    filtered = s.replace(plant=s.plant.replace(sensor=Noise(std=1.0), filter=KalmanFilter(0.1)))
+    f = filtered.disperse({"plant.filter.process_noise": LogNormal(np.log(0.1), 0.5)})
+    mc = landing.monte_carlo(f, N, seed=4, chunk_size=5, progress=False, check_bounds=False)
+    rows = mc.metrics["param.plant.filter.process_noise"]
+    given = filtered.replace(plant=filtered.plant.replace(filter=KalmanFilter(rows[:, None])))  # (N, 1) rows
+    assert_same_bits(mc.result.final_state,
+                     landing.monte_carlo(given, N, seed=4, progress=False, check_bounds=False).result.final_state,
+                     "the draws given per case")

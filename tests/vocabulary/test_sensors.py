@@ -228,3 +228,46 @@ def test_the_estimate_the_law_read_is_recorded_with_the_diagnostics():
     # and without a sensor there is none
     assert "estimated_position" not in landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(law), x0,
                                                               t_final=1.0, dt=DT, record_every=1).diagnostics
+
+
+def test_sensor_numbers_given_per_case_are_each_case_s_own():
+    # a bias alone (no white noise, no walk) is what the law reads on top of the truth, exactly:
+    # each case's navigation error is its own row, as a run of that case alone with the row
+    # shared would have it
+    bias = np.array([[2.0, -1.0, 0.5, 0.0, 0.25, 0.0],
+                     [-3.0, 0.0, 1.0, 0.5, 0.0, -0.125],
+                     [0.0, 4.0, -2.0, 0.0, 0.0, 0.0]])
+    std = np.array([[0.0], [0.5], [1.5]])  # (N, 1): one number on every component
+    law = C.FixedTimeMSS(**RECONSTRUCTED_GAINS)
+    x0 = starts(3)
+    kw = dict(t_final=3.0, dt=DT, seed=5, record_every=5)
+    per_case = landing.simulate_batch(P.DoubleIntegrator(sensor=Noise(bias=bias, std=std)), law, x0, **kw)
+    for i in range(3):
+        alone = landing.simulate_batch(P.DoubleIntegrator(sensor=Noise(bias=bias[i], std=std[i, 0])), law,
+                                       x0[i:i + 1], first_case=i, **kw)
+        assert_same_bits(per_case.states[i:i + 1], alone.states, f"case {i}")
+        assert_same_bits(per_case.metrics["navigation_velocity_rms"][i:i + 1],
+                         alone.metrics["navigation_velocity_rms"], f"case {i}")
+    noiseless = landing.simulate_batch(P.DoubleIntegrator(sensor=Noise(bias=bias)), law, x0, **kw)
+    # (q + b) - q: b to the rounding of q
+    np.testing.assert_allclose(noiseless.metrics["navigation_position_error"], bias[:, :3], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(noiseless.metrics["navigation_velocity_error"], bias[:, 3:], rtol=0, atol=1e-12)
+
+
+def test_a_filter_and_its_sensor_take_per_case_rows_of_their_own_width():
+    rows = np.array([[0.1, 0.1, 0.2], [0.3, 0.3, 0.3]])
+    plant = P.MarsLander(sensor=Noise(std=1.0), filter=KalmanFilter(process_noise=rows))
+    law = C.FixedTimeMSS(**RECONSTRUCTED_GAINS)
+    x0 = np.array([[-2000.0, 1000.0, 1500.0, 100.0, -15.0, -75.0, 1905.0]] * 2)
+    kw = dict(t_final=5.0, dt=0.05, seed=3, record_every=0)
+    both = landing.simulate_batch(plant, law, x0, **kw)
+    second = landing.simulate_batch(P.MarsLander(sensor=Noise(std=1.0), filter=KalmanFilter(process_noise=rows[1])),
+                                    law, x0[1:], first_case=1, **kw)
+    assert_same_bits(both.final_state[1:], second.final_state, "case 1's own process noise")
+    assert not np.array_equal(both.final_state[0], both.final_state[1])
+    with pytest.raises(landing.ParameterError, match="bias has 5 values"):
+        Noise(bias=np.zeros((4, 5)))
+    with pytest.raises(landing.ParameterError, match=r"bias has shape \(2, 3, 6\)"):
+        Noise(bias=np.zeros((2, 3, 6)))
+    with pytest.raises(landing.ParameterError, match="4 values per case but the batch has 2 cases"):
+        landing.simulate_batch(P.MarsLander(sensor=Noise(bias=np.zeros((4, 6)))), law, x0, **kw)

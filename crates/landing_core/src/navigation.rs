@@ -37,23 +37,27 @@
 use nalgebra::SVector;
 
 use crate::error::{ParamError, ReadError};
-use crate::lanes::{Mask, Real, add, div, dot, sub};
+use crate::lanes::{Mask, Real, add, div, dot, scale, sub};
 use crate::metrics::NavigationMetrics;
 use crate::params::{Layout, Param, ParamSource, Schema};
 use crate::rng::{CaseStream, streams};
 
 const STD: Param = Param::components("std")
+    .per_case()
     .unit("units of q, then q/s")
     .rule("std >= 0")
     .doc("standard deviation of the white noise per component of [q, q'] (a scalar serves all)");
 const BIAS: Param = Param::components("bias")
+    .per_case()
     .unit("units of q, then q/s")
     .doc("constant bias per component of [q, q']");
 const RANDOM_WALK: Param = Param::components("random_walk")
+    .per_case()
     .unit("units of q/sqrt(s), then q/s/sqrt(s)")
     .rule("random_walk >= 0")
     .doc("random-walk density per component of [q, q']: the walk's variance grows as random_walk^2 t");
 const PROCESS_NOISE: Param = Param::components("process_noise")
+    .per_case()
     .unit("units of q/s^2")
     .rule("process_noise >= 0")
     .doc("standard deviation per axis of the unknown acceleration the filter assumes, held over each control period");
@@ -81,16 +85,23 @@ crate::named! {
     }
 }
 
-/// A sensor's error model and the optional filter, shared by every case of a batch.
+/// A sensor's error model and the optional filter: one case's (`R = f64`), or a block's with
+/// each lane its case's values (every number may differ between cases; whether there is a
+/// filter is the block's).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Navigation<const D: usize> {
+pub struct Navigation<const D: usize, R = f64> {
     /// White-noise standard deviation of q and of q'.
-    pub std: [SVector<f64, D>; 2],
-    pub bias: [SVector<f64, D>; 2],
-    pub random_walk: [SVector<f64, D>; 2],
+    pub std: [SVector<R, D>; 2],
+    pub bias: [SVector<R, D>; 2],
+    pub random_walk: [SVector<R, D>; 2],
     /// The filter's process noise per axis, when there is a filter.
-    pub process_noise: Option<SVector<f64, D>>,
+    pub process_noise: Option<SVector<R, D>>,
 }
+
+crate::gather_struct!(Navigation<const D: usize, R> {
+    lanes: [std, bias, random_walk, process_noise],
+    shared: [],
+});
 
 /// `values` checked against `p`'s rule (finite; >= 0 when it has a rule) and spread to `N`
 /// values (a single one serves all): `what` says what the N are, for the message, and
@@ -145,14 +156,14 @@ impl<const D: usize> Navigation<D> {
         let sensor = p.opt_nested(&SENSOR, |s| {
             let SensorKind::Noise = s.kind::<SensorKind>()?;
             Ok([
-                s.components(&STD)?,
-                s.components(&BIAS)?,
-                s.components(&RANDOM_WALK)?,
+                s.case_components(&STD)?,
+                s.case_components(&BIAS)?,
+                s.case_components(&RANDOM_WALK)?,
             ])
         })?;
         let filter = p.opt_nested(&FILTER, |f| {
             let FilterKind::Kalman = f.kind::<FilterKind>()?;
-            f.components(&PROCESS_NOISE)
+            f.case_components(&PROCESS_NOISE)
         })?;
         let filter = filter
             .map(|v| spread::<D>(&PROCESS_NOISE, &v, ("one per axis", 0)))
@@ -223,35 +234,31 @@ pub(crate) struct Navigator<const D: usize, R: Real> {
     error: [SVector<R, D>; 2],
 }
 
-fn splat<const D: usize, R: Real>(v: &SVector<f64, D>) -> SVector<R, D> {
-    SVector::from_fn(|i, _| R::splat(v[i]))
-}
-
 impl<const D: usize, R: Real> Navigator<D, R> {
     /// The navigation of the block whose lane i is case `cases[i]`, at t = 0 where the true
     /// coordinates and rates are `(q, v)`: the first measurement taken, the error there counted.
     pub(crate) fn start(
-        nav: &Navigation<D>,
+        nav: &Navigation<D, R>,
         (seed, cases, dt): (u64, &[u64], f64),
         (q, v): (&SVector<R, D>, &SVector<R, D>),
     ) -> Self {
         let zero = crate::lanes::zeros();
         let root_dt = dt.sqrt();
-        let std = [splat(&nav.std[0]), splat(&nav.std[1])];
+        let std = nav.std;
         let mut n = Self {
             streams: cases
                 .iter()
                 .map(|&c| CaseStream::new(seed, streams::SENSOR, c))
                 .collect(),
             std,
-            bias: [splat(&nav.bias[0]), splat(&nav.bias[1])],
+            bias: nav.bias,
             step: [
-                splat(&(nav.random_walk[0] * root_dt)),
-                splat(&(nav.random_walk[1] * root_dt)),
+                scale(&nav.random_walk[0], root_dt),
+                scale(&nav.random_walk[1], root_dt),
             ],
             walk: [zero; 2],
             filter: nav.process_noise.map(|s| {
-                let q = splat(&s.component_mul(&s));
+                let q = SVector::from_fn(|i, _| s[i] * s[i]);
                 // P_0 = R
                 let r = |c: usize| SVector::from_fn(|i, _| std[c][i] * std[c][i]);
                 (

@@ -190,6 +190,13 @@ impl ParamSource for Recorder {
         })
     }
 
+    fn case_components(&mut self, p: &Param) -> Result<Vec<f64>, ReadError> {
+        self.note(p, "case_components", |d| {
+            d.shape == Shape::PerComponent && d.case_rows
+        });
+        Ok(vec![1.0])
+    }
+
     fn choice<T: Named>(&mut self, p: &Param) -> Result<T, ReadError> {
         self.note(p, "choice", |d| d.shape == Shape::Choice(T::NAMES));
         Ok(T::ALL[self.path.choose(T::ALL.len())])

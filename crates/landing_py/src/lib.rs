@@ -42,8 +42,7 @@ fn kernel_levels() -> PyResult<Vec<&'static str>> {
     guard(|| Ok(Level::supported().into_iter().map(Level::name).collect()))
 }
 
-/// Bytes of memory a new allocation can count on, as the core measures it before a batch
-/// (None where the system does not say).
+/// Bytes a new allocation can count on, as the core measures them (None: the system says not).
 #[pyfunction]
 fn available_memory() -> PyResult<Option<u64>> {
     guard(|| Ok(landing_core::memory::available_bytes()))
@@ -66,8 +65,8 @@ fn _panic_for_test() -> PyResult<()> {
     guard(|| panic!("deliberate panic for the tests"))
 }
 
-/// A parameter's declaration: name, shape, unit, rule, required, doc, and its choices or its
-/// nested tables' family (or fixed layout).
+/// A parameter's declaration: name, shape, unit, rule, required, per_case, doc, and its
+/// choices or its nested tables' family (or fixed layout).
 fn param<'py>(py: Python<'py>, p: &Param) -> PyResult<Bound<'py, PyDict>> {
     let texts = [
         ("name", p.name),
@@ -78,6 +77,7 @@ fn param<'py>(py: Python<'py>, p: &Param) -> PyResult<Bound<'py, PyDict>> {
     let d = texts.into_py_dict(py)?;
     d.set_item("rule", p.rules())?;
     d.set_item("required", p.required)?;
+    d.set_item("per_case", p.varies_by_case())?;
     match p.shape {
         Shape::Choice(names) => d.set_item("choices", names.to_vec())?,
         Shape::Count(values) => d.set_item("choices", values.to_vec())?,

@@ -36,7 +36,8 @@ class Parameter:
 
     ``shape`` is how its table gives it: ``"scalar"`` (a number, shared or one per case),
     ``"per_axis"`` (a number per axis: a scalar, ``(D,)``, or per case ``(N,)``, ``(N, 1)``,
-    ``(N, D)``), ``"per_component"``, ``"choice"`` (one of ``choices``), ``"flag"``,
+    ``(N, D)``), ``"per_component"`` (a scalar or ``(K,)``; per case ``(N, 1)`` or ``(N, K)``
+    where ``per_case``: a sensor's), ``"choice"`` (one of ``choices``), ``"flag"``,
     ``"count"`` (a whole number among ``choices``), ``"nested"`` or ``"list"`` (tables of the
     kinds of ``family``), ``"fuzzy_system"``. ``unit`` is SI ("1" dimensionless; "q" stands for
     the plant's generalized coordinate, m for the landers and rad for the tethered satellite);
@@ -51,6 +52,9 @@ class Parameter:
     doc: str
     choices: tuple[Any, ...] = ()
     family: Optional[str] = None
+    #: Whether the parameter may be given one row per case (scalars, per-axis parameters and a
+    #: sensor's per-component ones).
+    per_case: bool = False
 
     @property
     def numeric(self) -> bool:
@@ -65,7 +69,7 @@ def schema(family: str, kind: str) -> Mapping[str, Parameter]:
     return MappingProxyType({
         p["name"]: Parameter(
             name=p["name"], shape=p["shape"], unit=p["unit"], rule=p["rule"], required=p["required"],
-            doc=p["doc"], choices=tuple(p.get("choices", ())), family=p.get("family"),
+            doc=p["doc"], choices=tuple(p.get("choices", ())), family=p.get("family"), per_case=p["per_case"],
         )
         for p in declared
     })
@@ -74,7 +78,11 @@ def schema(family: str, kind: str) -> Mapping[str, Parameter]:
 def case_rows(shape: str, value_shape: tuple[int, ...], axes: int) -> Optional[int]:
     """How many cases a numeric parameter's value gives one row each, by the core's rule (None:
     the value is shared by every case): a scalar parameter per case is ``(N,)``; a per-axis one
-    ``(N, D)``, ``(N, 1)`` or ``(N,)``, where a 1-d value of length D is read per axis."""
+    ``(N, D)``, ``(N, 1)`` or ``(N,)``, where a 1-d value of length D is read per axis; a
+    per-component one that may vary by case (:attr:`Parameter.per_case`) ``(N, K)`` or
+    ``(N, 1)``."""
+    if shape == "per_component" and len(value_shape) == 2:
+        return value_shape[0]
     if shape == "scalar" and len(value_shape) == 1:
         return value_shape[0]
     if shape == "per_axis" and (len(value_shape) == 2 or (len(value_shape) == 1 and value_shape[0] != axes)):
@@ -193,7 +201,7 @@ class Table:
             value = getattr(self, f.name)
             p = declared.get(self._renamed.get(f.name, f.name))
             numbers = isinstance(value, (np.ndarray, list, tuple)) and not nested_tables(value)
-            if p is not None and p.numeric and numbers:
+            if p is not None and p.per_case and numbers:
                 out[f.name] = (p, np.asarray(value, dtype=np.float64))
         return out
 

@@ -79,9 +79,12 @@ def _leaf(owner: Any, attr: str, name: str, axes: int, dim: int) -> Form:
     if p is None:
         raise ParameterError(f"dispersions: {name!r}: {type(owner).__name__} has no parameter {attr!r} "
                              f"(its parameters: {sorted(declared)})")
-    if not p.numeric:
+    if not p.per_case:
         raise ParameterError(f"dispersions: {name!r} is a {p.shape} parameter; only the numbers a case reads "
-                             "(scalar or per-axis parameters) can be dispersed")
+                             "(scalar, per-axis or a sensor's per-component parameters) can be dispersed")
+    if p.shape == "per_component":
+        # one draw for every component, or one per component (the core checks their number)
+        return "columns"
     if p.shape == "scalar":
         if dim != 1:
             raise ParameterError(f"dispersions: {name!r} is a scalar; its dispersion has {dim} components, not 1")

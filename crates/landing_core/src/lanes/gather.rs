@@ -56,6 +56,28 @@ impl<R: Real, T: Gather<R>, const K: usize> Gather<R> for [T; K] {
     }
 }
 
+/// An optional part (a sensor): whether it is there is the block's, its numbers each lane's.
+impl<R: Real, T: Gather<R>> Gather<R> for Option<T> {
+    type Case = Option<T::Case>;
+    #[inline]
+    fn gather<'a>(case: &dyn Fn(usize) -> &'a Option<T::Case>) -> Self {
+        case(0).as_ref().map(|_| {
+            T::gather(&|i| {
+                case(i)
+                    .as_ref()
+                    .expect("a block's cases all have the part or none has (same_shape)")
+            })
+        })
+    }
+    fn same_shape(a: &Self::Case, b: &Self::Case) -> bool {
+        match (a, b) {
+            (Some(x), Some(y)) => T::same_shape(x, y),
+            (None, None) => true,
+            _ => false,
+        }
+    }
+}
+
 /// [`Gather::same_shape`] of a field, its type named by a projection from the lane struct.
 #[doc(hidden)]
 #[inline]

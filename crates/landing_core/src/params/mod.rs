@@ -42,6 +42,10 @@ pub trait ParamSource {
     /// A number per component, shared by every case (a single number serves every component).
     fn components(&mut self, p: &Param) -> Result<Vec<f64>, ReadError>;
 
+    /// A number per component, shared (`(K,)` or a scalar) or per case (`(N, K)`, or `(N, 1)`
+    /// for one number on every component): this case's ([`Param::per_case`] declares it).
+    fn case_components(&mut self, p: &Param) -> Result<Vec<f64>, ReadError>;
+
     /// One of `T`'s names, shared by every case.
     fn choice<T: Named>(&mut self, p: &Param) -> Result<T, ReadError>;
 

@@ -11,8 +11,9 @@ pub enum Shape {
     Scalar,
     /// A number per axis (one number serves every axis): shared, or per case.
     PerAxis,
-    /// A number per component (of a dispersion, of a fuzzy set's corners), shared by every
-    /// case; a single number serves every component.
+    /// A number per component (of a dispersion, of a fuzzy set's corners, of a sensor's
+    /// `[q, q']`): a single number serves every component. Shared by every case, unless the
+    /// parameter is declared [`Param::per_case`] (a sensor's).
     PerComponent,
     /// One of these names, shared by every case.
     Choice(&'static [&'static str]),
@@ -73,6 +74,9 @@ pub struct Param {
     pub also: &'static str,
     /// Whether the table must give it (an optional parameter may be absent or None).
     pub required: bool,
+    /// Whether a per-component parameter may be given per case, `(N, K)` or `(N, 1)`
+    /// ([`Param::per_case`]); scalars and per-axis parameters always may.
+    pub case_rows: bool,
     /// One line of documentation.
     pub doc: &'static str,
 }
@@ -86,6 +90,7 @@ impl Param {
             rule: "",
             also: "",
             required: true,
+            case_rows: false,
             doc: "",
         }
     }
@@ -147,6 +152,21 @@ impl Param {
 
     pub const fn doc(self, doc: &'static str) -> Self {
         Self { doc, ..self }
+    }
+
+    /// A per-component parameter its model reads per case ([`ParamSource::case_components`]).
+    ///
+    /// [`ParamSource::case_components`]: crate::params::ParamSource::case_components
+    pub const fn per_case(self) -> Self {
+        Self {
+            case_rows: true,
+            ..self
+        }
+    }
+
+    /// Whether the parameter may be given one row per case (the numbers a case reads).
+    pub fn varies_by_case(&self) -> bool {
+        self.shape.is_numeric() || (self.shape == Shape::PerComponent && self.case_rows)
     }
 
     /// Every rule of the parameter, as the schema states it.

@@ -481,6 +481,24 @@ impl ParamSource for Reader<'_> {
         }
     }
 
+    fn case_components(&mut self, p: &Param) -> Result<Vec<f64>, ReadError> {
+        let key = p.name;
+        match self.raw(key) {
+            Value::Numbers(a) if a.shape.len() <= 1 => Ok(a.data.clone()),
+            Value::Numbers(a) if a.shape.len() == 2 => {
+                let [len, width] = [a.shape[0], a.shape[1]];
+                self.claim(key, len)?;
+                let i = self.case;
+                Ok(a.data[i * width..(i + 1) * width].to_vec())
+            }
+            Value::Numbers(a) => Err(ReadError::value(format!(
+                "{key} has shape {}; it takes a scalar, one value per component (K,), or per case (N, 1), (N, K)",
+                shape_str(&a.shape)
+            ))),
+            _ => Err(required(key)),
+        }
+    }
+
     fn choice<T: Named>(&mut self, p: &Param) -> Result<T, ReadError> {
         let (key, names) = (p.name, T::NAMES);
         match self.raw(key) {

@@ -17,10 +17,10 @@ pub struct DoubleIntegrator<R = f64> {
     /// Per-axis limit on the commanded acceleration |u_i|; infinite for none.
     pub acceleration_limit: SVector<R, 3>,
     /// The sensor and filter the law reads through; None for the true state.
-    pub navigation: Option<Navigation<3>>,
+    pub navigation: Option<Navigation<3, R>>,
 }
 
-crate::gather_struct!(DoubleIntegrator<R> { lanes: [acceleration_limit], shared: [navigation] });
+crate::gather_struct!(DoubleIntegrator<R> { lanes: [acceleration_limit, navigation], shared: [] });
 
 impl Default for DoubleIntegrator {
     fn default() -> Self {
@@ -63,7 +63,7 @@ impl<R: Real> Plant<R, 3> for DoubleIntegrator<R> {
     }
 
     #[inline(always)]
-    fn navigation(&self) -> Option<&Navigation<3>> {
+    fn navigation(&self) -> Option<&Navigation<3, R>> {
         self.navigation.as_ref()
     }
 

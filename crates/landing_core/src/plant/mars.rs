@@ -74,14 +74,14 @@ pub struct MarsLander<R = f64> {
     /// The engine's first-order lag time constant, s; 0 for none.
     pub engine_time_constant: R,
     /// The sensor and filter the law reads through; None for the true state.
-    pub navigation: Option<Navigation<3>>,
+    pub navigation: Option<Navigation<3, R>>,
 }
 
 crate::gather_struct!(MarsLander<R> {
     lanes: [isp, area, gravity, g0, drag_coefficient, density_decay, thrust_limit,
             thrust_magnitude_limit, min_throttle, pointing_limit, control_delay,
-            engine_time_constant],
-    shared: [drag, engine, navigation],
+            engine_time_constant, navigation],
+    shared: [drag, engine],
 });
 
 impl Default for MarsLander {
@@ -292,7 +292,7 @@ impl<R: Real> Plant<R, 3> for Prepared<R> {
     }
 
     #[inline(always)]
-    fn navigation(&self) -> Option<&Navigation<3>> {
+    fn navigation(&self) -> Option<&Navigation<3, R>> {
         self.lander.navigation.as_ref()
     }
 
@@ -373,7 +373,7 @@ impl<R: Real> Plant<R, 3> for MarsLander<R> {
         Prepared::new(self).actuator()
     }
 
-    fn navigation(&self) -> Option<&Navigation<3>> {
+    fn navigation(&self) -> Option<&Navigation<3, R>> {
         self.navigation.as_ref()
     }
 

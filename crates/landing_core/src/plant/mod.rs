@@ -55,7 +55,7 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
     /// The sensor and filter between the plant and the law ([`crate::navigation`]), for
     /// plants that carry one; None (the law reads the true state) by default.
     #[inline(always)]
-    fn navigation(&self) -> Option<&Navigation<D>> {
+    fn navigation(&self) -> Option<&Navigation<D, R>> {
         None
     }
 

@@ -43,7 +43,7 @@ pub struct SmallBody<G, R = f64> {
     pub engine_time_constant: R,
     /// The sensor and filter the law reads through (shared by a block); None for the true
     /// state.
-    pub navigation: Option<Navigation<3>>,
+    pub navigation: Option<Navigation<3, R>>,
 }
 
 impl<G> SmallBody<G> {
@@ -75,13 +75,13 @@ impl<R: Real, G: Gather<R>> Gather<R> for SmallBody<G, R> {
             magnitude_limited: case(0).magnitude_limited,
             control_delay: Gather::gather(&|i| &case(i).control_delay),
             engine_time_constant: Gather::gather(&|i| &case(i).engine_time_constant),
-            navigation: case(0).navigation,
+            navigation: Gather::gather(&|i| &case(i).navigation),
         }
     }
 
     fn same_shape(a: &Self::Case, b: &Self::Case) -> bool {
         G::same_shape(&a.gravity, &b.gravity)
-            && a.navigation == b.navigation
+            && <Option<Navigation<3, R>>>::same_shape(&a.navigation, &b.navigation)
             && a.magnitude_limited == b.magnitude_limited
     }
 }
@@ -168,7 +168,7 @@ impl<R: Real, G: GravityField<R>> Plant<R, 3> for SmallBody<G, R> {
     }
 
     #[inline(always)]
-    fn navigation(&self) -> Option<&Navigation<3>> {
+    fn navigation(&self) -> Option<&Navigation<3, R>> {
         self.navigation.as_ref()
     }
 
