@@ -12,7 +12,8 @@ Every number of both may be given per case, ``(N, K)`` or ``(N, 1)`` rows (a cam
 chunks take their own rows), and dispersed (``scenario.disperse({"plant.sensor.bias":
 Normal(0.0, 0.5)})``: one draw per case for every component, or one per component); whether
 there is a filter is the batch's. The noise is drawn from each case's own counter-based stream,
-so a case's measurements do not depend on the thread count, the batch or the chunking. The models (docs/parameters.md, "sensing"):
+so a case's measurements do not depend on the thread count, the batch or the chunking. The
+models (docs/parameters.md, "sensing"):
 
 * measurement at control instant k: ``y_k = [q_k, q'_k] + bias + w_k + std * n_k`` per
   component, with ``w_0 = 0`` and ``w_(k+1) = w_k + random_walk * sqrt(dt) * m_k`` (``n_k``

@@ -1,7 +1,6 @@
 """Every entry point refuses bad input with an error naming the argument and the rule."""
 
 import dataclasses
-
 import warnings
 
 import numpy as np
