@@ -60,9 +60,10 @@ class FixedTimeMSS(Controller):
 
     ``s1 = r - r_d``, ``s2 = s1' + beta1 sig^q1(s1) + beta2 sig^q2(s1)``; the law drives
     ``s2' = -alpha1 sig^gamma1(s2) - alpha2 sig^gamma2(s2)``, after which s1 reaches zero in a
-    fixed time (``landing.theory`` gives the bounds).
+    fixed time (``landing.theory`` gives the bounds). Each parameter is a scalar, a per-axis
+    triple, or given per case.
 
-    Parameters (each a scalar, a per-axis triple, or per case)
+    Parameters
     ----------
     beta1, beta2 : gains of the first reaching law (> 0).
     q1, q2 : its exponents, 0 < q1 < 1 < q2.
@@ -131,7 +132,9 @@ class PDSlidingMode(Controller):
     """PD sliding mode, the seed-000 baseline: ``s = e' + lambda e``,
     ``u = u_eq - k switch(s)``, the equivalent control from s' = 0 with the plant's model.
 
-    Parameters (per axis, or per case)
+    Each parameter is per axis, or given per case.
+
+    Parameters
     ----------
     lambda_ : slope of the surface, 1/s (``lambda`` is a Python keyword).
     k : switching gain, in command units (m/s^2 on a small body).
@@ -286,7 +289,9 @@ class FixedTimeNTSMC(Controller):
     beta_s in the roles the text gives them (Table 2 prints them swapped; the law is symmetric
     in the two) and the network of the tuning study (docs/parameters.md).
 
-    Parameters (per axis unless said)
+    The parameters are per axis unless said.
+
+    Parameters
     ----------
     k1, k2, k3 : gains (> 0).
     eps_max : bound of the network's error, in actuator units (N, N m), >= 0.

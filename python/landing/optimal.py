@@ -4,7 +4,7 @@ Seed 001 ("Mars Powered Descent Phase Guidance Design Based on Fixed-time Stabil
 Technique", section IV, Fig. 3 and 4) compares its guidance with an offline fuel-optimal
 trajectory computed with GPOPS for t_f = 30 s (212.9067 kg of fuel). :func:`fuel_optimal` solves
 the same problem on the simulator's own model (docs/reproduction-mars.md, "Fuel-optimal
-baseline"):
+baseline")::
 
     minimise    m(0) - m(t_f)
     subject to  r' = v,  v' = F/m + g + a_drag(rz, v, m),  m' = -|F| / (Isp g0)
@@ -256,7 +256,10 @@ def fuel_optimal(
     tolerance, max_iterations : IPOPT's ``tol`` and ``max_iter``.
     verbose : print IPOPT's log.
 
-    Returns a :class:`FuelOptimalResult`; check ``success`` (IPOPT's status is ``status``).
+    Returns
+    -------
+    FuelOptimalResult
+        Check ``success`` (IPOPT's status is ``status``).
     """
     ca = _casadi()
     model = _model(plant)

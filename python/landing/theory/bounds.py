@@ -93,6 +93,8 @@ def practical_radius(c1: ArrayLike, e1: ArrayLike, c2: ArrayLike, e2: ArrayLike,
 class MSSBounds:
     """Seed 001's bounds for FixedTimeMSS, per axis (shape (3,), or (N, 3) for per-case gains).
 
+    Attributes
+    ----------
     t1, t2 : eq. 18 and 26, without disturbance (s).
     s2_radius, s2_time : eq. 39 and 40, the neighbourhood of s2 under |a_p| <= ap_max.
     s1_radius, s1_time : eq. 31 and 45, that of s1 = r - r_d once s2 is in its own.
@@ -298,15 +300,18 @@ def fntsmc_td_printed(k1: ArrayLike, p1: ArrayLike, k2: ArrayLike, p2: ArrayLike
 class FNTSMCBounds:
     """Seed 003 Theorem 1 made sound, per axis (shape (D,), or (N, D) for per-case gains).
 
+    With ``d_max = 0`` (no disturbance of the s dynamics) the radii are 0 and the times are
+    the nominal fixed-time bounds; with ``d_max > 0`` they are the practical ones (times
+    divided by ``theta``). The law's derivation assumes an unsaturated actuator.
+
+    Attributes
+    ----------
     ts : time for s to reach its neighbourhood s_radius (eq. 42's role), from any state.
     td : then, time for |e1| to reach max(sigma_phi, e1_radius) (eq. 47's role).
     t_inside : then, time to reach ``tol`` inside sigma_phi, where e1 decays at least at
         ``inside_rate`` (the fixed-time part of the law ends at sigma_phi by design).
     total : ts + td + t_inside: from then on |e1| <= tol, whatever the initial state.
     printed_td : eq. 47 as printed with ``d`` (not a bound; kept for the record).
-    With ``d_max = 0`` (no disturbance of the s dynamics) the radii are 0 and the times are
-    the nominal fixed-time bounds; with ``d_max > 0`` they are the practical ones (times
-    divided by ``theta``). The law's derivation assumes an unsaturated actuator.
     """
 
     ts: np.ndarray

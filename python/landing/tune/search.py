@@ -172,6 +172,8 @@ def tune(
     threads : worker threads of the batches (default: all cores).
     progress : show progress on stderr (default: when the run is long).
 
+    Notes
+    -----
     Each generation runs as one batch of popsize x K cases per set-up, with per-case gains.
     When a set-up's disturbance draws random numbers, the engine keys them by the case's index
     in the batch, so one batch cannot give every candidate the same streams: then each
