@@ -34,9 +34,8 @@ autodoc_typehints = "description"
 autodoc_default_options = {"members": True, "show-inheritance": True}
 
 myst_heading_anchors = 3
-# links from a page to a file of the repository (an example, a test) are links to source, not
-# pages: MyST leaves them as they are
-suppress_warnings = ["myst.xref_missing"]
+# a link to a page or a heading that does not exist is a warning (so an error in CI)
+suppress_warnings: list[str] = []
 # a bare attribute name in a type or a docstring (``metrics``, ``axes``) that several classes
 # hold: Sphinx links it to one of them and warns; the link is right for the class documented
 suppress_warnings += ["ref.python"]
