@@ -5,8 +5,13 @@ reference is read from the docstrings of the installed package."""
 from __future__ import annotations
 
 import re
+import sys
+from pathlib import Path
 
 import landing
+
+# the generated pages (docs/_ext: the scenario-file reference)
+sys.path.insert(0, str(Path(__file__).parent / "_ext"))
 
 project = "landing"
 author = "the landing developers"
@@ -19,11 +24,12 @@ extensions = [
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
+    "toml_reference",
 ]
 
 source_suffix = {".md": "markdown"}
 master_doc = "index"
-exclude_patterns = ["_build"]
+exclude_patterns = ["_build", "_ext"]
 
 # numpy-style docstrings ("Parameters", "Returns" sections)
 napoleon_google_docstring = False
