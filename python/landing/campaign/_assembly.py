@@ -11,6 +11,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from landing._internal.progress import ProgressBar
+from landing.campaign.lazy import in_memory
 from landing.campaign.result import MonteCarloResult
 from landing.campaign.store import CampaignStore
 from landing.errors import ParameterError
@@ -24,29 +25,36 @@ __all__ = ["Assembly", "assemble_campaign", "check_in_slices", "finish_campaign"
 class Assembly:
     """A campaign's output, allocated once (from the first chunk's shapes) and filled chunk
     by chunk: no list of parts, no concatenation of the whole at the end. Signals not kept are
-    never allocated."""
+    never allocated; with a store, no recorded signal is: each chunk's are in the store once
+    written, and the result reads them from there on demand (:meth:`CampaignStore.signals`),
+    so the campaign holds its final states and metrics only (``rows``: the campaign's cases
+    the output holds, default all)."""
 
-    def __init__(self, n: int, keep: tuple[str, ...]):
+    def __init__(self, n: int, keep: tuple[str, ...], store: Optional[CampaignStore] = None,
+                 rows: Optional[np.ndarray] = None):
         self.n = n
         self.keep = keep
+        self.store = store
+        self.rows = rows
         self.out: Optional[SimulationResult] = None
 
     def put(self, start: int, part: SimulationResult) -> None:
-        part = part.keeping(self.keep)
+        part = part.keeping(self.keep if self.store is None else ())
         if self.out is None:
             self.out = SimulationResult.empty(self.n, like=part)
         self.out.put(start, part)
 
     def result(self) -> SimulationResult:
         assert self.out is not None
-        return self.out
+        return self.out if self.store is None else self.store.signals(self.out, self.rows)
 
 
 def check_in_slices(result: SimulationResult, bounds: MSSBounds, step: int = 256) -> dict[str, BoundCheck]:
     """``theory.check_mss`` a slice of cases at a time (its temporaries are as large as the
     signals it reads: a slice keeps them small), the per-case arrays put back together."""
     n = result.n_cases
-    parts = [check_mss(result.cases(a, min(n, a + step)), bounds) for a in range(0, n, step)]
+    sliding = result.keeping(("diagnostics",))  # what the check reads (a stored result's, read slice by slice)
+    parts = [check_mss(in_memory(sliding.cases(a, min(n, a + step))), bounds) for a in range(0, n, step)]
     if len(parts) == 1:
         return parts[0]
 
@@ -77,9 +85,11 @@ def assemble_campaign(
     check_bounds: bool,
     bar: Optional[ProgressBar] = None,
 ) -> MonteCarloResult:
-    """Chunk by chunk into the preallocated output: a chunk the store holds is read, any other
-    is run (``run_chunk(start, stop)``) and, with a store, written to it as it completes."""
-    out = Assembly(n, keep)
+    """Chunk by chunk into the preallocated output: a chunk the store holds is read (and
+    checked), any other is run (``run_chunk(start, stop)``) and, with a store, written to it
+    as it completes; with a store each chunk's recorded signals are then dropped (the result
+    reads them back from the store on demand)."""
+    out = Assembly(n, keep, store)
     for index, start in enumerate(range(0, n, chunk_size)):
         stop = min(n, start + chunk_size)
         part: Optional[SimulationResult]

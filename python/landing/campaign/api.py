@@ -17,7 +17,13 @@ from landing._internal.limits import available_memory, format_bytes, require_mem
 from landing._internal.progress import ProgressBar
 from landing.campaign._assembly import Assembly, assemble_campaign, finish_campaign
 from landing.campaign.result import MonteCarloResult
-from landing.campaign.store import CampaignStore, default_chunk_size, open_campaign_store, read_campaign_store
+from landing.campaign.store import (
+    CampaignStore,
+    default_chunk_size,
+    open_campaign_store,
+    read_campaign_store,
+    store_chunk_size,
+)
 from landing.errors import DivergenceWarning, ParameterError, ParameterTypeError
 from landing.results import SIGNALS, SimulationResult, describe_diverged
 from landing.scenarios import Scenario
@@ -37,11 +43,13 @@ def _keep(keep: Union[str, Sequence[str]]) -> tuple[str, ...]:
 
 
 def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int,
-                   keep: Sequence[str] = SIGNALS) -> int:
-    """Bytes a campaign's results take: the kept recorded signals (states, commands,
+                   keep: Sequence[str] = SIGNALS, stored: bool = False) -> int:
+    """Bytes a campaign's results take in memory: the kept recorded signals (states, commands,
     diagnostics) of the ``n`` cases plus their final states and metrics, in the output
-    allocated once, plus one chunk's batch output (every signal) before it is copied in. An
-    estimate from above."""
+    allocated once, plus one chunk's batch output (every signal) before it is copied in. A
+    campaign written to a store (``stored``) holds no recorded signal (they are in the store,
+    read back on demand): its final states and metrics, and two chunks' batch output (the one
+    written and what the store's writer and reader hold of it). An estimate from above."""
     steps = round(scenario.t_final / scenario.dt)
     if record_every == 0:
         instants = 0
@@ -52,30 +60,38 @@ def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int,
     sizes = {"states": scenario.plant.state_dim, "controls": axes, "diagnostics": widths}
     # final state plus about 40 metric columns, some per axis, and the dispersed parameters
     fixed = scenario.plant.state_dim + 40 * (axes + 1) + len(scenario.dispersions) * axes
-    kept = instants * sum(v for k, v in sizes.items() if k in keep) + fixed
+    kept = (0 if stored else instants * sum(v for k, v in sizes.items() if k in keep)) + fixed
     batch = instants * sum(sizes.values()) + fixed
+    if stored:
+        return 8 * (n * kept + 2 * min(chunk, n) * batch)
     # one chunk holding every case and every signal is the output itself; otherwise a chunk's
     # batch lives beside the output it is copied into
     whole = chunk >= n and set(keep) >= set(SIGNALS)
     return 8 * (n * kept + (0 if whole else min(chunk, n) * batch))
 
 
-def _what_fits(scenario: Scenario, n: int, every: int, chunk: int, keep: tuple[str, ...]) -> str:
+def _what_fits(scenario: Scenario, n: int, every: int, chunk: int, keep: tuple[str, ...], stored: bool) -> str:
     """The options that would fit in the memory available, for the refusal's message."""
     free = available_memory() or 0
     steps = max(1, round(scenario.t_final / scenario.dt))
     options = []
     for k in sorted({every * f for f in (2, 5, 10, 100, 1000) if every} | {steps}):
-        size = campaign_bytes(scenario, n, k, chunk=chunk, keep=keep)
+        size = campaign_bytes(scenario, n, k, chunk=chunk, keep=keep, stored=stored)
         if size <= free:
             options.append(f"record_every={k} ({format_bytes(size)} in all)")
             break
     for fewer in (("states",), ()):
-        if set(fewer) < set(keep) and campaign_bytes(scenario, n, every, chunk=chunk, keep=fewer) <= free:
+        if set(fewer) < set(keep) and campaign_bytes(scenario, n, every, chunk=chunk, keep=fewer,
+                                                     stored=stored) <= free:
             options.append(f"keep={fewer!r}")
             break
-    if campaign_bytes(scenario, n, 0, chunk=chunk, keep=()) <= free:
+    if campaign_bytes(scenario, n, 0, chunk=chunk, keep=(), stored=stored) <= free:
         options.append("record_every=0 (final states and metrics only)")
+    if not stored:
+        size = campaign_bytes(scenario, n, every, chunk=default_chunk_size(n), keep=keep, stored=True)
+        if size <= free:
+            options.append(f"store=DIR (the recorded signals written to disk and read back on demand: "
+                           f"{format_bytes(size)} in memory)")
     return f"what fits: {'; '.join(options)}; or fewer cases" if options else "ask for fewer cases"
 
 
@@ -124,7 +140,15 @@ def monte_carlo(
         and the result is the uninterrupted run's bit for bit. A store of another campaign
         (scenario, seed, n, chunk_size, record settings) is refused. Without ``chunk_size`` a
         new store is cut into ``max(1000, n / 50)``-case chunks and a resumed one keeps its own.
-        :func:`landing.load` reads it back. Needs ``pip install "landing[io]"``.
+        With a store the recorded signals are not kept in memory: each chunk's are written and
+        dropped, and the result holds the per-case metrics, initial and final states (a few
+        hundred bytes a case) while its states, controls and diagnostics are read from the
+        store on demand (:class:`~landing.campaign.lazy.StoredArray`: a slice of cases stays
+        lazy, any other index or ``np.asarray`` reads; ``mc[i]``, ``mc.bands``, the theory's
+        checks, ``to_xarray`` and the figures read slice by slice). Memory then stays bounded
+        by a few chunks whatever ``n`` (the up-front check counts only that), so a campaign
+        whose trajectories exceed the memory runs. :func:`landing.load` reads it back the same
+        way. Needs ``pip install "landing[io]"``.
     client : a ``distributed.Client``: run the chunks on its Dask cluster, ``threads`` threads
         each on a worker (default: all the worker machine's cores), the store (if any) written
         by this process as chunks arrive. The result is the local run's bit for bit; a lost
@@ -162,11 +186,14 @@ def monte_carlo(
     if chunk_size is None:
         chunk_size = max(1, -(-n // 50)) if progress else n
     every, threads = options.record_every, options.threads
-    # the campaign's output and one chunk's batch: refused up front if they cannot fit
+    # what the campaign holds in memory (with a store: its metrics and final states, and the
+    # chunk in hand, of the store's chunking): refused up front if it cannot fit
+    stored = store is not None
+    held = chunk_size if store is None else store_chunk_size(store, n, chunk_size if chunk_given else None)
     require_memory(
         f"monte_carlo({scenario.name!r}, n={n}): the recorded runs",
-        campaign_bytes(scenario, n, every, chunk=chunk_size, keep=_keep(keep)),
-        hint=_what_fits(scenario, n, every, chunk_size, _keep(keep)),
+        campaign_bytes(scenario, n, every, chunk=held, keep=_keep(keep), stored=stored),
+        hint=_what_fits(scenario, n, every, held, _keep(keep), stored),
     )
 
     keep = _keep(keep)
@@ -237,6 +264,12 @@ def load(path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None,
     """The campaign stored at ``path`` (by ``landing.monte_carlo(..., store=path)``), bit for bit
     the result of the run that wrote it.
 
+    Every chunk is read and checked against its checksums, one at a time; the result holds the
+    per-case metrics, initial and final states, and reads the recorded signals (states,
+    controls, diagnostics) from the store's Zarr tree on demand, as ``monte_carlo(...,
+    store=path)`` returns them (:mod:`landing.campaign.lazy`): its memory does not grow with
+    the trajectories.
+
     ``scenario`` is the campaign's scenario; it is checked against the stored one. Without it
     the scenario is rebuilt from the stored text when it is a preset's. A store whose run was
     interrupted is refused (re-run ``monte_carlo`` with the same ``store`` to complete it),
@@ -256,7 +289,7 @@ def load(path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None,
     if not chunks:
         raise ParameterError(f"the campaign at '{path}' has no completed chunk yet: nothing to load")
     index = np.concatenate([np.arange(store.completed[i]["start"], store.completed[i]["stop"]) for i in chunks])
-    out = Assembly(index.size, key.keep)
+    out = Assembly(index.size, key.keep, store, rows=index)
     row = 0
     for i in chunks:
         part = store.read_chunk(i)

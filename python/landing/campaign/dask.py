@@ -279,7 +279,7 @@ def run_campaign(
     (see the module's docstring)."""
     distributed = check_client(client)
     payload = scenario_payload(scenario)
-    out = Assembly(n, keep)
+    out = Assembly(n, keep, store)
     todo: list[tuple[int, int, int]] = []
     for index, start in enumerate(range(0, n, chunk_size)):
         stop = min(n, start + chunk_size)

@@ -11,10 +11,11 @@ from typing import TYPE_CHECKING, Any, Optional
 import numpy as np
 
 from landing._internal.args import integer
+from landing.campaign.lazy import stored_dataset
 from landing.campaign.sensitivity import RankCorrelations, dispersed_quantities, flat_columns, rank_correlations
 from landing.campaign.verify import Verification, tolerance_bound, verify
 from landing.errors import ParameterError, ParameterTypeError
-from landing.results import SIGNALS, Metrics, SimulationResult, describe_diverged, diverged_cases, result_dataset
+from landing.results import SIGNALS, Metrics, SimulationResult, describe_diverged, diverged_cases
 from landing.scenarios import Scenario
 from landing.theory import BoundCheck, MSSBounds
 
@@ -22,6 +23,9 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray
 
 __all__ = ["Bands", "MonteCarloResult", "Summary", "summarize", "SUMMARY_COLUMNS"]
+
+#: The most bytes of a signal :meth:`MonteCarloResult.bands` reads at a time (a block of instants).
+BANDS_BLOCK_BYTES = 2**27
 
 #: The per-case columns the summary describes.
 SUMMARY_COLUMNS = (
@@ -117,7 +121,12 @@ class Bands:
 @dataclass(frozen=True, eq=False)
 class MonteCarloResult:
     """A campaign: the scenario, the sampled initial states, the recorded runs (decimated),
-    the per-case metrics, their statistics and the theory's bounds with their checks."""
+    the per-case metrics, their statistics and the theory's bounds with their checks.
+
+    A stored campaign's (``monte_carlo(..., store=...)``, ``landing.load``) recorded signals
+    stay in its store: ``result`` is a :class:`~landing.campaign.lazy.StoredResult` whose
+    states, controls and diagnostics are read-only :class:`~landing.campaign.lazy.StoredArray`
+    views, read on demand (``np.asarray(mc.states)`` reads them all)."""
 
     scenario: Scenario
     seed: int
@@ -242,17 +251,21 @@ class MonteCarloResult:
     def bands(self, signal: str, percentiles: Sequence[float] = (5, 50, 95)) -> Bands:
         """Per-instant percentiles over the cases of a recorded signal: a state or control
         component by name (``"rz"``, ``"Fz"``) or a diagnostic (``"s1"``, per axis). NaN-aware:
-        a diverged case counts until it diverges."""
+        a diverged case counts until it diverges. Computed over blocks of instants of at most
+        :data:`BANDS_BLOCK_BYTES` of the signal (a stored campaign's read from its store block
+        by block)."""
         pct = tuple(float(p) for p in percentiles)
         if not pct or not all(0.0 <= p <= 100.0 for p in pct):
             raise ParameterError(f"percentiles = {percentiles!r} violates 0 <= p <= 100 (at least one)")
         res = self.result
+        signal_array: Any
+        component: tuple[int, ...] = ()
         if res.states is not None and signal in res.state_names:
-            x = res.states[..., res.state_names.index(signal)]
+            signal_array, component = res.states, (res.state_names.index(signal),)
         elif res.controls is not None and signal in res.control_names:
-            x = res.controls[..., res.control_names.index(signal)]
+            signal_array, component = res.controls, (res.control_names.index(signal),)
         elif signal in res.diagnostics:
-            x = res.diagnostics[signal]
+            signal_array = res.diagnostics[signal]
         else:
             known = [*(res.state_names if res.states is not None else ()),
                      *(res.control_names if res.controls is not None else ()), *res.diagnostics]
@@ -260,18 +273,28 @@ class MonteCarloResult:
                 f"signal = {signal!r} is not a recorded signal of this campaign (kept: {self.keep}); "
                 f"one of {known}"
             )
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN instants give NaN
-            values = np.nanpercentile(x, pct, axis=0)
-        finite = np.isfinite(x)
-        n = finite.reshape(finite.shape[0], finite.shape[1], -1).all(axis=2).sum(axis=0)
+        # over blocks of instants, each read whole (of a stored campaign: from its store), at most
+        # BANDS_BLOCK_BYTES of the signal at a time; each instant's percentiles are its own
+        cases, instants = signal_array.shape[:2]
+        width = 1 if component else int(np.prod(signal_array.shape[2:], dtype=np.int64))
+        step = max(1, BANDS_BLOCK_BYTES // max(1, 8 * cases * width))
+        values = np.empty((len(pct), instants) + (() if component else signal_array.shape[2:]))
+        n = np.empty(instants, dtype=np.int64)
+        for a in range(0, instants, step):
+            b = min(instants, a + step)
+            x = np.asarray(signal_array[(slice(None), slice(a, b)) + component])
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN instants give NaN
+                values[:, a:b] = np.nanpercentile(x, pct, axis=0)
+            finite = np.isfinite(x)
+            n[a:b] = finite.reshape(finite.shape[0], finite.shape[1], -1).all(axis=2).sum(axis=0)
         return Bands(signal=signal, t=res.t, percentiles=pct, values=values, n=n)
 
     def to_xarray(self) -> xarray.Dataset:
         """An xarray Dataset of the campaign: the kept signals (case, time, component), the
         final and initial states, every metric, with names, time (s) and units (see
         :meth:`SimulationResult.to_xarray`). Needs ``pip install "landing[io]"``."""
-        return result_dataset(self.result, x0=self.x0, seed=self.seed,
+        return stored_dataset(self.result, x0=self.x0, seed=self.seed,
                               attrs={"scenario": self.scenario.name, "keep": list(self.keep)})
 
     def within_bounds(self) -> Optional[np.ndarray]:

@@ -27,7 +27,10 @@ Layout of a store written by ``landing.monte_carlo(..., store=path)``::
 ``xarray.open_zarr(path / "trajectories.zarr")`` and ``pandas.read_parquet(path / "chunks" /
 "metrics")`` read it without this package; :func:`read_campaign_store` opens it for the
 campaign's assembly, which gives back the
-:class:`~landing.campaign.MonteCarloResult` bit for bit (:func:`landing.load`).
+:class:`~landing.campaign.MonteCarloResult` bit for bit (:func:`landing.load`): its metrics,
+initial and final states in memory, its recorded signals read from the Zarr tree on demand
+(:meth:`CampaignStore.signals`, :mod:`landing.campaign.lazy`), as the campaign that wrote the
+store returned them.
 
 Reading a store checks its provenance against its data: the stored initial states must be the
 draws of the recorded scenario and seed, the kept arrays the recorded ``keep``, the time grid
@@ -58,12 +61,13 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
-from typing import Any, Optional, Union
+from typing import Any, Optional, Union, cast
 
 import numpy as np
 
 from landing._core import __version__
 from landing._internal.args import short
+from landing.campaign.lazy import StoredArray, StoredResult
 from landing.errors import (
     DivergenceWarning,
     LandingError,
@@ -76,7 +80,7 @@ from landing.results import Metrics, SimulationResult, dataset_coords, flat_colu
 from landing.scenarios import Scenario, files
 
 __all__ = ["CampaignKey", "CampaignStore", "STORE_FORMAT", "default_chunk_size", "open_campaign_store",
-           "read_campaign_store"]
+           "read_campaign_store", "store_chunk_size", "store_path"]
 
 #: Version of the directory layout written here.
 STORE_FORMAT = 1
@@ -839,6 +843,33 @@ class CampaignStore:
             kernel=c["kernel"],
         )
 
+    def signals(self, result: SimulationResult, rows: Optional[np.ndarray] = None) -> StoredResult:
+        """``result`` (the campaign's final states and metrics, its cases ``rows`` of the campaign,
+        default all) with the recorded signals this store keeps as :class:`StoredArray` views of
+        its Zarr tree: read on demand (:mod:`landing.campaign.lazy`), never held here."""
+        group = self._zarr_group("r")
+        root = self.path / TRAJECTORIES
+        arrays: dict[str, np.ndarray] = {}
+        for name in self.layout["arrays"]:
+            if name == "final_state":
+                continue
+            stored = group[name]
+            lazy = StoredArray.open(root, name, tuple(stored.shape), int(stored.chunks[0]), stored.dtype)
+            # the field is typed as an array: a StoredArray stands for one (shape, dtype, indexing,
+            # np.asarray), read only
+            arrays[name] = cast(np.ndarray, lazy if rows is None else lazy[rows])
+        return StoredResult(
+            t=result.t,
+            states=arrays.get("states"),
+            controls=arrays.get("controls"),
+            final_state=result.final_state,
+            diagnostics={k: arrays[k] for k in self.layout["diagnostics"]},
+            metrics=result.metrics,
+            state_names=result.state_names,
+            control_names=result.control_names,
+            kernel=result.kernel,
+        )
+
     def read_initial(self) -> np.ndarray:
         """The initial states of every completed chunk, (n, n_state), in case order."""
         names = [f"x0_{s}" for s in self.layout["state_names"]]
@@ -857,6 +888,25 @@ def default_chunk_size(n: int) -> int:
     return min(n, max(1000, -(-n // 50)))
 
 
+def store_path(path: Any) -> Path:
+    """``monte_carlo``'s ``store`` argument as a path (a ParameterTypeError for anything else)."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise ParameterTypeError(f"store must be a directory path (str or os.PathLike), got {path!r}")
+    return Path(path)
+
+
+def store_chunk_size(path: Union[str, os.PathLike], n: int, chunk_size: Optional[int]) -> int:
+    """The cases per chunk of the campaign stored at ``path``: ``chunk_size`` when given, else
+    the store's own when it exists (a resumed campaign keeps its chunking), else
+    :func:`default_chunk_size`."""
+    if chunk_size is not None:
+        return chunk_size
+    path = store_path(path)
+    if (path / PROVENANCE).exists():
+        return _key_of(path, _read_record(path, PROVENANCE)).chunk_size
+    return default_chunk_size(n)
+
+
 def open_campaign_store(
     path: Union[str, os.PathLike],
     scenario: Scenario,
@@ -873,15 +923,9 @@ def open_campaign_store(
     """The store of ``monte_carlo(..., store=path)``: created, or resumed when it holds this
     campaign. Without a chunk size a resumed store keeps its own and a new one takes
     ``max(1000, n / 50)`` cases per chunk (at most n)."""
-    if not isinstance(path, (str, os.PathLike)):
-        raise ParameterTypeError(f"store must be a directory path (str or os.PathLike), got {path!r}")
     require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
-    path = Path(path)
-    if chunk_size is None:
-        if (path / PROVENANCE).exists():
-            chunk_size = _key_of(path, _read_record(path, PROVENANCE)).chunk_size
-        else:
-            chunk_size = default_chunk_size(n)
+    path = store_path(path)
+    chunk_size = store_chunk_size(path, n, chunk_size)
     key = CampaignKey.of(scenario, seed=seed, n=n, chunk_size=chunk_size, record_every=record_every,
                          keep=keep, x0=x0)
 

@@ -58,6 +58,12 @@ def batched(a: np.ndarray, ndim: int) -> np.ndarray:
     return a[None] if a.ndim == ndim - 1 else a
 
 
+def first_cases(res: SimulationResult, k: int) -> SimulationResult:
+    """The first ``k`` cases of a batch, what a figure draws (of a stored campaign, the only
+    ones it reads); a single case, or a batch of at most ``k``, as it is."""
+    return res.cases(0, k) if res.final_state.ndim == 2 and res.n_cases > k else res
+
+
 def need_records(res: SimulationResult) -> None:
     """Refuses a result that recorded nothing but its final states."""
     if res.t.size == 0:

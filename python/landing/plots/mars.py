@@ -14,6 +14,7 @@ from landing.plots._common import (
     Labelled,
     Result,
     batched,
+    first_cases,
     labelled,
     need_records,
     new_figure,
@@ -196,10 +197,11 @@ def _per_axis(result: Result, index: Callable[[SimulationResult], np.ndarray], y
               max_cases: int) -> Figure:
     res, _ = result_and_bounds(result)
     need_records(res)
+    res = first_cases(res, max_cases)
     fig = new_figure(figsize=(12, 3.8), layout="constrained")
     for j in range(3):
         ax = fig.add_subplot(1, 3, j + 1)
-        data = index(res)[:max_cases, :, j]
+        data = index(res)[:, :, j]
         ax.plot(res.t, data.T, lw=0.5, alpha=0.6)
         ax.set_title(f"{title}, {AXES[j]} axis")
         ax.set_xlabel("t (s)")

@@ -10,7 +10,7 @@ import numpy as np
 
 from landing._internal.table import ArrayLike
 from landing.plants import TetheredSatellite
-from landing.plots._common import Runs, batched, named_runs, need_records, new_figure, recorded
+from landing.plots._common import Runs, batched, first_cases, named_runs, need_records, new_figure, recorded
 from landing.results import SimulationResult
 from landing.theory import FNTSMCBounds
 
@@ -43,7 +43,7 @@ def _tether_pair(results: Runs, pick: Callable[[SimulationResult, Optional[Tethe
     axes = [fig.add_subplot(1, 2, j + 1) for j in range(2)]
     for label, res in runs.items():
         need_records(res)
-        data = pick(res, plant)[:max_cases]
+        data = pick(first_cases(res, max_cases), plant)
         for j, ax in enumerate(axes):
             lines = ax.plot(res.t, data[:, :, j].T * scale, lw=0.9)
             if label:
