@@ -25,6 +25,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
     "toml_reference",
+    "guide_examples",
 ]
 
 source_suffix = {".md": "markdown"}

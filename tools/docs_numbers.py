@@ -34,7 +34,7 @@ Usage (from the repository root)::
     python tools/docs_numbers.py --update [--slow]  # re-run and rewrite the blocks
     python tools/docs_numbers.py --list             # the blocks and their commands
 
-Files default to README.md and docs/*.md. A command prints the same bits at every run (seeded,
+Files default to README.md and the Markdown files under docs/ (not its _build or _generated). A command prints the same bits at every run (seeded,
 no timing): what it prints that is not deterministic is left out with ``drop:`` or ``match:``.
 """
 
@@ -240,7 +240,10 @@ def process(paths: list[Path], *, update: bool, slow: bool, root: Path = ROOT, t
 
 
 def default_paths(root: Path) -> list[Path]:
-    return [root / "README.md", *sorted((root / "docs").glob("*.md"))]
+    docs = root / "docs"
+    # not the site's build or its generated pages (folders whose names start with "_")
+    pages = [p for p in docs.rglob("*.md") if not any(part.startswith("_") for part in p.relative_to(docs).parts)]
+    return [root / "README.md", *sorted(pages)]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -252,7 +255,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--slow", action="store_true", help="also the slow commands (and date them when they match)")
     ap.add_argument("--root", type=Path, default=ROOT, help="the repository the commands' paths are relative to")
     ap.add_argument("--timeout", type=float, default=1800.0, help="seconds a command may take")
-    ap.add_argument("files", nargs="*", type=Path, help="Markdown files (default: README.md and docs/*.md)")
+    ap.add_argument("files", nargs="*", type=Path, help="Markdown files (default: README.md and docs/**/*.md)")
     args = ap.parse_args(argv)
     root = args.root.resolve()
     paths = [p.resolve() for p in args.files] or default_paths(root)
