@@ -68,7 +68,7 @@ def claims(mc: landing.MonteCarloResult, scenario: landing.Scenario) -> str:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description="seed 001 part 2: the 300-case Mars Monte Carlo")
+    ap = argparse.ArgumentParser(description="the Mars fixed-time guidance paper, part 2: the 300-case Monte Carlo")
     ap.add_argument("--cases", type=int, default=300)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", default="figures/mars_monte_carlo", help="folder for the figures")

@@ -88,7 +88,7 @@ def mars_nominal(**overrides: Any) -> Scenario:
     """Seed 001 part 1: the nominal landing from Table I, no disturbance, no thrust limit."""
     s = Scenario(
         name="mars_nominal",
-        description="seed 001 part 1, nominal landing (Table I)",
+        description="the Mars fixed-time guidance paper, part 1: nominal landing (Table I)",
         plant=plants.MarsLander(),
         controller=_mars_law(),
         x0=MARS_NOMINAL_STATE.copy(),
@@ -115,7 +115,8 @@ def mars_fast(**overrides: Any) -> Scenario:
     the paper's central comparison."""
     return mars_nominal(
         name="mars_fast",
-        description="seed 001 part 1, nominal landing (Table I), gains tuned to land sooner under 40 kN",
+        description=("the Mars fixed-time guidance paper, part 1: nominal landing (Table I), gains tuned to land "
+                     "sooner under 40 kN"),
         controller=_mars_law(**MARS_FAST_GAINS),
     ).replace(**overrides)
 
@@ -131,7 +132,8 @@ def mars_super_twisting(variant: Literal["printed", "standard"] = "printed", **o
     law = controllers.SuperTwisting(variant=variant, c=MARS_SUPER_TWISTING_C)
     return mars_nominal(
         name=f"mars_super_twisting_{variant}",
-        description=f"seed 001 super-twisting baseline ({variant} variant), nominal landing",
+        description=(f"the Mars fixed-time guidance paper: its super-twisting baseline ({variant} variant), "
+                     "nominal landing"),
         controller=law,
         t_final=200.0,
     ).replace(**overrides)
@@ -143,7 +145,7 @@ def mars_monte_carlo(**overrides: Any) -> Scenario:
     sd = np.array([100.0, 100.0, 100.0, 10.0, 10.0, 10.0, 20.0])
     s = Scenario(
         name="mars_monte_carlo",
-        description="seed 001 part 2, 300-case Monte Carlo under a_p = 20 sin t (Table II)",
+        description="the Mars fixed-time guidance paper, part 2: 300-case Monte Carlo under a_p = 20 sin t (Table II)",
         plant=plants.MarsLander(),
         controller=_mars_law(),
         x0=MARS_NOMINAL_STATE.copy(),
@@ -238,7 +240,7 @@ def mars_thrust_limited(**overrides: Any) -> Scenario:
     high = np.array([200.0, 2000.0, 1500.0, 45.0, 0.0, 0.0, 1905.0])
     s = Scenario(
         name="mars_thrust_limited",
-        description="seed 001 part 3, 50-case uniform sweep (Table III), 50 kN per axis",
+        description="the Mars fixed-time guidance paper, part 3: 50-case uniform sweep (Table III), 50 kN per axis",
         plant=plants.MarsLander(thrust_limit=50_000.0),
         controller=_mars_law(),
         x0=0.5 * (low + high),
@@ -327,7 +329,7 @@ def seed000_tracking(law: str = "fuzzy_ftsmc", switch: str = "sign", **overrides
     ``switch`` "sign" or "tanh" (the seed's two variants)."""
     s = Scenario(
         name=f"seed000_{law}_{switch}",
-        description=f"seed 000 trajectory tracking, {law} with {switch} switching",
+        description=f"the fuzzy fast-terminal asteroid paper: trajectory tracking, {law} with {switch} switching",
         plant=plants.SmallBody(),
         controller=_seed000_law(law, switch),
         x0=seed000_initial_state(),
@@ -342,7 +344,8 @@ def seed000_tracking(law: str = "fuzzy_ftsmc", switch: str = "sign", **overrides
 def seed000_landing(law: str = "fuzzy_ftsmc", switch: str = "tanh", **overrides: Any) -> Scenario:
     """Seed 000's full landing: the same tracking over the whole 8000 s reference."""
     return seed000_tracking(law, switch, name=f"seed000_landing_{law}_{switch}",
-                            description=f"seed 000 full 8000 s landing, {law} with {switch} switching",
+                            description=("the fuzzy fast-terminal asteroid paper: full 8000 s landing, "
+                                         f"{law} with {switch} switching"),
                             t_final=8000.0, record_every=100).replace(**overrides)
 
 
@@ -363,7 +366,7 @@ def seed002_landing(law: str = "fuzzy_variable_rate", **overrides: Any) -> Scena
         raise ParameterError(f"law = {law!r} is not one of {SEED002_LAWS}")
     s = Scenario(
         name=f"seed002_{law}",
-        description=f"seed 002 landing with the {law} reaching law",
+        description=f"the fuzzy variable-rate asteroid paper: landing with the {law} reaching law",
         plant=seed002_plant(),
         controller=controller,
         x0=seed002_initial_state(),
@@ -420,7 +423,8 @@ def tether_comparison(law: str = "fntsmc", fidelity: str = "flexible", **overrid
     dt = 0.01
     s = Scenario(
         name=f"tether_{law}_{fidelity}",
-        description=f"seed 003 comparison, {str(law).upper()} on the {fidelity} tethered satellite",
+        description=(f"the tethered-satellite paper: comparison, {str(law).upper()} on the {fidelity} "
+                     "tethered satellite"),
         plant=plant,
         controller=controller,
         x0=plant.initial_state(*TETHER_INITIAL_ANGLES),
@@ -448,7 +452,8 @@ def tether_monte_carlo(spread_deg: float = 10.0, law: str = "fntsmc", fidelity: 
     base = tether_comparison(law, fidelity)
     s = base.replace(
         name=f"tether_monte_carlo_{law}_{spread_deg:g}deg",
-        description=f"seed 003 set-up, {law.upper()}, initial angles within {spread_deg:g} degrees",
+        description=(f"the tethered-satellite paper: set-up, {law.upper()}, initial angles within "
+                     f"{spread_deg:g} degrees"),
         dispersion=dispersions.Uniform(low=-hi, high=hi),
         t_final=float(max(100.0, 60.0 * math.ceil(spread_deg * 40.0 / 60.0))),
         record_every=10,
