@@ -39,7 +39,7 @@ CONSTRUCTION = [
     (lambda: controllers.FixedTimeMSS(**gains(), s1_floor=0.0), "s1_floor > 0"),
     (lambda: controllers.FixedTimeMSS(**gains(), variant="exactly"), "variant = \"exactly\" is not one of"),
     (lambda: controllers.FixedTimeMSS(**gains(alpha1=[0.9, 0.8, 0.7, 0.6, 0.5], alpha2=[0.5, 0.4, 0.3, 0.2])),
-     "alpha2 has 4 values per case but the batch has 5 cases"),
+     r"alpha2 has 4 values: one per axis takes 3 \(the plant's axes\), one per case 5 \(the batch's cases\)"),
     (lambda: controllers.SuperTwisting(b1=0.0), "b1 > 0"),
     (lambda: controllers.SuperTwisting(b2=-1.0), "b2 > 0"),
     (lambda: controllers.SuperTwisting(c=0.0), "c > 0"),
@@ -109,7 +109,7 @@ SIMULATION = [
     (dict(disturbance=[disturbances.Sinusoid(1.0, 1.0)] * 5), ValueError, "at most 4"),
     (dict(t_final=5.0, dt=1e-12), ValueError, r"t_final / dt <= 2\^40"),
     (dict(controller=controllers.FixedTimeMSS(**gains(alpha1=[0.9, 0.8]))), ValueError,
-     "alpha1 has 2 values per case but the batch has 1 cases"),
+     r"alpha1 has 2 values: one per axis of a 2-axis plant, but this plant has 3 axes; one per case would be 1"),
 ]
 
 

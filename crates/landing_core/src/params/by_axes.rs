@@ -111,7 +111,20 @@ impl<M: ReadFor> ByAxes<M> {
         Dim<D>: AxisCount<D>,
     {
         let (models, cases) = self.get::<D>()?;
-        cases.check(owner, n)?;
+        if let Err(e) = cases.check(owner, n) {
+            // a vector sized for a plant of the other axis count reads as per case here (a
+            // law's per-axis defaults on another paper's plant): say both readings
+            return Err(match &cases.key {
+                Some(key) if cases.count != D && self.axes().contains(&cases.count) => {
+                    ReadError::value(format!(
+                        "{owner}: {key} has {count} values: one per axis of a {count}-axis plant, but this \
+                         plant has {D} axes; one per case would be {n} (the batch's cases)",
+                        count = cases.count
+                    ))
+                }
+                _ => e,
+            });
+        }
         Ok(models.clone())
     }
 

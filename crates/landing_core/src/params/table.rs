@@ -416,6 +416,13 @@ impl<'t> Reader<'t> {
             [] | [1] => out.extend(std::iter::repeat_n(a.data[0], d)),
             [n] if *n == d => out.extend_from_slice(row(0)),
             [len] => {
+                // neither per axis nor per case: say both counts (a law's per-axis defaults
+                // sized for another plant read as per case otherwise)
+                if let Some(n) = self.cases.filter(|n| n != len) {
+                    return Err(ReadError::value(format!(
+                        "{key} has {len} values: one per axis takes {d} (the plant's axes), one per case {n} (the batch's cases)"
+                    )));
+                }
                 self.claim(key, *len)?;
                 out.extend(std::iter::repeat_n(a.data[i], d));
             }
