@@ -23,8 +23,9 @@ use nalgebra::SVector;
 
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, ReadError, Validate, check_also, check_axes};
+use crate::lanes::axes::Axes;
 use crate::lanes::math::PowLog;
-use crate::lanes::{Real, filled, sub};
+use crate::lanes::{Real, sub};
 use crate::math::sgn;
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
@@ -61,26 +62,23 @@ pub struct Ntsmc<const D: usize, R = f64> {
 crate::gather_struct!(Ntsmc<const D: usize, R> { lanes: [alpha, beta, gamma, k], shared: [] });
 
 impl<const D: usize, R: Real> Ntsmc<D, R> {
-    /// (s, sig^(2 - r)(e2)) on axis i, with r = gamma / alpha: both powers of |e2| from one
-    /// logarithm (at e2 = 0 it is -inf and both powers are 0, as 1 < r < 2).
+    /// (s, sig^(2 - r)(e2), r) with r = gamma / alpha, every axis at once ([`Axes`]: the same
+    /// operations lane by lane as axis after axis, so the same bits): both powers of |e2| from
+    /// one logarithm (at e2 = 0 it is -inf and both powers are 0, as 1 < r < 2).
     #[inline(always)]
-    fn axis(&self, i: usize, e1: R, e2: R) -> (R, R) {
-        let r = self.gamma[i] / self.alpha[i];
+    fn surfaces(&self, input: &LawInput<D, R>) -> (Axes<R, D>, Axes<R, D>, Axes<R, D>) {
+        let r = Axes::of(&self.gamma) / Axes::of(&self.alpha);
+        let e2 = Axes::of(&input.de);
         let l = PowLog::of(e2.abs());
         let sign = sgn(e2);
-        let s = e1 + sign * l.pow(r) / self.beta[i];
-        (s, sign * l.pow(R::splat(2.0) - r))
+        let s = Axes::of(&input.e) + sign * l.pow(r) / Axes::of(&self.beta);
+        (s, sign * l.pow(<Axes<R, D> as Real>::splat(2.0) - r), r)
     }
 
     /// The sliding variable s per axis.
     #[inline(always)]
     pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
-        // A loop, not `vector(|i| ..)`: see `FixedTimeMss::s2`.
-        let mut s = filled(R::zero());
-        for i in 0..D {
-            s[i] = self.axis(i, input.e[i], input.de[i]).0;
-        }
-        s
+        self.surfaces(input).0.vector()
     }
 }
 
@@ -93,13 +91,10 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for Ntsmc<D, R> {
 
     #[inline(always)]
     fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
-        let mut a = sub(&input.reference.acceleration, &input.drift);
-        for i in 0..D {
-            let r = self.gamma[i] / self.alpha[i];
-            let (s, sig2r) = self.axis(i, input.e[i], input.de[i]);
-            a[i] -= self.beta[i] / r * sig2r + self.k[i] * sgn(s);
-        }
-        a
+        let (s, sig2r, r) = self.surfaces(input);
+        let (beta, k) = (Axes::of(&self.beta), Axes::of(&self.k));
+        let a = Axes::of(&sub(&input.reference.acceleration, &input.drift));
+        (a - (beta / r * sig2r + k * sgn(s))).vector()
     }
 
     #[inline(always)]
