@@ -106,3 +106,20 @@ def test_metric_units_put_in_the_plants_coordinate_and_command_units():
     # thrust in N and torque in N m: the command's metrics have no one unit
     assert "peak_command" not in tether and "chattering_variation" not in tether
     assert tether["chattering_hf_share"] == "1" and tether["settle_time"] == "s"
+
+
+def test_results_print_a_short_summary_not_their_arrays(tmp_path):
+    # print(res) and print(mc) as xarray and pandas print: sizes, names, the metric table; the
+    # length does not grow with the cases
+    s = landing.scenarios.preset("mars_monte_carlo").replace(t_final=1.0)
+    many = s.simulate_batch(s.initial_states(500, seed=1), record_every=10)
+    text = repr(many)
+    assert "array(" not in text and len(text.splitlines()) < 40
+    assert text.startswith("<landing.SimulationResult: 500 cases, 101 instants recorded, 0 .. 1 s, every 0.01 s")
+    assert "states       (500x101x7) rx ry rz vx vy vz m" in text and "diverged               0 of 500" in text
+    assert repr(many[3]).startswith("<landing.SimulationResult: one case")
+    mc = landing.monte_carlo(s, 50, seed=2, progress=False)
+    text = str(mc)
+    assert "array(" not in text and len(text.splitlines()) < 20
+    assert text.splitlines()[0] == "<landing.MonteCarloResult: mars_monte_carlo, 50 cases, seed 2>"
+    assert "dispersed: initial states" in text and "final_position_error" in text

@@ -429,6 +429,31 @@ class SimulationResult:
     def n_cases(self) -> int:
         return int(self.final_state.shape[0]) if self.final_state.ndim == 2 else 1
 
+    def __repr__(self) -> str:
+        """A short description (sizes, names, the recorded instants, the metric table), not the
+        arrays: ``print(res)``, ``res`` in a notebook."""
+        single = self.final_state.ndim == 1
+        head = "one case" if single else f"{self.n_cases} case{'s' if self.n_cases != 1 else ''}"
+        if self.t.size:
+            step = f", every {self.t[1] - self.t[0]:.6g} s" if self.t.size > 1 else ""
+            when = f"{self.t.size} instants recorded, {self.t[0]:.6g} .. {self.t[-1]:.6g} s{step}"
+        else:
+            when = "final states and metrics only (nothing recorded)"
+        lines = [f"<landing.SimulationResult: {head}, {when}{', kernel ' + self.kernel if self.kernel else ''}>"]
+
+        def shape(a: Any) -> str:
+            return "x".join(str(d) for d in np.shape(a))
+
+        if self.states is not None:
+            lines.append(f"  states       ({shape(self.states)}) {' '.join(self.state_names)}")
+        if self.controls is not None:
+            lines.append(f"  controls     ({shape(self.controls)}) {' '.join(self.control_names)}")
+        if self.diagnostics:
+            lines.append("  diagnostics  " + ", ".join(f"{k} ({shape(v)})" for k, v in self.diagnostics.items()))
+        lines.append(f"  final_state  ({shape(self.final_state)})")
+        lines += ["  " + line for line in repr(self.metrics).splitlines()]
+        return "\n".join(lines)
+
     @property
     def axis_names(self) -> tuple[str, ...]:
         """Names of the axes of the per-axis metrics and diagnostics (x, y, z for the

@@ -158,6 +158,25 @@ class MonteCarloResult:
     def __len__(self) -> int:
         return self.n_cases
 
+    def __repr__(self) -> str:
+        """A short description (the scenario, the sizes, what was kept and dispersed, the
+        summary table), not the arrays: ``print(mc)``, ``mc`` in a notebook; ``mc.report()``
+        says more."""
+        res = self.result
+        of = f" of {self.planned} planned (partial)" if self.partial else ""
+        where = f", stored in '{self.store}'" if self.store else ""
+        lines = [f"<landing.MonteCarloResult: {self.scenario.name}, {self.n_cases} cases{of}, seed {self.seed}{where}>"]
+        if res.t.size:
+            kept = ", ".join(self.keep) if self.keep else "nothing"
+            lines.append(f"  recorded: {kept} at {res.t.size} instants, {res.t[0]:.6g} .. {res.t[-1]:.6g} s")
+        else:
+            lines.append("  recorded: final states and metrics only")
+        draws = [k[len("param."):] for k in self.metrics if k.startswith("param.")]
+        dispersed = ["initial states"] * (self.scenario.dispersion is not None) + draws
+        lines.append(f"  dispersed: {', '.join(dispersed) if dispersed else 'nothing'}")
+        lines += str(self.summary()).splitlines()
+        return "\n".join(lines)
+
     def __getitem__(self, case: int) -> SimulationResult:
         """Row ``case`` (case ``case`` of the campaign unless :attr:`partial`) alone, its
         recorded signals and metrics, the case axis dropped."""
