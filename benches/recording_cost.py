@@ -1,0 +1,63 @@
+"""What recording costs a campaign (issue 27): the part-2 Mars preset (60 s at 1 ms), metrics only
+against recording every 50 ms (the preset's), through simulate_batch and through monte_carlo
+(in memory: one chunk and 20 chunks), medians of alternated repeats in one run.
+
+    python benches/recording_cost.py [--cases 2000] [--repeat 3] [--threads 2]
+
+Accuracy first: every path's final states equal simulate_batch's bit for bit.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+import numpy as np
+
+import landing
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", type=int, default=2000)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--threads", type=int, default=2)
+    args = ap.parse_args()
+    s = landing.scenarios.preset("mars_monte_carlo")
+    n, threads = args.cases, args.threads
+    steps = round(s.options.t_final / s.options.dt)
+    x0 = s.initial_states(n, seed=1)
+
+    def batch(every: int) -> landing.SimulationResult:
+        return s.simulate_batch(x0, seed=1, record_every=every, threads=threads)
+
+    def mc(every: int, chunk: int) -> landing.SimulationResult:
+        return landing.monte_carlo(s, n, seed=1, record_every=every, chunk_size=chunk, threads=threads,
+                                   progress=False, check_bounds=False).result
+
+    runs = {
+        "simulate_batch": batch,
+        "monte_carlo, one chunk": lambda e: mc(e, n),
+        "monte_carlo, 20 chunks": lambda e: mc(e, -(-n // 20)),
+    }
+    reference = batch(0).final_state
+    for name, f in runs.items():
+        for every in (0, 50):
+            assert np.array_equal(f(every).final_state, reference), (name, every)
+    times: dict[tuple[str, int], list[float]] = {(k, e): [] for k in runs for e in (0, 50)}
+    for _ in range(args.repeat):
+        for (name, every), out in times.items():
+            t0 = time.perf_counter()
+            runs[name](every)
+            out.append(time.perf_counter() - t0)
+    print(f"{n} cases x {steps} steps, {threads} threads; ns of wall time per case-step, median of {args.repeat}")
+    print(f"{'path':<26} {'metrics only':>13} {'every 50 ms':>12} {'cost':>7}")
+    for name in runs:
+        a = statistics.median(times[(name, 0)]) / (n * steps) * 1e9
+        b = statistics.median(times[(name, 50)]) / (n * steps) * 1e9
+        print(f"{name:<26} {a:>13.2f} {b:>12.2f} {100 * (b / a - 1):>6.1f}%")
+
+
+if __name__ == "__main__":
+    main()
