@@ -38,8 +38,9 @@ use nalgebra::{SMatrix, SVector};
 use super::rbf::{self, MAX_GRID, MAX_NODES};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, ReadError, Validate, check, check_axes};
+use crate::lanes::axes::Axes;
 use crate::lanes::math::PowLog;
-use crate::lanes::{Mask, Real, sub, vector, zeros};
+use crate::lanes::{Mask, Real, sub, zeros};
 use crate::math::sgn;
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
@@ -185,15 +186,17 @@ crate::gather_struct!(FixedTimeNtsmc<const D: usize, R> {
     shared: [rbf_nodes],
 });
 
-/// What the law computes on one axis at one instant.
+/// What the law computes at one instant, every axis at once ([`Axes`]: the same operations lane
+/// by lane as axis after axis, so the same bits, with D times the independent work for the
+/// processor between the logarithms and exponentials of each step).
 #[derive(Clone, Copy, Debug)]
-struct Axis<R> {
-    s: R,
+struct Surfaces<const D: usize, R> {
+    s: Axes<R, D>,
     /// ln |s|, shared by the powers of s in the reaching law and the adaptation
-    ln_abs_s: PowLog<R>,
+    ln_abs_s: PowLog<Axes<R, D>>,
     /// K1 zeta1' + K2 zeta2'
-    surface_rate: R,
-    phi: [R; MAX_NODES],
+    surface_rate: Axes<R, D>,
+    phi: [Axes<R, D>; MAX_NODES],
 }
 
 /// `sig^a(s)` from the logarithm of |s| (0 at s = 0 for a > 0).
@@ -204,25 +207,29 @@ fn sig_from_ln<R: Real>(s: R, ln_abs: PowLog<R>, a: R) -> R {
 
 impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
     #[inline(always)]
-    fn axis(&self, i: usize, input: &LawInput<D, R>) -> Axis<R> {
-        let (e1, e2) = (input.e[i], input.de[i]);
-        let (k1, k2) = (self.k1[i], self.k2[i]);
-        let z = ZetaPair::new(e1, [self.p1[i], self.p2[i]], self.sigma_phi[i]);
+    fn surfaces(&self, input: &LawInput<D, R>) -> Surfaces<D, R> {
+        let (e1, e2) = (Axes::of(&input.e), Axes::of(&input.de));
+        let (k1, k2) = (Axes::of(&self.k1), Axes::of(&self.k2));
+        let p = [Axes::of(&self.p1), Axes::of(&self.p2)];
+        let z = ZetaPair::new(e1, p, Axes::of(&self.sigma_phi));
         let s = e2 + k1 * z.zeta[0] + k2 * z.zeta[1];
         let surface_rate = (k1 * z.slope[0] + k2 * z.slope[1]) * e2;
-        let zn = [e1 / self.rbf_scale_e1[i], e2 / self.rbf_scale_e2[i]];
-        Axis {
+        let zn = [
+            e1 / Axes::of(&self.rbf_scale_e1),
+            e2 / Axes::of(&self.rbf_scale_e2),
+        ];
+        Surfaces {
             s,
             ln_abs_s: PowLog::of(s.abs()),
             surface_rate,
-            phi: rbf::basis(self.rbf_nodes, zn, self.rbf_width[i]),
+            phi: rbf::basis(self.rbf_nodes, zn, Axes::of(&self.rbf_width)),
         }
     }
 
     /// The sliding variable s per axis (eq. 20).
     #[inline(always)]
     pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
-        vector(|i| self.axis(i, input).s)
+        self.surfaces(input).s.vector()
     }
 
     /// The network's estimate W^T Phi of the unknown terms per axis, in actuator units.
@@ -231,20 +238,24 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
         weights: &SMatrix<R, MAX_NODES, D>,
         input: &LawInput<D, R>,
     ) -> SVector<R, D> {
-        vector(|i| {
-            let phi = self.axis(i, input).phi;
-            self.output(weights, i, &phi)
-        })
+        self.outputs(weights, &self.surfaces(input).phi).vector()
     }
 
+    /// W^T Phi on every axis, each axis's sum in node order.
     #[inline(always)]
-    fn output(&self, weights: &SMatrix<R, MAX_NODES, D>, i: usize, phi: &[R; MAX_NODES]) -> R {
+    fn outputs(
+        &self,
+        weights: &SMatrix<R, MAX_NODES, D>,
+        phi: &[Axes<R, D>; MAX_NODES],
+    ) -> Axes<R, D> {
         let n = self.rbf_nodes * self.rbf_nodes;
-        let mut sum = R::zero();
-        for j in 0..n {
-            sum += weights[(j, i)] * phi[j];
+        let mut sum = [R::zero(); D];
+        for (i, total) in sum.iter_mut().enumerate() {
+            for j in 0..n {
+                *total += weights[(j, i)] * phi[j].0[i];
+            }
         }
-        sum
+        Axes(sum)
     }
 }
 
@@ -260,46 +271,47 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
 
     #[inline(always)]
     fn command(&self, weights: &Self::Memory, input: &LawInput<D, R>) -> SVector<R, D> {
-        let mut a = sub(&input.reference.acceleration, &input.drift);
-        for i in 0..D {
-            let ax = self.axis(i, input);
-            let k3 = self.k3[i];
-            let reach = k3
-                * (sig_from_ln(ax.s, ax.ln_abs_s, self.alpha_s[i])
-                    + sig_from_ln(ax.s, ax.ln_abs_s, self.beta_s[i]));
-            let compensation = self.output(weights, i, &ax.phi) + self.eps_max[i] * sgn(ax.s);
-            a[i] -= ax.surface_rate + reach + compensation / input.inertia[i];
-        }
-        a
+        let sf = self.surfaces(input);
+        let reach = Axes::of(&self.k3)
+            * (sig_from_ln(sf.s, sf.ln_abs_s, Axes::of(&self.alpha_s))
+                + sig_from_ln(sf.s, sf.ln_abs_s, Axes::of(&self.beta_s)));
+        let compensation = self.outputs(weights, &sf.phi) + Axes::of(&self.eps_max) * sgn(sf.s);
+        let a = Axes::of(&sub(&input.reference.acceleration, &input.drift));
+        (a - (sf.surface_rate + reach + compensation / Axes::of(&input.inertia))).vector()
     }
 
     #[inline(always)]
     fn advance(&self, weights: &mut Self::Memory, input: &LawInput<D, R>) {
+        // Gamma = 0 leaves the weights where they are (w + 0 phi = w): skip the work
+        if (0..D).all(|i| self.gamma[i].simd_eq(R::zero()).all()) {
+            return;
+        }
         let n = self.rbf_nodes * self.rbf_nodes;
+        let sf = self.surfaces(input);
+        // 2 as - 1 > 0 and 2 bs - 1 > 1: both powers are finite at s = 0
+        let two = <Axes<R, D> as Real>::splat(2.0);
+        let big_n = Axes::of(&self.k3)
+            * (sig_from_ln(sf.s, sf.ln_abs_s, two * Axes::of(&self.alpha_s) - 1.0)
+                + sig_from_ln(sf.s, sf.ln_abs_s, two * Axes::of(&self.beta_s) - 1.0))
+            / Axes::of(&input.inertia);
         for i in 0..D {
-            // Gamma = 0 leaves the weights where they are (w + 0 phi = w): skip the work
             if self.gamma[i].simd_eq(R::zero()).all() {
                 continue;
             }
-            let ax = self.axis(i, input);
-            // 2 as - 1 > 0 and 2 bs - 1 > 1: both powers are finite at s = 0
-            let big_n = self.k3[i]
-                * (sig_from_ln(ax.s, ax.ln_abs_s, R::splat(2.0) * self.alpha_s[i] - 1.0)
-                    + sig_from_ln(ax.s, ax.ln_abs_s, R::splat(2.0) * self.beta_s[i] - 1.0))
-                / input.inertia[i];
-            let step = R::splat(input.dt) * self.gamma[i] * big_n;
+            let step = R::splat(input.dt) * self.gamma[i] * big_n.0[i];
             for j in 0..n {
-                weights[(j, i)] += step * ax.phi[j];
+                weights[(j, i)] += step * sf.phi[j].0[i];
             }
         }
     }
 
     #[inline(always)]
     fn diagnostics(&self, weights: &Self::Memory, input: &LawInput<D, R>, out: &mut [R]) {
+        let sf = self.surfaces(input);
+        let estimate = self.outputs(weights, &sf.phi);
         for i in 0..D {
-            let ax = self.axis(i, input);
-            out[i] = ax.s;
-            out[D + i] = self.output(weights, i, &ax.phi);
+            out[i] = sf.s.0[i];
+            out[D + i] = estimate.0[i];
         }
     }
 }
