@@ -309,10 +309,8 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
     fn diagnostics(&self, weights: &Self::Memory, input: &LawInput<D, R>, out: &mut [R]) {
         let sf = self.surfaces(input);
         let estimate = self.outputs(weights, &sf.phi);
-        for i in 0..D {
-            out[i] = sf.s.0[i];
-            out[D + i] = estimate.0[i];
-        }
+        out[..D].copy_from_slice(&sf.s.0);
+        out[D..2 * D].copy_from_slice(&estimate.0);
     }
 }
 
