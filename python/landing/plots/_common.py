@@ -3,9 +3,9 @@ reads, the case axis, and writing figures to files."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Optional, Union
+from typing import TYPE_CHECKING, Any, Optional, Union, cast
 
 import numpy as np
 
@@ -20,6 +20,9 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
 
 __all__ = ["AXES", "Labelled", "Result", "Runs", "save_figures"]
+
+#: Above this many cases a batch is drawn as its 5-95 % percentile band, not one line per case.
+BAND_ABOVE = 50
 
 #: The axis names of the three-axis plants.
 AXES = ("x", "y", "z")
@@ -36,6 +39,76 @@ def new_figure(**kw: Any) -> Figure:
     built directly is freed with the result it shows."""
     figure = import_extra("matplotlib.figure", "pip install matplotlib")
     return figure.Figure(**kw)
+
+
+def figure_of(ax: Axes) -> Figure:
+    """The Figure an Axes lies in (a subfigure's: the subfigure, as ``ax.figure``)."""
+    return cast("Figure", ax.figure)
+
+
+def single_axes(ax: Optional[Axes], **kw: Any) -> tuple[Figure, Axes]:
+    """The Figure and Axes a single-panel figure draws on: ``ax`` and its figure when given
+    (the user's own figure), else a new Figure of its own (``kw``: its size and layout) with one
+    subplot."""
+    if ax is not None:
+        return figure_of(ax), ax
+    fig = new_figure(**kw)
+    return fig, fig.add_subplot()
+
+
+def several_axes(axes: Optional[Sequence[Axes]], n: int, grid: tuple[int, int], **kw: Any
+                 ) -> tuple[Figure, list[Axes]]:
+    """The Figure and the ``n`` Axes a multi-panel figure draws on: ``axes`` (a sequence of
+    exactly ``n`` Axes of one figure, refused otherwise) or a new Figure (``kw``) with an
+    ``grid`` = (rows, columns) of subplots."""
+    if axes is not None:
+        got = list(np.ravel(np.asarray(axes, dtype=object)))
+        if len(got) != n:
+            raise ParameterError(f"axes: this figure draws {n} panels, got a sequence of {len(got)} Axes")
+        return figure_of(got[0]), got
+    fig = new_figure(**kw)
+    rows, cols = grid
+    return fig, [fig.add_subplot(rows, cols, j + 1) for j in range(n)]
+
+
+def say_why(ax: Axes, why: str) -> None:
+    """An empty panel says why it is empty instead of showing bare axes."""
+    ax.text(0.5, 0.5, why, transform=ax.transAxes, ha="center", va="center", wrap=True, fontsize=9, color="0.3")
+    ax.set_xticks([])
+    ax.set_yticks([])
+
+
+def draw_cases(ax: Axes, t: np.ndarray, data: np.ndarray, highlight: int = 0, scale: float = 1.0,
+               what: str = "cases", **style: Any) -> None:
+    """A batch's signal (cases, T): thin light lines for the cases (their 5-95 % percentile band
+    beyond :data:`BAND_ABOVE` cases) with one legend entry, and the ``highlight`` case (the
+    nominal: the first) bold over them. One case: a single line."""
+    data = np.asarray(data, dtype=float).reshape(-1, len(t)) * scale
+    n = data.shape[0]
+    if n == 1:
+        ax.plot(t, data[0], lw=1.2, **style)
+        return
+    k = int(highlight) % n
+    if n > BAND_ABOVE:
+        lo, hi = np.nanpercentile(data, [5.0, 95.0], axis=0)
+        ax.fill_between(t, lo, hi, color="tab:blue", alpha=0.25, lw=0, label=f"{what} 5-95 % ({n})")
+    else:
+        others = np.delete(data, k, axis=0)
+        lines = ax.plot(t, others.T, lw=0.5, alpha=0.35, color="tab:blue")
+        lines[0].set_label(f"{what} ({n})")
+    ax.plot(t, data[k], lw=1.8, color="k", label="nominal" if k == 0 else f"case {k}")
+
+
+def mars_limits(result: Result, plant: Optional[Any] = None) -> tuple[Optional[np.ndarray], Optional[float]]:
+    """The Mars lander's per-axis thrust limit (3,) and its thrust magnitude limit, N (None where
+    it has none): of ``plant`` when given, else of the campaign's scenario."""
+    if plant is None and isinstance(result, MonteCarloResult):
+        plant = result.scenario.plant
+    per_axis = getattr(plant, "thrust_limit", None)
+    magnitude = getattr(plant, "thrust_magnitude_limit", None)
+    axis_limit = None if per_axis is None else np.broadcast_to(np.asarray(per_axis, dtype=float), (3,))
+    mag = None if magnitude is None else float(np.max(np.asarray(magnitude, dtype=float)))
+    return axis_limit, mag
 
 
 def result_and_bounds(result: Result) -> tuple[SimulationResult, Optional[MSSBounds]]:

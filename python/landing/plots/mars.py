@@ -4,22 +4,30 @@ comparison's position, thrust and mass."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from typing import TYPE_CHECKING, Callable, Optional
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Optional
 
 import numpy as np
 
+from landing.plants import MarsLander
 from landing.plots._common import (
     AXES,
+    BAND_ABOVE,
     Labelled,
     Result,
     batched,
+    draw_cases,
+    figure_of,
     first_cases,
     labelled,
+    mars_limits,
     need_records,
     new_figure,
     recorded,
     result_and_bounds,
+    say_why,
+    several_axes,
+    single_axes,
 )
 from landing.results import SimulationResult
 from landing.theory import MSSBounds
@@ -41,21 +49,36 @@ __all__ = [
 ]
 
 
-def trajectories_3d(result: Result, max_cases: int = 300) -> Figure:
-    """3D trajectories (seed 001 Fig. 7(a)), the target marked."""
+def trajectories_3d(result: Result, max_cases: int = 300, *, highlight: int = 0, ax: Optional[Any] = None) -> Figure:
+    """3D trajectories (seed 001 Fig. 7(a)): the cases thin, the nominal (case ``highlight``)
+    bold, the target marked and the ground (z = 0) outlined. ``ax``: a 3D Axes to draw into."""
     res, _ = result_and_bounds(result)
     need_records(res)
     s = batched(recorded(res, "states"), 3)[:max_cases]
-    fig = new_figure(figsize=(7, 6))
-    ax = fig.add_subplot(projection="3d")
-    for case in s:
-        ax.plot(case[:, 0], case[:, 1], case[:, 2], lw=0.6, alpha=0.6)
-    ax.scatter([0], [0], [0], color="k", marker="x", s=60, label="target")
+    if ax is None:
+        fig = new_figure(figsize=(7, 6))
+        ax = fig.add_subplot(projection="3d")
+    else:
+        fig = figure_of(ax)
+    k = int(highlight) % s.shape[0]
+    lw = 0.4 if s.shape[0] > BAND_ABOVE else 0.6
+    first = 1 if k == 0 else 0
+    for i, case in enumerate(s):
+        if i != k:
+            ax.plot(case[:, 0], case[:, 1], case[:, 2], label=f"cases ({s.shape[0]})" if i == first else None,
+                    lw=lw, alpha=0.4, color="tab:blue")
+    ax.plot(s[k, :, 0], s[k, :, 1], s[k, :, 2], lw=1.8, color="k",
+            label=("nominal" if k == 0 else f"case {k}") if s.shape[0] > 1 else "trajectory")
+    lo = np.minimum(np.nanmin(s[:, :, :2], axis=(0, 1)), 0.0)
+    hi = np.maximum(np.nanmax(s[:, :, :2], axis=(0, 1)), 0.0)
+    ax.plot([lo[0], hi[0], hi[0], lo[0], lo[0]], [lo[1], lo[1], hi[1], hi[1], lo[1]], [0.0] * 5, color="0.5",
+            lw=0.8, label="ground (z = 0)")
+    ax.scatter([0], [0], [0], color="tab:red", marker="x", s=60, label="target")
     ax.set_xlabel("crossrange x (m)")
     ax.set_ylabel("downrange y (m)")
     ax.set_zlabel("altitude z (m)")
     ax.set_title(f"Trajectories ({s.shape[0]} cases)")
-    ax.legend()
+    ax.legend(fontsize="small")
     return fig
 
 
@@ -78,22 +101,27 @@ def dispersion_ellipse(points: np.ndarray, k: float, samples: int = 181) -> np.n
     return mean + k * (circle * np.sqrt(np.maximum(w, 0.0))) @ v.T
 
 
-def landing_sites(result: Result, requirement_radius: Optional[float] = None) -> Figure:
+def landing_sites(result: Result, requirement_radius: Optional[float] = None, *, highlight: int = 0,
+                  axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Touchdown sites: where each case first crosses rz = 0 from above (the ``touchdown_position``
     metric, interpolated within the integrator step), on the XOY plane, with their 1, 2 and 3
     sigma dispersion ellipses (of the sites' 2-D covariance), the requirement's circle about the
     target when ``requirement_radius`` is given, and the theoretical s1 neighbourhood when the
     result carries bounds; and the touchdown speeds (seed 001 Fig. 8(a), (c) read at touchdown).
-    Cases that never touch the ground are counted in the title."""
+    Cases that never touch the ground are counted in the title; the nominal's site (case
+    ``highlight``) is marked. ``axes``: two Axes to draw into (sites, speeds)."""
     res, bounds = result_and_bounds(result)
     m = res.metrics
     r = np.atleast_2d(np.asarray(m["touchdown_position"], dtype=float))[:, :3]
     speed = np.atleast_1d(np.asarray(m["touchdown_speed"], dtype=float))
     touched = np.all(np.isfinite(r), axis=1)
     radius = None if bounds is None else float(np.max(bounds.s1_radius))
-    fig = new_figure(figsize=(11, 5), layout="constrained")
-    ax = fig.add_subplot(1, 2, 1)
+    fig, (ax, ax_speed) = several_axes(axes, 2, (1, 2), figsize=(11, 5), layout="constrained")
     ax.scatter(r[touched, 0], r[touched, 1], s=8, color="tab:blue", label="touchdown sites")
+    k = int(highlight) % touched.size
+    if touched.size > 1 and touched[k]:
+        ax.scatter(r[k:k + 1, 0], r[k:k + 1, 1], s=60, marker="D", facecolors="none", edgecolors="k", lw=1.5,
+                   label="nominal" if k == 0 else f"case {k}")
     ax.axhline(0, color="0.7", lw=0.5)
     ax.axvline(0, color="0.7", lw=0.5)
     ax.set_xlabel("x at touchdown (m)")
@@ -123,28 +151,32 @@ def landing_sites(result: Result, requirement_radius: Optional[float] = None) ->
                     "not informative here (not drawn)", transform=ax.transAxes, fontsize=8)
     if touched.any():
         ax.legend(loc="upper right", fontsize="small")
+    else:
+        ax.text(0.5, 0.5, "no case touched down (rz never crossed 0): no site to draw", transform=ax.transAxes,
+                ha="center", va="center", fontsize=9, color="0.3")
     ax.set_aspect("equal", adjustable="datalim")
-    ax = fig.add_subplot(1, 2, 2)
+    ax = ax_speed
     if np.isfinite(speed).any():
         ax.hist(speed[np.isfinite(speed)], bins=30, color="tab:green")
+    else:
+        say_why(ax, "no case touched down:\nno touchdown speed to draw")
     ax.set_xlabel("speed at touchdown (m/s)")
     ax.set_ylabel("cases")
     ax.set_title("Speed at the first rz = 0 crossing")
     return fig
 
 
-def final_velocities(result: Result) -> Figure:
+def final_velocities(result: Result, *, axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Velocities at touchdown (the ``touchdown_velocity`` metric, at the first rz = 0 crossing)
     on the XOZ and XOY planes (seed 001 Fig. 8(c), (d)); the final states' velocities only for
     the cases that never touch down (a case that hovers at its target until t_final would show
-    one dot at zero)."""
+    one dot at zero). ``axes``: two Axes to draw into (XOZ, XOY)."""
     res, _ = result_and_bounds(result)
     v_end = batched(res.final_state, 2)[:, 3:6]
     v_td = np.atleast_2d(np.asarray(res.metrics["touchdown_velocity"], dtype=float))[:, :3]
     touched = np.all(np.isfinite(v_td), axis=1)
-    fig = new_figure(figsize=(11, 5), layout="constrained")
-    for k, (j, name) in enumerate(((2, "z"), (1, "y"))):
-        ax = fig.add_subplot(1, 2, k + 1)
+    fig, panels = several_axes(axes, 2, (1, 2), figsize=(11, 5), layout="constrained")
+    for ax, (j, name) in zip(panels, ((2, "z"), (1, "y"))):
         if touched.any():
             ax.scatter(v_td[touched, 0], v_td[touched, j], s=8, color="tab:green",
                        label=f"at touchdown ({int(touched.sum())} cases)")
@@ -160,19 +192,26 @@ def final_velocities(result: Result) -> Figure:
     return fig
 
 
-def sliding_variables(result: Result, bounds: Optional[MSSBounds] = None, max_cases: int = 300) -> Figure:
+def sliding_variables(result: Result, bounds: Optional[MSSBounds] = None, max_cases: int = 300, *,
+                      highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
     """s1 and s2 per axis against time (seed 001 Fig. 9, 10), with the theoretical
-    neighbourhoods (dashed) and the times from which they hold (dotted), when known."""
+    neighbourhoods (dashed) and the times from which they hold (dotted), when known; a bound
+    off the plot or beyond the run is said in the panel's title. The cases thin, the nominal
+    (case ``highlight``) bold. ``axes``: six Axes to draw into (s1 x, y, z; s2 x, y, z)."""
     res, b = result_and_bounds(result)
     need_records(res)
     b = bounds if bounds is not None else b
-    fig = new_figure(figsize=(12, 7), layout="constrained")
+    fig, panels = several_axes(axes, 6, (2, 3), figsize=(12, 7.5), layout="constrained")
     for row, (name, unit) in enumerate((("s1", "m"), ("s2", "m/s"))):
+        if name not in res.diagnostics:
+            for ax in panels[3 * row:3 * row + 3]:
+                say_why(ax, f"{name} was not recorded (the law records s1 and s2 as diagnostics)")
+            continue
         sig = batched(res.diagnostics[name], 3)[:max_cases]
         for j in range(3):
-            ax = fig.add_subplot(2, 3, 3 * row + j + 1)
-            ax.plot(res.t, sig[:, :, j].T, lw=0.5, alpha=0.6)
-            ax.set_title(f"{name}, {AXES[j]} axis")
+            ax = panels[3 * row + j]
+            draw_cases(ax, res.t, sig[:, :, j], highlight)
+            notes = []
             ax.set_xlabel("t (s)")
             ax.set_ylabel(f"{name} ({unit})")
             if b is not None:
@@ -181,71 +220,107 @@ def sliding_variables(result: Result, bounds: Optional[MSSBounds] = None, max_ca
                 span = float(np.nanmax(np.abs(sig[:, :, j]))) or 1.0
                 if radius < 5 * span:
                     for sgn in (-1, 1):
-                        ax.axhline(sgn * radius, ls="--", color="tab:red", lw=1)
+                        ax.axhline(sgn * radius, ls="--", color="tab:red", lw=1,
+                                   label=f"bound |{name}| <= {radius:.4g} {unit}" if sgn > 0 else None)
                 else:
-                    ax.text(0.02, 0.95, f"radius {radius:.4g} {unit} (off the plot)", transform=ax.transAxes,
-                            fontsize=8, va="top")
+                    notes.append(f"bound |{name}| <= {radius:.4g} {unit}: off the plot")
                 if when <= res.t[-1]:
-                    ax.axvline(when, ls=":", color="tab:red", lw=1)
+                    ax.axvline(when, ls=":", color="tab:red", lw=1, label=f"bound time {when:.4g} s")
                 else:
-                    ax.text(0.02, 0.85, f"bound time {when:.4g} s (beyond the run)", transform=ax.transAxes,
-                            fontsize=8, va="top")
+                    notes.append(f"bound time {when:.4g} s: beyond the run")
+            ax.set_title("\n".join([f"{name}, {AXES[j]} axis", *notes]), fontsize="medium")
+            if j == 0 and ax.get_legend_handles_labels()[0]:
+                ax.legend(fontsize="x-small", loc="best")
     return fig
 
 
-def _per_axis(result: Result, index: Callable[[SimulationResult], np.ndarray], ylabel: str, title: str,
-              max_cases: int) -> Figure:
+def _per_axis(result: Result, signal: Callable[[SimulationResult], np.ndarray], ylabel: str, title: str,
+              max_cases: int, highlight: int, axes: Optional[Sequence[Axes]], scale: float = 1.0
+              ) -> tuple[Figure, list[Axes]]:
     res, _ = result_and_bounds(result)
     need_records(res)
     res = first_cases(res, max_cases)
-    fig = new_figure(figsize=(12, 3.8), layout="constrained")
-    for j in range(3):
-        ax = fig.add_subplot(1, 3, j + 1)
-        data = index(res)[:, :, j]
-        ax.plot(res.t, data.T, lw=0.5, alpha=0.6)
+    fig, panels = several_axes(axes, 3, (1, 3), figsize=(12, 3.8), layout="constrained")
+    data = batched(signal(res), 3)
+    for j, ax in enumerate(panels):
+        draw_cases(ax, res.t, data[:, :, j], highlight, scale)
         ax.set_title(f"{title}, {AXES[j]} axis")
         ax.set_xlabel("t (s)")
         ax.set_ylabel(ylabel)
+    return fig, panels
+
+
+def thrust(result: Result, max_cases: int = 300, *, plant: Optional[MarsLander] = None, highlight: int = 0,
+           axes: Optional[Sequence[Axes]] = None) -> Figure:
+    """Applied thrust per axis against time, kN (seed 001 Fig. 2(c), 12), with the lander's
+    per-axis limit and its thrust magnitude limit (which bounds every component) when it has
+    them: of ``plant``, else of the campaign's scenario. The cases thin, the nominal (case
+    ``highlight``) bold. ``axes``: three Axes to draw into (x, y, z)."""
+    fig, panels = _per_axis(result, lambda r: recorded(r, "controls"), "thrust (kN)", "Thrust", max_cases,
+                            highlight, axes, scale=1e-3)
+    per_axis, magnitude = mars_limits(result, plant)
+    for j, ax in enumerate(panels):
+        draw_thrust_limits(ax, None if per_axis is None else float(per_axis[j]), magnitude)
+        if j == 0 and ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize="x-small", loc="best")
     return fig
 
 
-def thrust(result: Result, max_cases: int = 300) -> Figure:
-    """Applied thrust per axis against time (seed 001 Fig. 2(c), 12)."""
-    return _per_axis(result, lambda r: batched(recorded(r, "controls"), 3), "thrust (N)", "Thrust", max_cases)
+def draw_thrust_limits(ax: Axes, per_axis: Optional[float], magnitude: Optional[float]) -> None:
+    """The per-axis thrust limit (dashed red) and the thrust magnitude limit (dash-dotted), in
+    kN, at + and -, where finite."""
+    for value, style, label in ((per_axis, "--", "axis limit"), (magnitude, "-.", "|F| limit")):
+        if value is not None and np.isfinite(value):
+            for sgn in (1, -1):
+                ax.axhline(sgn * value / 1e3, ls=style, color="tab:red", lw=1,
+                           label=f"{label} {value / 1e3:.4g} kN" if sgn > 0 else None)
 
 
-def positions(result: Result, max_cases: int = 300) -> Figure:
-    """Position per axis against time (seed 001 Fig. 2(a), 11)."""
-    return _per_axis(result, lambda r: batched(recorded(r, "states"), 3)[:, :, :3], "position (m)", "Position",
-                     max_cases)
+def positions(result: Result, max_cases: int = 300, *, highlight: int = 0,
+              axes: Optional[Sequence[Axes]] = None) -> Figure:
+    """Position per axis against time (seed 001 Fig. 2(a), 11), the ground (rz = 0) drawn on
+    the altitude. The cases thin, the nominal (case ``highlight``) bold. ``axes``: three Axes to
+    draw into (x, y, z)."""
+    fig, panels = _per_axis(result, lambda r: batched(recorded(r, "states"), 3)[:, :, :3], "position (m)",
+                            "Position", max_cases, highlight, axes)
+    panels[2].axhline(0.0, color="tab:brown", lw=1.2, label="ground (rz = 0)")
+    panels[2].legend(fontsize="x-small", loc="best")
+    return fig
 
 
-def mass(result: Result, max_cases: int = 300) -> Figure:
-    """Lander mass against time (seed 001 Fig. 4)."""
+def mass(result: Result, max_cases: int = 300, *, highlight: int = 0, ax: Optional[Axes] = None) -> Figure:
+    """Lander mass against time (seed 001 Fig. 4): the cases thin, the nominal (case
+    ``highlight``) bold. ``ax``: an Axes to draw into."""
     res, _ = result_and_bounds(result)
     need_records(res)
     m = batched(recorded(res, "states"), 3)[:max_cases, :, res.state_names.index("m")]
-    fig = new_figure(figsize=(6, 4), layout="constrained")
-    ax = fig.add_subplot()
-    ax.plot(res.t, m.T, lw=0.6, alpha=0.7)
+    fig, ax = single_axes(ax, figsize=(6, 4), layout="constrained")
+    draw_cases(ax, res.t, m, highlight)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("mass (kg)")
     ax.set_title("Mass")
+    if m.shape[0] > 1:
+        ax.legend(fontsize="x-small", loc="best")
     return fig
 
 
-def position_and_thrust(results: Labelled, ground: bool = True) -> Figure:
-    """One row per labelled single-case run: position per axis (left) and thrust per axis
+def position_and_thrust(results: Labelled, ground: bool = True, *, plant: Optional[MarsLander] = None,
+                        axes: Optional[Sequence[Axes]] = None) -> Figure:
+    """One row per labelled single-case run: position per axis (left) and thrust per axis, kN
     (right) against time (seed 001 Fig. 3: the optimum flown open loop without and with the
-    disturbance). The altitude's first crossing of zero is marked."""
+    disturbance). The altitude's first crossing of zero is marked, the ground (rz = 0) drawn
+    when ``ground``, and the thrust limits of ``plant`` when given. ``axes``: two Axes per run
+    to draw into (position, thrust, row by row)."""
     runs = labelled(results)
-    fig = new_figure(figsize=(12, 3.3 * len(runs)), layout="constrained")
+    fig, panels = several_axes(axes, 2 * len(runs), (len(runs), 2), figsize=(12, 3.3 * len(runs)),
+                               layout="constrained")
+    per_axis, magnitude = mars_limits(next(iter(runs.values())), plant)
     for row, (label, res) in enumerate(runs.items()):
-        ax = fig.add_subplot(len(runs), 2, 2 * row + 1)
+        ax = panels[2 * row]
         for j in range(3):
             ax.plot(res.t, recorded(res, "states")[:, j], label=f"r{AXES[j]}")
         if ground:
-            ax.axhline(0, color="0.5", lw=0.6)
+            ax.axhline(0, color="tab:brown", lw=1.0, label="ground")
         td = float(np.asarray(res.metrics["touchdown_time"]))
         if np.isfinite(td):
             ax.axvline(td, ls=":", color="tab:red", lw=1)
@@ -254,9 +329,10 @@ def position_and_thrust(results: Labelled, ground: bool = True) -> Figure:
         ax.set_ylabel("position (m)")
         ax.set_title(f"Position{': ' + label if label else ''}")
         ax.legend(fontsize=8)
-        ax = fig.add_subplot(len(runs), 2, 2 * row + 2)
+        ax = panels[2 * row + 1]
         for j in range(3):
             ax.step(res.t, recorded(res, "controls")[:, j] / 1e3, where="post", label=f"F{AXES[j]}")
+        draw_thrust_limits(ax, None if per_axis is None else float(np.max(per_axis)), magnitude)
         ax.set_xlabel("t (s)")
         ax.set_ylabel("thrust (kN)")
         ax.set_title(f"Thrust{': ' + label if label else ''}")
@@ -264,13 +340,12 @@ def position_and_thrust(results: Labelled, ground: bool = True) -> Figure:
     return fig
 
 
-def masses(results: Labelled, read_at: Optional[Mapping[str, float]] = None) -> Figure:
+def masses(results: Labelled, read_at: Optional[Mapping[str, float]] = None, *, ax: Optional[Axes] = None) -> Figure:
     """Mass against time for labelled single-case runs (seed 001 Fig. 4), each labelled with
     the fuel spent by ``read_at[label]`` (a time, e.g. the landing time; the end of the run if
-    not given)."""
+    not given). ``ax``: an Axes to draw into."""
     runs = labelled(results)
-    fig = new_figure(figsize=(7, 4.5), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = single_axes(ax, figsize=(7, 4.5), layout="constrained")
     for label, res in runs.items():
         m = recorded(res, "states")[:, res.state_names.index("m")]
         t_read = res.t[-1] if read_at is None or label not in read_at else float(read_at[label])
