@@ -169,11 +169,6 @@ def labelled(results: Labelled) -> dict[str, SimulationResult]:
     return out
 
 
-def axis_grid(fig: Figure, n: int) -> list[Axes]:
-    """``n`` subplots side by side."""
-    return [fig.add_subplot(1, n, j + 1) for j in range(n)]
-
-
 def named_runs(results: Runs) -> dict[str, SimulationResult]:
     """Runs by label (one run: the empty label)."""
     if isinstance(results, SimulationResult):

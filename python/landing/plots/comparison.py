@@ -4,105 +4,131 @@ trajectory against its reference."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Optional
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, Optional
 
 from landing.errors import ParameterError
-from landing.plots._common import AXES, Labelled, axis_grid, labelled, need_records, new_figure, recorded
+from landing.plots._common import (
+    AXES,
+    Labelled,
+    figure_of,
+    labelled,
+    need_records,
+    new_figure,
+    recorded,
+    say_why,
+    several_axes,
+    single_axes,
+)
 from landing.reference import Reference
 from landing.results import SimulationResult
 
 if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["tracking_errors", "commands", "diagnostic", "blend_coefficients", "trajectory_with_reference"]
 
 
-def tracking_errors(results: Labelled, reference: Optional[Reference] = None, velocity: bool = False) -> Figure:
+def tracking_errors(results: Labelled, reference: Optional[Reference] = None, velocity: bool = False, *,
+                    axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Position (or velocity) tracking error per axis against time, one line per labelled run
     (seed 000 Fig. 11, seed 002 Fig. 7). ``reference``: the target tracked (default the
-    origin)."""
+    origin). ``axes``: one Axes per axis of the plant to draw into."""
     runs = labelled(results)
-    fig = new_figure(figsize=(12, 3.8), layout="constrained")
     first = next(iter(runs.values()))
     n = recorded(first, "controls").shape[-1]
-    axes = axis_grid(fig, n)
+    fig, panels = several_axes(axes, n, (1, n), figsize=(12, 3.8), layout="constrained")
     for label, res in runs.items():
         q = recorded(res, "states")[:, n:2 * n] if velocity else recorded(res, "states")[:, :n]
         if reference is not None:
             p, v, _ = reference.evaluate(res.t, axes=n)
             q = q - (v if velocity else p)
-        for j, ax in enumerate(axes):
+        for j, ax in enumerate(panels):
             ax.plot(res.t, q[:, j], lw=0.9, label=label or None)
-    for j, ax in enumerate(axes):
+    for j, ax in enumerate(panels):
         ax.set_title(f"{'velocity' if velocity else 'position'} error, {AXES[j] if n == 3 else j}")
         ax.set_xlabel("t (s)")
+        ax.set_ylabel("velocity error (m/s)" if velocity else "position error (m)")
         ax.axhline(0, color="0.7", lw=0.5)
     if len(runs) > 1:
-        axes[0].legend()
+        panels[0].legend()
     return fig
 
 
-def commands(results: Labelled, ylabel: str = "command") -> Figure:
+def commands(results: Labelled, ylabel: str = "command (plant units)", *,
+             axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Applied command per axis against time, one line per labelled run (seed 000 Fig. 5, 10;
-    seed 002 Fig. 9, 10)."""
+    seed 002 Fig. 9, 10). ``ylabel``: the command and its unit, e.g. "u (m/s^2)". ``axes``: one
+    Axes per command to draw into."""
     runs = labelled(results)
     n = recorded(next(iter(runs.values())), "controls").shape[-1]
-    fig = new_figure(figsize=(12, 3.8), layout="constrained")
-    axes = axis_grid(fig, n)
+    fig, panels = several_axes(axes, n, (1, n), figsize=(12, 3.8), layout="constrained")
     for label, res in runs.items():
-        for j, ax in enumerate(axes):
+        for j, ax in enumerate(panels):
             ax.plot(res.t, recorded(res, "controls")[:, j], lw=0.7, label=label or None)
-    for j, ax in enumerate(axes):
+    for j, ax in enumerate(panels):
         ax.set_title(f"{res.control_names[j]}")
         ax.set_xlabel("t (s)")
         ax.set_ylabel(ylabel)
     if len(runs) > 1:
-        axes[0].legend()
+        panels[0].legend()
     return fig
 
 
-def diagnostic(results: Labelled, name: str = "s") -> Figure:
+def diagnostic(results: Labelled, name: str = "s", unit: str = "", *,
+               axes: Optional[Sequence[Axes]] = None) -> Figure:
     """A law's recorded signal (a sliding variable, the fuzzy term...) per axis against time,
-    one line per labelled run that has it (seed 000 Fig. 6, seed 002 Fig. 8)."""
+    one line per labelled run that has it (seed 000 Fig. 6, seed 002 Fig. 8); ``unit`` its unit
+    for the axis label (none: the law's own units). ``axes``: one Axes per component."""
     runs = {k: v for k, v in labelled(results).items() if name in v.diagnostics}
     if not runs:
         raise ParameterError(f"no run recorded the diagnostic {name!r}")
     first = next(iter(runs.values())).diagnostics[name]
     n = first.shape[-1] if first.ndim == 2 else 1
-    fig = new_figure(figsize=(12 if n > 1 else 6, 3.8), layout="constrained")
-    axes = axis_grid(fig, n)
+    fig, panels = several_axes(axes, n, (1, n), figsize=(12 if n > 1 else 6, 3.8), layout="constrained")
     for label, res in runs.items():
         sig = res.diagnostics[name].reshape(res.t.size, n)
-        for j, ax in enumerate(axes):
+        for j, ax in enumerate(panels):
             ax.plot(res.t, sig[:, j], lw=0.8, label=label or None)
-    for j, ax in enumerate(axes):
+    for j, ax in enumerate(panels):
         ax.set_title(name if n == 1 else f"{name}, {AXES[j] if n == 3 else j}")
         ax.set_xlabel("t (s)")
+        ax.set_ylabel(f"{name} ({unit})" if unit else f"{name} (the law's units)")
     if len(runs) > 1:
-        axes[0].legend()
+        panels[0].legend()
     return fig
 
 
-def blend_coefficients(result: SimulationResult) -> Figure:
-    """The fuzzy blend a(D), b(D) of FuzzyFastTerminalSMC against time (seed 000 Fig. 7)."""
+def blend_coefficients(result: SimulationResult, *, ax: Optional[Axes] = None) -> Figure:
+    """The fuzzy blend a(D), b(D) of FuzzyFastTerminalSMC against time (seed 000 Fig. 7).
+    ``ax``: an Axes to draw into."""
     need_records(result)
-    fig = new_figure(figsize=(6, 4), layout="constrained")
-    ax = fig.add_subplot()
+    fig, ax = single_axes(ax, figsize=(6, 4), layout="constrained")
+    missing = [name for name in ("a", "b") if name not in result.diagnostics]
+    if missing:
+        say_why(ax, f"the run did not record {' and '.join(missing)} (a FuzzyFastTerminalSMC diagnostic)")
+        return fig
     for name in ("a", "b"):
         ax.plot(result.t, result.diagnostics[name], label=name)
     ax.set_xlabel("t (s)")
+    ax.set_ylabel("coefficient (1)")
     ax.set_ylim(-0.05, 1.05)
     ax.legend()
     ax.set_title("Fuzzy blending coefficients")
     return fig
 
 
-def trajectory_with_reference(results: Labelled, reference: Optional[Reference] = None) -> Figure:
+def trajectory_with_reference(results: Labelled, reference: Optional[Reference] = None, *,
+                              ax: Optional[Any] = None) -> Figure:
     """3D trajectories of labelled runs with the reference they track (seed 000 Fig. 12, seed 002
-    Fig. 6)."""
+    Fig. 6). ``ax``: a 3D Axes to draw into."""
     runs = labelled(results)
-    fig = new_figure(figsize=(7, 6))
-    ax = fig.add_subplot(projection="3d")
+    if ax is None:
+        fig = new_figure(figsize=(7, 6))
+        ax = fig.add_subplot(projection="3d")
+    else:
+        fig = figure_of(ax)
     for label, res in runs.items():
         states = recorded(res, "states")
         ax.plot(states[:, 0], states[:, 1], states[:, 2], lw=1.0, label=label or "trajectory")

@@ -3,22 +3,23 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Optional, Union
+from typing import TYPE_CHECKING, Optional, Union
 
 import numpy as np
 
 from landing.campaign import MonteCarloResult
 from landing.campaign.sensitivity import RankCorrelations
-from landing.plots._common import new_figure
+from landing.plots._common import single_axes
 
 if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["tornado"]
 
 
 def tornado(result: Union[MonteCarloResult, RankCorrelations], metric: str, *, k: int = 10,
-            ax: Optional[Any] = None) -> Figure:
+            ax: Optional[Axes] = None) -> Figure:
     """The ``k`` dispersed quantities with the largest partial rank correlation (PRCC) with
     ``metric``, largest on top, as horizontal bars (Spearman's coefficient marked on each):
     which dispersion drives the metric, and in which direction. Takes a campaign (its
@@ -26,11 +27,7 @@ def tornado(result: Union[MonteCarloResult, RankCorrelations], metric: str, *, k
     given and returns its Figure."""
     corr = result.sensitivity([metric]) if isinstance(result, MonteCarloResult) else result
     top = corr.drivers(metric, k)[::-1]  # largest last: on top of the barh
-    if ax is None:
-        fig = new_figure(figsize=(7, 0.45 * len(top) + 1.5), layout="constrained")
-        ax = fig.add_subplot(1, 1, 1)
-    else:
-        fig = ax.figure
+    fig, ax = single_axes(ax, figsize=(7, 0.45 * len(top) + 1.5), layout="constrained")
     names = [t[0] for t in top]
     prcc = np.array([t[1] for t in top])
     spearman = np.array([t[2] for t in top])
@@ -40,7 +37,7 @@ def tornado(result: Union[MonteCarloResult, RankCorrelations], metric: str, *, k
     ax.set_yticks(y, names)
     ax.axvline(0.0, color="black", linewidth=0.8)
     ax.set_xlim(-1.05, 1.05)
-    ax.set_xlabel(f"rank correlation with {metric}")
+    ax.set_xlabel(f"rank correlation with {metric} (1)")
     ax.set_title(f"What drives {metric}")
     ax.legend(loc="lower right", fontsize="small")
     return fig

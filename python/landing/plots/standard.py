@@ -47,7 +47,8 @@ def standard_figures(result: Result, plant: Optional[Plant] = None,
             "landing_sites": landing_sites,
             "final_velocities": final_velocities,
             "positions": positions,
-            "thrust": thrust,
+            # the given plant's thrust limits (else a campaign's scenario's)
+            "thrust": lambda r: thrust(r, plant=plant),
             "mass": mass,
         }
         if {"s1", "s2"} <= set(res.diagnostics):
@@ -57,7 +58,7 @@ def standard_figures(result: Result, plant: Optional[Plant] = None,
         return {
             "tether_angles": tether_angles(res, plant),
             "tether_rates": tether_rates(res, plant),
-            "tether_commands": tether_commands(res),
+            "tether_commands": tether_commands(res, plant=plant),
         }
     figs = {"tracking_errors": tracking_errors(res, reference), "commands": commands(res)}
     if reference is not None and res.states is not None and res.states.shape[-1] >= 6:

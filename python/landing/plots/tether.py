@@ -3,18 +3,29 @@ against time, and the worst settle time against the initial spread with the fixe
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Callable, Optional, Union
 
 import numpy as np
 
 from landing._internal.table import ArrayLike
 from landing.plants import TetheredSatellite
-from landing.plots._common import Runs, batched, first_cases, named_runs, need_records, new_figure, recorded
+from landing.plots._common import (
+    Runs,
+    batched,
+    draw_cases,
+    first_cases,
+    named_runs,
+    need_records,
+    recorded,
+    say_why,
+    several_axes,
+)
 from landing.results import SimulationResult
 from landing.theory import FNTSMCBounds
 
 if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["tether_angles", "tether_rates", "tether_commands", "tether_fixed_time"]
@@ -37,55 +48,102 @@ def _tether_coordinates(res: SimulationResult,
 
 def _tether_pair(results: Runs, pick: Callable[[SimulationResult, Optional[TetheredSatellite]], np.ndarray],
                  ylabels: tuple[str, str], title: tuple[str, str], plant: Optional[TetheredSatellite], scale: float,
-                 max_cases: int) -> Figure:
+                 max_cases: int, highlight: int, axes: Optional[Sequence[Axes]]) -> tuple[Figure, list[Axes]]:
+    """Two panels; one run per label: a single case as one line, a batch as thin case lines
+    (a percentile band when many) with case ``highlight`` bold."""
     runs = named_runs(results)
-    fig = new_figure(figsize=(11, 4), layout="constrained")
-    axes = [fig.add_subplot(1, 2, j + 1) for j in range(2)]
+    fig, panels = several_axes(axes, 2, (1, 2), figsize=(11, 4), layout="constrained")
     for label, res in runs.items():
         need_records(res)
         data = pick(first_cases(res, max_cases), plant)
-        for j, ax in enumerate(axes):
+        for j, ax in enumerate(panels):
+            if len(runs) == 1 and data.shape[0] > 1:
+                draw_cases(ax, res.t, data[:, :, j], highlight, scale)
+                continue
             lines = ax.plot(res.t, data[:, :, j].T * scale, lw=0.9)
             if label:
                 lines[0].set_label(label)
-    for j, ax in enumerate(axes):
+    for j, ax in enumerate(panels):
         ax.set_title(f"{title[j]}")
         ax.set_xlabel("t (s)")
         ax.set_ylabel(ylabels[j])
         ax.axhline(0.0, color="0.7", lw=0.5)
-        if any(runs):
-            ax.legend()
+    return fig, panels
+
+
+def _legends(panels: list[Axes]) -> None:
+    for ax in panels:
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize="small")
+
+
+def tether_angles(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50, *,
+                  highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
+    """In-plane and attitude angles against time, degrees (seed 003 Fig. 3 and 5). ``results``
+    is a result or a mapping label -> result (e.g. {"FNTSMC": ..., "NTSMC": ...}); a batch's
+    cases thin with case ``highlight`` bold. ``axes``: two Axes to draw into (phi, theta)."""
+    fig, panels = _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[0], ("phi (deg)", "theta (deg)"),
+                               ("In-plane angle", "Attitude angle"), plant, 180.0 / np.pi, max_cases, highlight,
+                               axes)
+    _legends(panels)
     return fig
 
 
-def tether_angles(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50) -> Figure:
-    """In-plane and attitude angles against time, degrees (seed 003 Fig. 3 and 5). ``results``
-    is a result or a mapping label -> result (e.g. {"FNTSMC": ..., "NTSMC": ...})."""
-    return _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[0], ("phi (deg)", "theta (deg)"),
-                        ("In-plane angle", "Attitude angle"), plant, 180.0 / np.pi, max_cases)
+def tether_rates(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50, *,
+                 highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
+    """In-plane and attitude angular rates against time, deg/s (seed 003 Fig. 4 and 6).
+    ``axes``: two Axes to draw into (phi', theta')."""
+    fig, panels = _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[1],
+                               ("phi' (deg/s)", "theta' (deg/s)"), ("In-plane angular rate", "Attitude angular rate"),
+                               plant, 180.0 / np.pi, max_cases, highlight, axes)
+    _legends(panels)
+    return fig
 
 
-def tether_rates(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50) -> Figure:
-    """In-plane and attitude angular rates against time, deg/s (seed 003 Fig. 4 and 6)."""
-    return _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[1], ("phi' (deg/s)", "theta' (deg/s)"),
-                        ("In-plane angular rate", "Attitude angular rate"), plant, 180.0 / np.pi, max_cases)
+def tether_commands(results: Runs, max_cases: int = 50, *, plant: Optional[TetheredSatellite] = None,
+                    highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
+    """Applied thrust (N) and torque (N m) against time (seed 003 Fig. 7 (a), (b)), with the
+    plant's thrust and torque limits when ``plant`` is given. ``axes``: two Axes to draw into
+    (thrust, torque)."""
+    fig, panels = _tether_pair(results, lambda r, p: batched(recorded(r, "controls"), 3),
+                               ("thrust (N)", "torque (N m)"),
+                               ("(a) Thrust of the sub-satellite", "(b) Torque of the sub-satellite"), None, 1.0,
+                               max_cases, highlight, axes)
+    if plant is not None:
+        for ax, limit, unit in zip(panels, tether_limits(plant), ("N", "N m")):
+            if limit is not None and np.isfinite(limit):
+                for sgn in (1, -1):
+                    ax.axhline(sgn * limit, ls="--", color="tab:red", lw=1,
+                               label=f"limit {limit:.4g} {unit}" if sgn > 0 else None)
+    _legends(panels)
+    return fig
 
 
-def tether_commands(results: Runs, max_cases: int = 50) -> Figure:
-    """Applied thrust (N) and torque (N m) against time (seed 003 Fig. 7 (a), (b))."""
-    return _tether_pair(results, lambda r, p: batched(recorded(r, "controls"), 3), ("thrust (N)", "torque (N m)"),
-                        ("(a) Thrust of the sub-satellite", "(b) Torque of the sub-satellite"), None, 1.0, max_cases)
+def tether_limits(plant: TetheredSatellite) -> tuple[Optional[float], Optional[float]]:
+    """The tethered satellite's thrust limit (N) and torque limit (N m; by default
+    ``thrust_limit * side / 2``), None where it has none."""
+    thrust = None if plant.thrust_limit is None else float(np.max(np.asarray(plant.thrust_limit, dtype=float)))
+    if plant.torque_limit is not None:
+        torque: Optional[float] = float(np.max(np.asarray(plant.torque_limit, dtype=float)))
+    elif thrust is not None:
+        torque = thrust * float(np.max(np.asarray(plant.side, dtype=float))) / 2.0
+    else:
+        torque = None
+    return thrust, torque
 
 
 def tether_fixed_time(worst: Mapping[str, Mapping[float, np.ndarray]],
-                      bound: Union[FNTSMCBounds, ArrayLike]) -> Figure:
+                      bound: Union[FNTSMCBounds, ArrayLike], *, axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Worst settle time of each angle against the initial-error spread of a campaign, per law,
     with the fixed-time bound (dashed): ``worst[law][spread_deg]`` is a (2,) array (phi, theta);
-    ``bound`` the (2,) bound of :func:`landing.theory.fntsmc_bounds` (``.total``)."""
-    fig = new_figure(figsize=(11, 4), layout="constrained")
+    ``bound`` the (2,) bound of :func:`landing.theory.fntsmc_bounds` (``.total``). ``axes``: two
+    Axes to draw into (phi, theta)."""
+    fig, panels = several_axes(axes, 2, (1, 2), figsize=(11, 4), layout="constrained")
     total = np.ravel(bound.total if isinstance(bound, FNTSMCBounds) else bound)
-    for j, (name, sym) in enumerate(_TETHER_AXES):
-        ax = fig.add_subplot(1, 2, j + 1)
+    for j, ((name, sym), ax) in enumerate(zip(_TETHER_AXES, panels)):
+        if not worst:
+            say_why(ax, "no campaign given: no settle time to draw")
+            continue
         for law, by_spread in worst.items():
             spreads = sorted(by_spread)
             ax.plot(spreads, [by_spread[k][j] for k in spreads], marker="o", label=law)

@@ -2,25 +2,28 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
-from landing.plots._common import new_figure
+from landing.plots._common import say_why, several_axes, single_axes
 from landing.tune import TuneResult
 
 if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["tuning_convergence", "tuning_front"]
 
 
-def tuning_convergence(result: TuneResult) -> Figure:
+def tuning_convergence(result: TuneResult, *, axes: Optional[Sequence[Axes]] = None) -> Figure:
     """A :class:`landing.tune.TuneResult`'s search: every evaluation's first objective against
     its generation (feasible filled, infeasible hollow) and the best feasible so far (line);
-    below, the share of each generation that is feasible."""
-    fig = new_figure(figsize=(8, 6), layout="constrained")
-    ax = fig.add_subplot(2, 1, 1)
+    below, the share of each generation that is feasible. ``axes``: two Axes to draw into."""
+    fig, (ax, ax2) = several_axes(axes, 2, (2, 1), figsize=(8, 6), layout="constrained")
+    if axes is None:
+        ax2.sharex(ax)
     g = result.generation
     obj = result.objective_values[:, 0]
     f = result.feasible
@@ -34,22 +37,23 @@ def tuning_convergence(result: TuneResult) -> Figure:
     ax.set_ylabel(result.objectives[0])
     ax.set_title(f"Tuning {result.base.name}: {result.n_evaluations} evaluations, seed {result.seed}")
     ax.legend()
-    ax2 = fig.add_subplot(2, 1, 2, sharex=ax)
     gens = np.arange(int(g.max()) + 1 if g.size else 0)
     share = [float(f[g == k].mean()) for k in gens]
     ax2.bar(gens, share, color="tab:green")
     ax2.set_ylim(0, 1)
     ax2.set_xlabel("generation")
-    ax2.set_ylabel("feasible share")
+    ax2.set_ylabel("feasible share (1)")
+    if not gens.size:
+        say_why(ax2, "no evaluation: no generation to draw")
     return fig
 
 
-def tuning_front(result: TuneResult, objectives: tuple[int, int] = (0, 1)) -> Figure:
+def tuning_front(result: TuneResult, objectives: tuple[int, int] = (0, 1), *, ax: Optional[Axes] = None) -> Figure:
     """The Pareto front of a several-objective tuning (the front of the feasible evaluations):
     every evaluation in objective space, the front highlighted. With one objective, the first
-    objective against the total constraint violation (0: feasible), the best marked."""
-    fig = new_figure(figsize=(7, 5), layout="constrained")
-    ax = fig.add_subplot(1, 1, 1)
+    objective against the total constraint violation (0: feasible), the best marked. ``ax``: an
+    Axes to draw into."""
+    fig, ax = single_axes(ax, figsize=(7, 5), layout="constrained")
     v = result.objective_values
     f = result.feasible
     if v.shape[1] >= 2:
