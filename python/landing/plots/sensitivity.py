@@ -38,6 +38,7 @@ def tornado(result: Union[MonteCarloResult, RankCorrelations], metric: str, *, k
     ax.axvline(0.0, color="black", linewidth=0.8)
     ax.set_xlim(-1.05, 1.05)
     ax.set_xlabel(f"rank correlation with {metric} (1)")
+    ax.set_ylabel("dispersed quantity")
     ax.set_title(f"What drives {metric}")
     ax.legend(loc="lower right", fontsize="small")
     return fig
