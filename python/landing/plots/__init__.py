@@ -6,6 +6,15 @@ They accept a :class:`~landing.SimulationResult` (one case or a batch) or a
 (seed 001), :mod:`~landing.plots.comparison` (single-case comparisons, seeds 000 and 002),
 :mod:`~landing.plots.tether` (seed 003), :mod:`~landing.plots.tuning` (``landing.tune``).
 matplotlib is imported when the first figure is drawn.
+
+The conventions every figure function keeps: given ``ax=`` (one panel) or ``axes=`` (a sequence
+of exactly as many Axes as it has panels; another count is refused naming ``axes``) it draws
+there and returns that Axes' Figure, so that several compose into one figure of the user's;
+given neither it makes a Figure of its own (not pyplot's: it is freed with the result). Thrust
+is in kN (the tether's commands in N and N m) and every axis states its unit; the plant's thrust
+limits (of ``plant=``, else of a campaign's scenario) and the ground (rz = 0) are drawn; a
+batch's cases are thin light lines (their 5-95 % band above 50 cases) about the nominal (the
+first case, or ``highlight=``) drawn bold; a panel with nothing to draw says why.
 """
 
 from landing.plots._common import save_figures

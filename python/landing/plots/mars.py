@@ -166,11 +166,12 @@ def landing_sites(result: Result, requirement_radius: Optional[float] = None, *,
     return fig
 
 
-def final_velocities(result: Result, *, axes: Optional[Sequence[Axes]] = None) -> Figure:
+def final_velocities(result: Result, *, highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Velocities at touchdown (the ``touchdown_velocity`` metric, at the first rz = 0 crossing)
     on the XOZ and XOY planes (seed 001 Fig. 8(c), (d)); the final states' velocities only for
     the cases that never touch down (a case that hovers at its target until t_final would show
-    one dot at zero). ``axes``: two Axes to draw into (XOZ, XOY)."""
+    one dot at zero). The nominal (case ``highlight``) is marked. ``axes``: two Axes to draw
+    into (XOZ, XOY)."""
     res, _ = result_and_bounds(result)
     v_end = batched(res.final_state, 2)[:, 3:6]
     v_td = np.atleast_2d(np.asarray(res.metrics["touchdown_velocity"], dtype=float))[:, :3]
@@ -183,6 +184,11 @@ def final_velocities(result: Result, *, axes: Optional[Sequence[Axes]] = None) -
         if (~touched).any():
             ax.scatter(v_end[~touched, 0], v_end[~touched, j], s=8, marker="x", color="tab:gray",
                        label=f"at t_final, never touched down ({int((~touched).sum())})")
+        k = int(highlight) % touched.size
+        if touched.size > 1:
+            v = v_td if touched[k] else v_end
+            ax.scatter(v[k:k + 1, 0], v[k:k + 1, j], s=60, marker="D", facecolors="none", edgecolors="k", lw=1.5,
+                       label="nominal" if k == 0 else f"case {k}")
         ax.axhline(0, color="0.7", lw=0.5)
         ax.axvline(0, color="0.7", lw=0.5)
         ax.set_xlabel("vx (m/s)")
