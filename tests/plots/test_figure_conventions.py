@@ -282,6 +282,17 @@ def test_thrust_axes_are_in_kn_and_the_tethers_commands_in_n_and_n_m(mc, one):
     assert limits == {"thrust (N)": [-0.1, 0.1], "torque (N m)": [-0.05, 0.05]}
 
 
+def test_a_small_bodys_commands_are_accelerations_with_their_limits():
+    run = scenarios.seed000_tracking(t_final=20.0).simulate()
+    plant = landing.plants.SmallBody(acceleration_limit=0.02)
+    fig = plots.commands(run, plant=plant)
+    for ax in fig.axes:
+        assert ax.get_ylabel() == "u (m/s^2)"
+        dashed = sorted(line.get_ydata()[0] for line in ax.lines if line.get_linestyle() == "--")
+        assert dashed == [-0.02, 0.02]
+    assert plots.commands(run, "a (km/s^2)").axes[0].get_ylabel() == "a (km/s^2)"  # the old call
+
+
 def test_a_campaigns_thrust_shows_its_scenarios_magnitude_limit():
     mc = landing.monte_carlo(scenarios.mars_realistic(t_final=3.0, record_every=50), 4, seed=1, progress=False)
     limit = float(mc.scenario.plant.thrust_magnitude_limit) / 1e3

@@ -7,7 +7,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, Optional
 
+import numpy as np
+
 from landing.errors import ParameterError
+from landing.plants import DoubleIntegrator, Plant, SmallBody
 from landing.plots._common import (
     AXES,
     Labelled,
@@ -56,22 +59,38 @@ def tracking_errors(results: Labelled, reference: Optional[Reference] = None, ve
     return fig
 
 
-def commands(results: Labelled, ylabel: str = "command (plant units)", *,
+def commands(results: Labelled, ylabel: Optional[str] = None, *, plant: Optional[Plant] = None,
              axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Applied command per axis against time, one line per labelled run (seed 000 Fig. 5, 10;
-    seed 002 Fig. 9, 10). ``ylabel``: the command and its unit, e.g. "u (m/s^2)". ``axes``: one
-    Axes per command to draw into."""
+    seed 002 Fig. 9, 10). ``ylabel``: the command and its unit, e.g. "u (m/s^2)" (by default
+    that of ``plant``'s command when known). The acceleration limits of a small body's or a
+    double integrator's ``plant`` are drawn. ``axes``: one Axes per command to draw into."""
     runs = labelled(results)
     n = recorded(next(iter(runs.values())), "controls").shape[-1]
     fig, panels = several_axes(axes, n, (1, n), figsize=(12, 3.8), layout="constrained")
+    accelerating = isinstance(plant, (DoubleIntegrator, SmallBody))
+    if ylabel is None:
+        ylabel = "u (m/s^2)" if accelerating else "command (the plant's units)"
     for label, res in runs.items():
         for j, ax in enumerate(panels):
             ax.plot(res.t, recorded(res, "controls")[:, j], lw=0.7, label=label or None)
+    limits = []
+    if accelerating:
+        per_axis = getattr(plant, "acceleration_limit", None)
+        magnitude = getattr(plant, "acceleration_magnitude_limit", None)
+        limits = [(np.broadcast_to(np.asarray(v, dtype=float), (n,)), style, what)
+                  for v, style, what in ((per_axis, "--", "axis limit"), (magnitude, "-.", "|u| limit"))
+                  if v is not None]
     for j, ax in enumerate(panels):
         ax.set_title(f"{res.control_names[j]}")
         ax.set_xlabel("t (s)")
         ax.set_ylabel(ylabel)
-    if len(runs) > 1:
+        for value, style, what in limits:
+            if np.isfinite(value[j]):
+                for sgn in (1, -1):
+                    ax.axhline(sgn * value[j], ls=style, color="tab:red", lw=1,
+                               label=f"{what} {value[j]:.4g} m/s^2" if sgn > 0 else None)
+    if len(runs) > 1 or limits:
         panels[0].legend()
     return fig
 

@@ -60,7 +60,7 @@ def standard_figures(result: Result, plant: Optional[Plant] = None,
             "tether_rates": tether_rates(res, plant),
             "tether_commands": tether_commands(res, plant=plant),
         }
-    figs = {"tracking_errors": tracking_errors(res, reference), "commands": commands(res)}
+    figs = {"tracking_errors": tracking_errors(res, reference), "commands": commands(res, plant=plant)}
     if reference is not None and res.states is not None and res.states.shape[-1] >= 6:
         figs["trajectory"] = trajectory_with_reference(res, reference)
     return figs
