@@ -5,6 +5,8 @@ the function with one drawn by hand from the same data with plain matplotlib cal
 (``check_figures_equal``): they check what is drawn, not a stored baseline's pixels."""
 
 import inspect
+import os
+import tempfile
 
 import matplotlib
 import numpy as np
@@ -21,6 +23,18 @@ from landing import plots, scenarios  # noqa: E402
 from landing.errors import ParameterError  # noqa: E402
 
 XYZ = ("x", "y", "z")
+
+
+def figures_equal(test):
+    """``check_figures_equal`` (PNG), its images written under a temporary directory's
+    result_images/ (it takes the working directory's when the test is defined), not the
+    checkout's."""
+    here = os.getcwd()
+    os.chdir(tempfile.mkdtemp(prefix="landing-figures-"))
+    try:
+        return check_figures_equal(extensions=["png"])(test)
+    finally:
+        os.chdir(here)
 
 
 @pytest.fixture(scope="module")
@@ -59,7 +73,7 @@ def thin_and_bold(ax, t, data, k=0):
 # --- image tests: the function's figure against one drawn by hand ---------------------------
 
 
-@check_figures_equal(extensions=["png"])
+@figures_equal
 def test_positions_draw_the_cases_thin_the_nominal_bold_and_the_ground(fig_test, fig_ref, mc):
     assert plots.positions(mc, axes=fig_test.subplots(1, 3)) is fig_test
     t, s = mc.result.t, np.asarray(mc.result.states)
@@ -72,7 +86,7 @@ def test_positions_draw_the_cases_thin_the_nominal_bold_and_the_ground(fig_test,
     ax.legend(fontsize="x-small", loc="best")
 
 
-@check_figures_equal(extensions=["png"])
+@figures_equal
 def test_thrust_is_in_kn_with_the_plants_per_axis_limit(fig_test, fig_ref, one):
     plant = landing.plants.MarsLander(thrust_limit=5e4)
     assert plots.thrust(one, plant=plant, axes=fig_test.subplots(1, 3)) is fig_test
@@ -88,7 +102,7 @@ def test_thrust_is_in_kn_with_the_plants_per_axis_limit(fig_test, fig_ref, one):
             ax.legend(fontsize="x-small", loc="best")
 
 
-@check_figures_equal(extensions=["png"])
+@figures_equal
 def test_a_campaigns_mass_highlights_the_chosen_case(fig_test, fig_ref, mc):
     assert plots.mass(mc, highlight=3, ax=fig_test.subplots()) is fig_test
     ax = fig_ref.subplots()
@@ -99,7 +113,7 @@ def test_a_campaigns_mass_highlights_the_chosen_case(fig_test, fig_ref, mc):
     ax.legend(fontsize="x-small", loc="best")
 
 
-@check_figures_equal(extensions=["png"])
+@figures_equal
 def test_many_cases_are_a_percentile_band_about_the_nominal(fig_test, fig_ref, many):
     plots.mass(many, ax=fig_test.subplots())
     ax = fig_ref.subplots()
@@ -113,7 +127,7 @@ def test_many_cases_are_a_percentile_band_about_the_nominal(fig_test, fig_ref, m
     ax.legend(fontsize="x-small", loc="best")
 
 
-@check_figures_equal(extensions=["png"])
+@figures_equal
 def test_landing_sites(fig_test, fig_ref, landed):
     assert plots.landing_sites(landed, requirement_radius=5.0, axes=fig_test.subplots(1, 2)) is fig_test
     r = np.asarray(landed.metrics["touchdown_position"])[:, :2]
@@ -155,7 +169,7 @@ def test_landing_sites(fig_test, fig_ref, landed):
     ax2.set_title("Speed at the first rz = 0 crossing")
 
 
-@check_figures_equal(extensions=["png"])
+@figures_equal
 def test_two_figures_compose_into_one_user_figure(fig_test, fig_ref, mc, one):
     left, right = fig_test.subplots(1, 2)
     assert plots.mass(mc, ax=left) is fig_test
