@@ -189,6 +189,40 @@ def test_two_figures_compose_into_one_user_figure(fig_test, fig_ref, mc, one):
     right.legend(fontsize=8)
 
 
+@pytest.fixture(scope="module")
+def tracking_batch():
+    """Four small-body cases about seed 000's tracking start."""
+    s = scenarios.seed000_tracking(t_final=50.0)
+    x0 = np.asarray(s.x0) + np.zeros((4, 1))
+    x0[:, 0] += 10.0 * np.arange(4)
+    return s, s.simulate_batch(x0)
+
+
+@figures_equal
+def test_a_small_body_batchs_tracking_errors(fig_test, fig_ref, tracking_batch):
+    s, batch = tracking_batch
+    plots.tracking_errors(batch, s.reference, axes=fig_test.subplots(1, 3))
+    p, _, _ = s.reference.evaluate(batch.t, axes=3)
+    e = np.asarray(batch.states)[:, :, :3] - p
+    axes = fig_ref.subplots(1, 3)
+    for j, ax in enumerate(axes):
+        thin_and_bold(ax, batch.t, e[:, :, j])
+        ax.set_title(f"position error, {XYZ[j]}")
+        ax.set_xlabel("t (s)")
+        ax.set_ylabel("position error (m)")
+        ax.axhline(0, color="0.7", lw=0.5)
+    axes[0].legend()
+
+
+def test_the_standard_figures_of_a_small_body_batch(tracking_batch):
+    s, batch = tracking_batch
+    figs = plots.standard_figures(batch, plant=s.plant, reference=s.reference)
+    assert set(figs) == {"tracking_errors", "commands", "trajectory"}
+    assert figs["commands"].axes[0].get_ylabel() == "u (m/s^2)"
+    bold = [line for line in figs["commands"].axes[0].lines if line.get_linewidth() == 1.8]
+    np.testing.assert_array_equal(bold[0].get_ydata(), np.asarray(batch.controls)[0, :, 0])
+
+
 # --- every public figure function: given axes, it draws there and returns their Figure ------
 
 

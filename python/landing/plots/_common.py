@@ -79,10 +79,11 @@ def say_why(ax: Axes, why: str) -> None:
 
 
 def draw_cases(ax: Axes, t: np.ndarray, data: np.ndarray, highlight: int = 0, scale: float = 1.0,
-               what: str = "cases", **style: Any) -> None:
+               what: str = "cases", colors: tuple[str, str] = ("tab:blue", "k"), **style: Any) -> None:
     """A batch's signal (cases, T): thin light lines for the cases (their 5-95 % percentile band
     beyond :data:`BAND_ABOVE` cases) with one legend entry, and the ``highlight`` case (the
-    nominal: the first) bold over them. One case: a single line."""
+    nominal: the first) bold over them. One case: a single line. ``colors``: the cases' and the
+    nominal's (several batches on one axis)."""
     data = np.asarray(data, dtype=float).reshape(-1, len(t)) * scale
     n = data.shape[0]
     if n == 1:
@@ -91,12 +92,13 @@ def draw_cases(ax: Axes, t: np.ndarray, data: np.ndarray, highlight: int = 0, sc
     k = int(highlight) % n
     if n > BAND_ABOVE:
         lo, hi = np.nanpercentile(data, [5.0, 95.0], axis=0)
-        ax.fill_between(t, lo, hi, color="tab:blue", alpha=0.25, lw=0, label=f"{what} 5-95 % ({n})")
+        ax.fill_between(t, lo, hi, color=colors[0], alpha=0.25, lw=0, label=f"{what} 5-95 % ({n})")
     else:
         others = np.delete(data, k, axis=0)
-        lines = ax.plot(t, others.T, lw=0.5, alpha=0.35, color="tab:blue")
+        lines = ax.plot(t, others.T, lw=0.5, alpha=0.35, color=colors[0])
         lines[0].set_label(f"{what} ({n})")
-    ax.plot(t, data[k], lw=1.8, color="k", label="nominal" if k == 0 else f"case {k}")
+    nominal = "nominal" if k == 0 else f"case {k}"
+    ax.plot(t, data[k], lw=1.8, color=colors[1], label=nominal if what == "cases" else f"{what}: {nominal}")
 
 
 def mars_limits(result: Result, plant: Optional[Any] = None) -> tuple[Optional[np.ndarray], Optional[float]]:

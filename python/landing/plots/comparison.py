@@ -14,7 +14,10 @@ from landing.plants import DoubleIntegrator, Plant, SmallBody
 from landing.plots._common import (
     AXES,
     Labelled,
+    batched,
+    draw_cases,
     figure_of,
+    first_cases,
     labelled,
     need_records,
     new_figure,
@@ -32,48 +35,74 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["tracking_errors", "commands", "diagnostic", "blend_coefficients", "trajectory_with_reference"]
 
+#: The most cases of a lone batch drawn (its first).
+MAX_CASES = 300
+
+
+def _runs(results: Labelled) -> dict[str, SimulationResult]:
+    """Labelled single-case runs, or a lone run or batch (its first :data:`MAX_CASES` cases)."""
+    runs = labelled(results)
+    if isinstance(results, SimulationResult):
+        need_records(results)
+        runs = {"": first_cases(results, MAX_CASES)}
+    return runs
+
+
+def _draw(ax: Axes, label: str, t: np.ndarray, data: np.ndarray, highlight: int, lw: float = 1.0,
+          colors: tuple[str, str] = ("tab:blue", "k")) -> None:
+    """One run's signal (cases, T): a single case as one line (labelled), a batch as thin cases
+    about its bold nominal."""
+    if data.shape[0] == 1:
+        ax.plot(t, data[0], lw=lw, label=label or None)
+    else:
+        draw_cases(ax, t, data, highlight, what=label or "cases", colors=colors)
+
 
 def tracking_errors(results: Labelled, reference: Optional[Reference] = None, velocity: bool = False, *,
-                    axes: Optional[Sequence[Axes]] = None) -> Figure:
+                    highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Position (or velocity) tracking error per axis against time, one line per labelled run
     (seed 000 Fig. 11, seed 002 Fig. 7). ``reference``: the target tracked (default the
-    origin). ``axes``: one Axes per axis of the plant to draw into."""
-    runs = labelled(results)
+    origin). A batch's cases thin, the nominal (case ``highlight``) bold. ``axes``: one Axes
+    per axis of the plant to draw into."""
+    runs = _runs(results)
     first = next(iter(runs.values()))
     n = recorded(first, "controls").shape[-1]
     fig, panels = several_axes(axes, n, (1, n), figsize=(12, 3.8), layout="constrained")
     for label, res in runs.items():
-        q = recorded(res, "states")[:, n:2 * n] if velocity else recorded(res, "states")[:, :n]
+        states = batched(recorded(res, "states"), 3)
+        q = states[:, :, n:2 * n] if velocity else states[:, :, :n]
         if reference is not None:
             p, v, _ = reference.evaluate(res.t, axes=n)
             q = q - (v if velocity else p)
         for j, ax in enumerate(panels):
-            ax.plot(res.t, q[:, j], lw=0.9, label=label or None)
+            _draw(ax, label, res.t, q[:, :, j], highlight, lw=0.9)
     for j, ax in enumerate(panels):
         ax.set_title(f"{'velocity' if velocity else 'position'} error, {AXES[j] if n == 3 else j}")
         ax.set_xlabel("t (s)")
         ax.set_ylabel("velocity error (m/s)" if velocity else "position error (m)")
         ax.axhline(0, color="0.7", lw=0.5)
-    if len(runs) > 1:
+    if panels[0].get_legend_handles_labels()[0]:
         panels[0].legend()
     return fig
 
 
 def commands(results: Labelled, ylabel: Optional[str] = None, *, plant: Optional[Plant] = None,
-             axes: Optional[Sequence[Axes]] = None) -> Figure:
+             highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
     """Applied command per axis against time, one line per labelled run (seed 000 Fig. 5, 10;
     seed 002 Fig. 9, 10). ``ylabel``: the command and its unit, e.g. "u (m/s^2)" (by default
     that of ``plant``'s command when known). The acceleration limits of a small body's or a
-    double integrator's ``plant`` are drawn. ``axes``: one Axes per command to draw into."""
-    runs = labelled(results)
+    double integrator's ``plant`` are drawn. A batch's cases thin, the nominal (case
+    ``highlight``) bold. ``axes``: one Axes per command to draw into."""
+    runs = _runs(results)
     n = recorded(next(iter(runs.values())), "controls").shape[-1]
     fig, panels = several_axes(axes, n, (1, n), figsize=(12, 3.8), layout="constrained")
     accelerating = isinstance(plant, (DoubleIntegrator, SmallBody))
     if ylabel is None:
         ylabel = "u (m/s^2)" if accelerating else "command (the plant's units)"
     for label, res in runs.items():
+        u = batched(recorded(res, "controls"), 3)
         for j, ax in enumerate(panels):
-            ax.plot(res.t, recorded(res, "controls")[:, j], lw=0.7, label=label or None)
+            _draw(ax, label, res.t, u[:, :, j], highlight, lw=0.7)
     limits = []
     if accelerating:
         per_axis = getattr(plant, "acceleration_limit", None)
@@ -90,36 +119,37 @@ def commands(results: Labelled, ylabel: Optional[str] = None, *, plant: Optional
                 for sgn in (1, -1):
                     ax.axhline(sgn * value[j], ls=style, color="tab:red", lw=1,
                                label=f"{what} {value[j]:.4g} m/s^2" if sgn > 0 else None)
-    if len(runs) > 1 or limits:
+    if panels[0].get_legend_handles_labels()[0]:
         panels[0].legend()
     return fig
 
 
-def diagnostic(results: Labelled, name: str = "s", unit: str = "", *,
+def diagnostic(results: Labelled, name: str = "s", unit: str = "", *, highlight: int = 0,
                axes: Optional[Sequence[Axes]] = None) -> Figure:
     """A law's recorded signal (a sliding variable, the fuzzy term...) per axis against time,
     one line per labelled run that has it (seed 000 Fig. 6, seed 002 Fig. 8); ``unit`` its unit
     for the axis label (none: the law's own units). ``axes``: one Axes per component."""
-    runs = {k: v for k, v in labelled(results).items() if name in v.diagnostics}
+    runs = {k: v for k, v in _runs(results).items() if name in v.diagnostics}
     if not runs:
         raise ParameterError(f"no run recorded the diagnostic {name!r}")
-    first = next(iter(runs.values())).diagnostics[name]
-    n = first.shape[-1] if first.ndim == 2 else 1
+    some = next(iter(runs.values()))
+    first = np.asarray(some.diagnostics[name])
+    n = 1 if first.shape[-1] == some.t.size else first.shape[-1]
     fig, panels = several_axes(axes, n, (1, n), figsize=(12 if n > 1 else 6, 3.8), layout="constrained")
     for label, res in runs.items():
-        sig = res.diagnostics[name].reshape(res.t.size, n)
+        sig = np.asarray(res.diagnostics[name]).reshape(-1, res.t.size, n)
         for j, ax in enumerate(panels):
-            ax.plot(res.t, sig[:, j], lw=0.8, label=label or None)
+            _draw(ax, label, res.t, sig[:, :, j], highlight, lw=0.8)
     for j, ax in enumerate(panels):
         ax.set_title(name if n == 1 else f"{name}, {AXES[j] if n == 3 else j}")
         ax.set_xlabel("t (s)")
         ax.set_ylabel(f"{name} ({unit})" if unit else f"{name} (the law's units)")
-    if len(runs) > 1:
+    if panels[0].get_legend_handles_labels()[0]:
         panels[0].legend()
     return fig
 
 
-def blend_coefficients(result: SimulationResult, *, ax: Optional[Axes] = None) -> Figure:
+def blend_coefficients(result: SimulationResult, *, highlight: int = 0, ax: Optional[Axes] = None) -> Figure:
     """The fuzzy blend a(D), b(D) of FuzzyFastTerminalSMC against time (seed 000 Fig. 7).
     ``ax``: an Axes to draw into."""
     need_records(result)
@@ -128,8 +158,10 @@ def blend_coefficients(result: SimulationResult, *, ax: Optional[Axes] = None) -
     if missing:
         say_why(ax, f"the run did not record {' and '.join(missing)} (a FuzzyFastTerminalSMC diagnostic)")
         return fig
-    for name in ("a", "b"):
-        ax.plot(result.t, result.diagnostics[name], label=name)
+    batch = first_cases(result, MAX_CASES)
+    for name, colors in (("a", ("tab:blue", "navy")), ("b", ("tab:orange", "saddlebrown"))):
+        _draw(ax, name, batch.t, np.asarray(batch.diagnostics[name]).reshape(-1, batch.t.size), highlight,
+              lw=1.5, colors=colors)
     ax.set_xlabel("t (s)")
     ax.set_ylabel("coefficient (1)")
     ax.set_ylim(-0.05, 1.05)
@@ -138,19 +170,26 @@ def blend_coefficients(result: SimulationResult, *, ax: Optional[Axes] = None) -
     return fig
 
 
-def trajectory_with_reference(results: Labelled, reference: Optional[Reference] = None, *,
+def trajectory_with_reference(results: Labelled, reference: Optional[Reference] = None, *, highlight: int = 0,
                               ax: Optional[Any] = None) -> Figure:
     """3D trajectories of labelled runs with the reference they track (seed 000 Fig. 12, seed 002
     Fig. 6). ``ax``: a 3D Axes to draw into."""
-    runs = labelled(results)
+    runs = _runs(results)
     if ax is None:
         fig = new_figure(figsize=(7, 6))
         ax = fig.add_subplot(projection="3d")
     else:
         fig = figure_of(ax)
     for label, res in runs.items():
-        states = recorded(res, "states")
-        ax.plot(states[:, 0], states[:, 1], states[:, 2], lw=1.0, label=label or "trajectory")
+        states = batched(recorded(res, "states"), 3)
+        k = int(highlight) % states.shape[0]
+        for i in range(states.shape[0]):
+            if i != k:
+                ax.plot(states[i, :, 0], states[i, :, 1], states[i, :, 2], lw=0.5, alpha=0.35, color="tab:blue",
+                        label=f"cases ({states.shape[0]})" if i == (1 if k == 0 else 0) else None)
+        ax.plot(states[k, :, 0], states[k, :, 1], states[k, :, 2], lw=1.8 if states.shape[0] > 1 else 1.0,
+                color="k" if states.shape[0] > 1 else None,
+                label=label or ("trajectory" if states.shape[0] == 1 else "nominal" if k == 0 else f"case {k}"))
     if reference is not None:
         t = next(iter(runs.values())).t
         p, _, _ = reference.evaluate(t)
