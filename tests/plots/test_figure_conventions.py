@@ -361,6 +361,11 @@ def test_a_panel_with_nothing_to_draw_says_why(mc):
     assert all("not recorded" in ax.texts[0].get_text() for ax in fig.axes if not ax.lines)
 
 
+def test_the_standard_figures_leave_out_what_a_campaign_did_not_keep():
+    mc = landing.monte_carlo(small_campaign(), 4, seed=1, progress=False, keep=("controls",))
+    assert set(plots.standard_figures(mc)) == {"landing_sites", "final_velocities", "thrust"}
+
+
 def test_sliding_variables_keep_their_notes_out_of_the_curves(mc):
     fig = plots.sliding_variables(mc)
     # the bounds beyond the run are said in the titles, not written over the curves

@@ -37,7 +37,8 @@ def standard_figures(result: Result, plant: Optional[Plant] = None,
     """The usual figures of a run or campaign for its plant, by name (what ``landing run``,
     ``landing mc`` and ``landing report`` write): the Mars figures of :func:`save_all` for the
     lander, tracking errors and commands for the small body and the double integrator, angles,
-    rates and commands for the tethered satellite. Nothing for a run that recorded nothing."""
+    rates and commands for the tethered satellite. Nothing for a run that recorded nothing; none
+    of a Mars campaign's figures drawn from a signal it did not keep."""
     res, _ = result_and_bounds(result)
     if res.t.size == 0:
         return {}
@@ -53,7 +54,10 @@ def standard_figures(result: Result, plant: Optional[Plant] = None,
         }
         if {"s1", "s2"} <= set(res.diagnostics):
             makers["sliding_variables"] = sliding_variables
-        return {name: make(result) for name, make in makers.items()}
+        # a campaign that did not keep a signal (keep=...) has none of the figures drawn from it
+        needs = {"trajectories_3d": "states", "positions": "states", "mass": "states", "thrust": "controls"}
+        return {name: make(result) for name, make in makers.items()
+                if name not in needs or getattr(res, needs[name]) is not None}
     if isinstance(plant, TetheredSatellite):
         return {
             "tether_angles": tether_angles(res, plant),
