@@ -354,6 +354,9 @@ def test_a_panel_with_nothing_to_draw_says_why(mc):
     speeds = fig.axes[1]
     assert not speeds.patches and "touched down" in speeds.texts[0].get_text()
     assert "touched down" in fig.axes[0].texts[-1].get_text()
+    fig = plots.landing_sites(scenarios.mars_nominal(t_final=2.0).simulate())  # a nominal run, still flying
+    for ax in fig.axes:
+        assert not ax.collections and not ax.patches and "no case touched down" in ax.texts[0].get_text()
     no_s = scenarios.mars_super_twisting(t_final=2.0).simulate()
     if {"s1", "s2"} <= set(no_s.diagnostics):
         pytest.skip("this law records s1 and s2")

@@ -122,8 +122,9 @@ def landing_sites(result: Result, requirement_radius: Optional[float] = None, *,
     if touched.size > 1 and touched[k]:
         ax.scatter(r[k:k + 1, 0], r[k:k + 1, 1], s=60, marker="D", facecolors="none", edgecolors="k", lw=1.5,
                    label="nominal" if k == 0 else f"case {k}")
-    ax.axhline(0, color="0.7", lw=0.5)
-    ax.axvline(0, color="0.7", lw=0.5)
+    if touched.any():
+        ax.axhline(0, color="0.7", lw=0.5)
+        ax.axvline(0, color="0.7", lw=0.5)
     ax.set_xlabel("x at touchdown (m)")
     ax.set_ylabel("y at touchdown (m)")
     ax.set_title(f"Touchdown sites (first rz = 0 crossing), XOY plane\n"
@@ -152,8 +153,8 @@ def landing_sites(result: Result, requirement_radius: Optional[float] = None, *,
     if touched.any():
         ax.legend(loc="upper right", fontsize="small")
     else:
-        ax.text(0.5, 0.5, "no case touched down (rz never crossed 0): no site to draw", transform=ax.transAxes,
-                ha="center", va="center", fontsize=9, color="0.3")
+        say_why(ax, f"no case touched down (rz did not cross 0 by t = {res.t[-1]:.4g} s):\nno site to draw"
+                if res.t.size else "no case touched down (rz did not cross 0):\nno site to draw")
     ax.set_aspect("equal", adjustable="datalim")
     ax = ax_speed
     if np.isfinite(speed).any():
@@ -193,6 +194,7 @@ def final_velocities(result: Result, *, highlight: int = 0, axes: Optional[Seque
         ax.axvline(0, color="0.7", lw=0.5)
         ax.set_xlabel("vx (m/s)")
         ax.set_ylabel(f"v{name} (m/s)")
+        ax.ticklabel_format(style="sci", scilimits=(-3, 4))  # tiny velocities: no long, overlapping ticks
         ax.set_title(f"Velocities at touchdown, XO{name.upper()} plane")
         ax.legend(loc="best", fontsize="small")
     return fig
