@@ -117,7 +117,8 @@ def landing_sites(result: Result, requirement_radius: Optional[float] = None, *,
     touched = np.all(np.isfinite(r), axis=1)
     radius = None if bounds is None else float(np.max(bounds.s1_radius))
     fig, (ax, ax_speed) = several_axes(axes, 2, (1, 2), figsize=(11, 5), layout="constrained")
-    ax.scatter(r[touched, 0], r[touched, 1], s=8, color="tab:blue", label="touchdown sites")
+    if touched.any():
+        ax.scatter(r[touched, 0], r[touched, 1], s=8, color="tab:blue", label="touchdown sites")
     k = int(highlight) % touched.size
     if touched.size > 1 and touched[k]:
         ax.scatter(r[k:k + 1, 0], r[k:k + 1, 1], s=60, marker="D", facecolors="none", edgecolors="k", lw=1.5,
