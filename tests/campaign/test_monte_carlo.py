@@ -177,3 +177,12 @@ def test_a_check_that_cannot_fail_is_reported_as_not_informative():
     short = landing.monte_carlo(scenarios.mars_monte_carlo(record_every=0, t_final=5.0, dt=2e-3), 20, seed=1,
                                 progress=False)
     assert "not informative" not in next(x for x in short.report().splitlines() if "within the s1 radius" in x)
+
+
+def test_a_campaign_of_a_law_with_a_fuzzy_system_runs_in_chunks():
+    # the Mamdani system is a configuration but not a dataclass: looking for per-case
+    # parameters inside it raised a TypeError from dataclasses.fields (found by the figures' work)
+    s = landing.scenarios.seed002_landing(t_final=20.0)
+    whole = landing.monte_carlo(s, 6, seed=1, progress=False)
+    chunked = landing.monte_carlo(s, 6, seed=1, chunk_size=2, progress=False)
+    assert np.array_equal(whole.result.final_state, chunked.result.final_state)

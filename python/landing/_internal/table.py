@@ -92,10 +92,12 @@ def case_rows(shape: str, value_shape: tuple[int, ...], axes: int) -> Optional[i
 
 def nested_tables(value: Any) -> list[tuple[str, Table]]:
     """The configurations inside a field's value (a nested one, or a list of them), each with
-    the suffix that names it (``""``, ``"[1]"``)."""
-    if isinstance(value, Table):
+    the suffix that names it (``""``, ``"[1]"``). A fuzzy system (a Table that is not a
+    dataclass) is shared by every case and holds no parameter per case: not among them."""
+    if isinstance(value, Table) and dataclasses.is_dataclass(value):
         return [("", value)]
-    if isinstance(value, (list, tuple)) and value and all(isinstance(v, Table) for v in value):
+    if (isinstance(value, (list, tuple)) and value
+            and all(isinstance(v, Table) and dataclasses.is_dataclass(v) for v in value)):
         return [(f"[{i}]", v) for i, v in enumerate(value)]
     return []
 
