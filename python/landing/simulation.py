@@ -145,7 +145,7 @@ def simulate_batch(
     kernel: Optional[str] = None,
     stop_at: Optional[str] = None,
 ) -> SimulationResult:
-    """Simulate N cases of ``plant`` under ``controller`` in parallel (the semantics in README.md).
+    """Simulate N cases of ``plant`` under ``controller`` in parallel (the semantics: docs/guide/semantics.md).
 
     Parameters
     ----------

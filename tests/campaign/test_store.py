@@ -481,13 +481,13 @@ def test_bound_checks_in_slices_equal_the_whole_check():
 def test_the_readme_example_runs(tmp_path, monkeypatch):
     import re
 
-    readme = (ROOT / "README.md").read_text()
-    section = readme[readme.index("## Campaigns as data"):]
+    readme = (ROOT / "docs" / "guide" / "stores.md").read_text()
+    section = readme[readme.index("# Campaigns as data"):]
     code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
     monkeypatch.chdir(tmp_path)
     for _ in range(2):  # the second run resumes the complete store: read back, not re-run
         ns: dict = {}
-        exec(compile(code, "README.md", "exec"), ns)
+        exec(compile(code, "docs/guide/stores.md", "exec"), ns)
         assert_same_campaign(ns["same"], ns["mc"])
         assert ns["light"].states is None and ns["light"].controls is not None
     assert ns["df"].shape[0] == 40 and ns["traj"]["states"].dims == ("case", "time", "state")

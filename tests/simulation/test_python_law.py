@@ -375,7 +375,7 @@ def test_the_readme_block_runs_as_a_file():
     from _cases import ROOT
 
     readme = (ROOT / "README.md").read_text()
-    section = readme[readme.index("### Your own law and plant, in Python"):]
+    section = readme[readme.index("## Your own law, in Python"):]
     code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
     ns: dict = {}
     exec(compile(code, "README.md", "exec"), ns)

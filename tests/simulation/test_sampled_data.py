@@ -1,4 +1,4 @@
-"""The zero-order-hold semantics (README.md, "Semantics"), against a hand computation in numpy."""
+"""The zero-order-hold semantics (docs/guide/semantics.md), against a hand computation in numpy."""
 
 import numpy as np
 import pytest
