@@ -20,7 +20,21 @@ __all__ = ["Disturbance", "Constant", "Sinusoid", "UniformNoise", "CommandNoise"
 
 
 class Disturbance(Table):
-    """Base class of the disturbance components."""
+    """Base class of the disturbance components: generalized accelerations, in q/s^2 (m/s^2
+    for a lander), added to the plant's dynamics. Components add up with ``+``.
+
+    Parameters
+    ----------
+    **fields : ArrayLike
+        The subclass's fields (see each one); the base class takes none of its own.
+
+    Examples
+    --------
+    >>> from landing.disturbances import Constant, UniformNoise
+    >>> d = Constant([0.0, 0.0, -1e-3]) + UniformNoise(bound=1e-4)
+    >>> [type(p).__name__ for p in d.components()], UniformNoise.random
+    (['Constant', 'UniformNoise'], True)
+    """
 
     family: ClassVar[str] = "disturbance"
     #: Whether the component draws random numbers (declared by the core; the draws are held
@@ -46,7 +60,18 @@ class Disturbance(Table):
 
 @dataclass(frozen=True, eq=False)
 class Constant(Disturbance):
-    """A constant acceleration per axis."""
+    """A constant acceleration per axis.
+
+    Parameters
+    ----------
+    value : ArrayLike
+        The acceleration, q/s^2, per axis (a scalar for every axis).
+
+    Examples
+    --------
+    >>> Constant([0.0, 0.0, -1e-3])
+    Constant(value=array([ 0.   ,  0.   , -0.001]))
+    """
 
     value: ArrayLike
 
@@ -55,7 +80,23 @@ class Constant(Disturbance):
 
 @dataclass(frozen=True, eq=False)
 class Sinusoid(Disturbance):
-    """``amplitude sin(omega t + phase)`` per axis (seed 001 eq. 47: 20 sin t on every axis)."""
+    """``amplitude sin(omega t + phase)`` per axis (the Mars fixed-time guidance paper,
+    eq. 47: 20 sin t on every axis).
+
+    Parameters
+    ----------
+    amplitude : ArrayLike
+        Amplitude A, q/s^2, per axis.
+    omega : ArrayLike
+        Angular frequency, rad/s, per axis.
+    phase : ArrayLike
+        Phase at t = 0, rad, per axis (default 0).
+
+    Examples
+    --------
+    >>> Sinusoid(amplitude=20.0, omega=1.0)
+    Sinusoid(amplitude=20.0, omega=1.0, phase=0.0)
+    """
 
     amplitude: ArrayLike
     omega: ArrayLike
@@ -66,7 +107,18 @@ class Sinusoid(Disturbance):
 
 @dataclass(frozen=True, eq=False)
 class UniformNoise(Disturbance):
-    """Uniform on ``[-bound, bound]`` per axis, drawn once per control period and held."""
+    """Uniform on ``[-bound, bound]`` per axis, drawn once per control period and held.
+
+    Parameters
+    ----------
+    bound : ArrayLike
+        Half-width of the range, q/s^2, per axis; bound >= 0.
+
+    Examples
+    --------
+    >>> UniformNoise(bound=1e-4).random
+    True
+    """
 
     bound: ArrayLike
 
@@ -76,9 +128,20 @@ class UniformNoise(Disturbance):
 @dataclass(frozen=True, eq=False)
 class CommandNoise(Disturbance):
     """Uniform on ``[-fraction, fraction]`` times the commanded acceleration, per axis, drawn
-    once per control period (seed 002: a model uncertainty of up to 1 % of the command,
+    once per control period (the fuzzy variable-rate asteroid paper: a model uncertainty of up to 1 % of the command,
     ``CommandNoise(0.01)``). The commanded acceleration is the applied command over the
-    plant's inertia."""
+    plant's inertia.
+
+    Parameters
+    ----------
+    fraction : ArrayLike
+        Relative half-width of the range, dimensionless, per axis; fraction >= 0.
+
+    Examples
+    --------
+    >>> CommandNoise(0.01)
+    CommandNoise(fraction=0.01)
+    """
 
     fraction: ArrayLike
 
@@ -86,7 +149,23 @@ class CommandNoise(Disturbance):
 
 
 class Sum(Disturbance):
-    """Several components acting together."""
+    """Several components acting together (what ``a + b`` builds); nested sums are flattened.
+
+    Parameters
+    ----------
+    parts : Iterable[Disturbance]
+        The components (a ``Sum`` among them contributes its own components).
+
+    Raises
+    ------
+    ParameterTypeError
+        If a part is not a disturbance component.
+
+    Examples
+    --------
+    >>> Sum([Constant(1e-3), Sinusoid(amplitude=2e-3, omega=0.5)])
+    Constant(value=0.001) + Sinusoid(amplitude=0.002, omega=0.5, phase=0.0)
+    """
 
     def __init__(self, parts: Iterable[Disturbance]):
         self.parts: list[Disturbance] = []
@@ -126,7 +205,30 @@ DisturbanceLike = Union[Disturbance, Sequence[Disturbance], None]
 
 
 def compiled(disturbance: DisturbanceLike) -> Union[_core.Disturbance, None]:
-    """The core's compiled disturbance for a component, a sum, a list of them, or None."""
+    """The core's compiled disturbance for a component, a sum, a list of them, or None.
+
+    Parameters
+    ----------
+    disturbance : Disturbance, sequence of Disturbance, or None
+        What a scenario's ``disturbance`` holds.
+
+    Returns
+    -------
+    landing._core.Disturbance or None
+        The compiled sum of the components, or None for None.
+
+    Raises
+    ------
+    ParameterTypeError
+        If ``disturbance`` is neither a component, an iterable of components nor None.
+
+    Examples
+    --------
+    >>> compiled(None) is None
+    True
+    >>> type(compiled([UniformNoise(0.1)])).__name__
+    'Disturbance'
+    """
     if disturbance is None:
         return None
     if isinstance(disturbance, Disturbance):
