@@ -34,8 +34,9 @@ Usage (from the repository root)::
     python tools/docs_numbers.py --update [--slow]  # re-run and rewrite the blocks
     python tools/docs_numbers.py --list             # the blocks and their commands
 
-Files default to README.md and the Markdown files under docs/ (not its _build or _generated). A command prints the same bits at every run (seeded,
-no timing): what it prints that is not deterministic is left out with ``drop:`` or ``match:``.
+Files default to README.md and the Markdown files under docs/ (not its _build or _generated). A
+command prints the same bits at every run (seeded, no timing): what it prints that is not
+deterministic is left out with ``drop:`` or ``match:``.
 """
 
 from __future__ import annotations
