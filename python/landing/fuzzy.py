@@ -34,7 +34,31 @@ SET_NAMES_7 = ("NB", "NM", "NS", "ZR", "PS", "PM", "PB")
 @dataclass(frozen=True)
 class Variable:
     """A linguistic variable: its universe (lo, hi) and named fuzzy sets, each
-    ``("triangle", a, b, c)`` or ``("trapezoid", a, b, c, d)``."""
+    ``("triangle", a, b, c)`` or ``("trapezoid", a, b, c, d)``.
+
+    Parameters
+    ----------
+    universe : tuple of float
+        ``(lo, hi)``, lo < hi, in the units of the quantity (inputs outside are clipped).
+    sets : Mapping[str, tuple]
+        Set name -> ``("triangle", a, b, c)`` (feet a, c and peak b) or
+        ``("trapezoid", a, b, c, d)`` (feet a, d and shoulders b, c), in the universe's units;
+        ``a == b`` makes a left shoulder.
+
+    Raises
+    ------
+    ParameterError
+        If lo >= hi or a set has the wrong number of parameters.
+    ParameterTypeError
+        If ``sets`` is not a non-empty mapping of names to shapes.
+
+    Examples
+    --------
+    >>> v = Variable((-1, 1), {"N": ("triangle", -1, -1, 0), "Z": ("triangle", -1, 0, 1),
+    ...                        "P": ("trapezoid", 0, 1, 1, 1)})
+    >>> v.index("Z")
+    1
+    """
 
     universe: tuple[float, float]
     sets: Mapping[str, tuple]
@@ -74,6 +98,23 @@ class Variable:
         }
 
     def index(self, name: str) -> int:
+        """Position of the set ``name`` among the variable's sets.
+
+        Parameters
+        ----------
+        name : str
+            A set's name.
+
+        Returns
+        -------
+        int
+            Its index, in the order of ``sets``.
+
+        Raises
+        ------
+        ParameterError
+            If the variable has no set of that name.
+        """
         try:
             return list(self.sets).index(name)
         except ValueError:
@@ -83,7 +124,37 @@ class Variable:
 class Mamdani(Table):
     """A Mamdani system: input variables, an output variable and rules
     ``((input set names...), output set name)``; ``resolution`` points sample the output
-    universe for the centroid."""
+    universe for the centroid.
+
+    Parameters
+    ----------
+    inputs : Sequence[Variable]
+        The input variables, in the order of the columns of ``evaluate``'s argument.
+    output : Variable
+        The output variable.
+    rules : Sequence[tuple[Sequence[str], str]]
+        ``((one set name per input...), output set name)``: AND (min) of the inputs' grades
+        clips the output set.
+    resolution : int
+        Number of points sampling the output universe for the centroid, >= 2 (default 401).
+
+    Raises
+    ------
+    ParameterError
+        If a rule names a set that does not exist or the wrong number of input sets.
+    ParameterTypeError
+        If an argument has the wrong type.
+
+    Examples
+    --------
+    >>> s = Variable((-5, 5), {"N": ("triangle", -5, -5, 0), "Z": ("triangle", -5, 0, 5),
+    ...                        "P": ("triangle", 0, 5, 5)})
+    >>> out = Variable((-1, 1), {"N": ("triangle", -1, -1, 0), "Z": ("triangle", -1, 0, 1),
+    ...                          "P": ("triangle", 0, 1, 1)})
+    >>> m = Mamdani([s], out, [(("N",), "P"), (("Z",), "Z"), (("P",), "N")])
+    >>> print(" ".join(f"{y:.3f}" for y in m.evaluate([-5.0, -2.5, 2.5, 7.0])))
+    0.667 0.119 -0.119 -0.667
+    """
 
     kind: ClassVar[str] = "mamdani"
     family: ClassVar[str] = "fuzzy"
@@ -142,7 +213,29 @@ class Mamdani(Table):
         }
 
     def evaluate(self, inputs: ArrayLike) -> np.ndarray:
-        """Crisp outputs for inputs of shape (N, number of inputs); (N,)."""
+        """Crisp outputs (centroids) for a batch of inputs.
+
+        Parameters
+        ----------
+        inputs : ArrayLike
+            Shape (N, number of inputs), in each input's units; (N,) for a one-input system.
+
+        Returns
+        -------
+        numpy.ndarray
+            The outputs, shape (N,), in the output's units.
+
+        Raises
+        ------
+        ParameterError
+            If ``inputs`` is not finite or has the wrong shape.
+
+        Examples
+        --------
+        >>> y = variable_rate_system().evaluate([[5.0, 5.0], [-2.5, 1.0]])
+        >>> print(" ".join(f"{v:.3f}" for v in y))
+        3.556 -0.774
+        """
         x = real_array("inputs", inputs, finite=True, owner="Mamdani")
         if x.ndim == 1 and len(self.inputs) == 1:
             x = x[:, None]
@@ -168,9 +261,31 @@ class Mamdani(Table):
 
 
 def variable_rate_system(resolution: int = 401) -> Mamdani:
-    """The seed-002 variable-rate system (sec. 2.3, Table 1), as the core defines it: inputs s
-    and s' with NB NS ZR PS PB on [-5, 5], output with NB NM NS ZR PS PM PB on [-4, 4], evenly
-    spaced triangles (shoulders at the ends), the 5x5 rule table."""
+    """The variable-rate system of the fuzzy variable-rate asteroid paper (sec. 2.3, Table 1),
+    as the core defines it: inputs s and s' with NB NS ZR PS PB on [-5, 5], output with NB NM
+    NS ZR PS PM PB on [-4, 4], evenly spaced triangles (shoulders at the ends), the 5x5 rule
+    table.
+
+    Parameters
+    ----------
+    resolution : int
+        Number of points sampling the output universe, >= 2 (default 401).
+
+    Returns
+    -------
+    Mamdani
+        The system: two inputs, seven output sets, 25 rules.
+
+    Raises
+    ------
+    ParameterError
+        If ``resolution`` is below 2 or above the configured cap.
+
+    Examples
+    --------
+    >>> variable_rate_system()
+    Mamdani(2 inputs, 7 output sets, 25 rules, resolution 401)
+    """
     resolution = integer("resolution", resolution, minimum=2, cap="max_fuzzy_resolution",
                          owner="variable_rate_system")
     return Mamdani._from_table(_core.variable_rate_system_table(resolution),
