@@ -1,6 +1,7 @@
-"""The offline fuel-optimal powered descent: the baseline of seed 001's fuel comparison.
+"""The offline fuel-optimal powered descent: the baseline of the Mars fixed-time guidance
+paper's fuel comparison.
 
-Seed 001 ("Mars Powered Descent Phase Guidance Design Based on Fixed-time Stabilization
+The Mars fixed-time guidance paper ("Mars Powered Descent Phase Guidance Design Based on Fixed-time Stabilization
 Technique", section IV, Fig. 3 and 4) compares its guidance with an offline fuel-optimal
 trajectory computed with GPOPS for t_f = 30 s (212.9067 kg of fuel). :func:`fuel_optimal` solves
 the same problem on the simulator's own model (docs/reproduction-mars.md, "Fuel-optimal
@@ -12,8 +13,8 @@ baseline")::
                 rz >= 0 along the way, r(t_f) = 0, v(t_f) = 0
                 optionally rz >= tan(glide slope) |(rx, ry)|  (the paper uses none)
 
-with the drag of :class:`landing.plants.MarsLander` (seed eq. 12, sign fixed) and its mass
-depletion (seed eq. 13). The thrust is piecewise constant on ``nodes`` intervals, each
+with the drag of :class:`landing.plants.MarsLander` (the paper's eq. 12, sign fixed) and its
+mass depletion (eq. 13). The thrust is piecewise constant on ``nodes`` intervals, each
 integrated by ``steps_per_node`` RK4 steps of the control period ``dt = t_f / (nodes
 steps_per_node)``: the discrete dynamics are those of :func:`landing.simulate_batch` at that
 ``dt`` with the force held over each control period, so :meth:`FuelOptimalResult.replay` (the
@@ -134,6 +135,36 @@ def impulsive_fuel_bound(plant: Any, x0: Any, t_final: float) -> float:
     ``m0 - m(t_f) >= m0 (1 - exp(-|dv| / c))``, with equality only for an impulse along dv,
     which the thrust limit forbids. With drag the bound needs the drag's impulse, which depends
     on the trajectory; it is computed from the drag-free formula only.
+
+    Parameters
+    ----------
+    plant : MarsLander
+        The lander (one case, scalar parameters); its ``isp``, ``g0`` and ``gravity`` are used.
+        It must have a ``thrust_limit``, although the bound does not depend on it.
+    x0 : ArrayLike
+        Initial state ``[rx, ry, rz, vx, vy, vz, m]``: m, m/s, kg.
+    t_final : float
+        Flight time, s.
+
+    Returns
+    -------
+    float
+        The bound on the fuel, kg.
+
+    Raises
+    ------
+    ParameterError
+        If the plant has no thrust limit or a parameter is not a scalar.
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> from landing.optimal import fuel_optimal
+    >>> plant = landing.plants.MarsLander(thrust_limit=[8e3, 8e3, 16e3], drag=False)
+    >>> x0 = np.array([200.0, 100.0, 1500.0, -10.0, 5.0, -75.0, 1905.0])
+    >>> from landing.optimal import impulsive_fuel_bound
+    >>> print(f"{impulsive_fuel_bound(plant, x0, 30.0):.1f} kg")
+    154.5 kg
     """
     m = _model(plant)
     x = np.asarray(x0, dtype=float)
@@ -145,21 +176,55 @@ def impulsive_fuel_bound(plant: Any, x0: Any, t_final: float) -> float:
 class FuelOptimalResult:
     """A fuel-optimal landing (:func:`fuel_optimal`).
 
-    Attributes
+    Made by :func:`fuel_optimal`; its fields:
+
+    Parameters
     ----------
-    t : node times, (nodes + 1,), s.
-    states : states at the nodes, (nodes + 1, 7): [rx, ry, rz, vx, vy, vz, m].
-    thrust : force per axis on each node interval, (nodes, 3), N (held constant over it).
-    t_fine, states_fine : times and states at every integration step (every control period).
-    fuel : propellant spent, m(0) - m(t_f), kg.
-    t_final : the final time (the optimum's when ``free_final_time``).
-    dt : the control period: the integration step, and the period of the replay.
-    steps_per_node : control periods per node (the replay law's ``hold``).
-    status : IPOPT's return status; ``success`` whether it converged.
-    iterations, solve_seconds : IPOPT's iteration count and the wall time of the solve.
-    slack_gap : the largest Gamma - |F| over the nodes, N (fuel paid for no thrust; 0 at the
-        optimum).
-    plant : the plant solved for (its thrust_limit is the bound).
+    t : numpy.ndarray
+        Node times, shape (nodes + 1,), s.
+    states : numpy.ndarray
+        States at the nodes, shape (nodes + 1, 7): [rx, ry, rz, vx, vy, vz, m] in m, m/s, kg.
+    thrust : numpy.ndarray
+        Force per axis on each node interval, shape (nodes, 3), N (held constant over it).
+    t_fine, states_fine : numpy.ndarray
+        Times (s) and states at every integration step (every control period), shapes
+        (K + 1,) and (K + 1, 7).
+    fuel : float
+        Propellant spent, m(0) - m(t_f), kg.
+    t_final : float
+        The final time, s (the optimum's when ``free_final_time``).
+    dt : float
+        The control period, s: the integration step, and the period of the replay.
+    steps_per_node : int
+        Control periods per node (the replay law's ``hold``).
+    status : str
+        IPOPT's return status.
+    success : bool
+        Whether IPOPT converged.
+    iterations : int
+        IPOPT's iteration count.
+    solve_seconds : float
+        Wall time of the solve, s.
+    slack_gap : float
+        The largest Gamma - |F| over the nodes, N (fuel paid for no thrust; 0 at the optimum).
+    plant : MarsLander
+        The plant solved for (its thrust_limit is the bound).
+    glide_slope : float or None
+        The glide-slope angle imposed, degrees, if any.
+    thrust_magnitude : tuple of float or None
+        The ``(low, high)`` bounds on |F| imposed, N, if any.
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> from landing.optimal import fuel_optimal
+    >>> plant = landing.plants.MarsLander(thrust_limit=[8e3, 8e3, 16e3], drag=False)
+    >>> x0 = np.array([200.0, 100.0, 1500.0, -10.0, 5.0, -75.0, 1905.0])
+    >>> r = fuel_optimal(plant, x0, 30.0, nodes=15, steps_per_node=2)
+    >>> r.success, r.states.shape, r.thrust.shape, r.nodes
+    (True, (16, 7), (15, 3), 15)
+    >>> print(f"{r.fuel:.1f} kg, dt = {r.dt:.1f} s")
+    155.4 kg, dt = 1.0 s
     """
 
     t: np.ndarray
@@ -186,14 +251,53 @@ class FuelOptimalResult:
 
     def controller(self, after: Literal["hold", "zero"] = "zero") -> Tabulated:
         """The thrust profile as a :class:`landing.controllers.Tabulated` law (each row held for
-        ``steps_per_node`` control periods of ``dt``)."""
+        ``steps_per_node`` control periods of ``dt``).
+
+        Parameters
+        ----------
+        after : {"hold", "zero"}
+            Past the last row: hold it, or command no thrust (default).
+
+        Returns
+        -------
+        Tabulated
+            The open-loop law, force in N.
+        """
         return Tabulated(force=self.thrust, hold=self.steps_per_node, after=after)
 
     def replay(self, disturbance: Any = None, *, t_final: Optional[float] = None, x0: Any = None,
                **options: Any) -> SimulationResult:
         """The thrust profile flown open loop by :func:`landing.simulate` at the control period
         ``dt`` (one RK4 step each), from the optimum's initial state unless ``x0`` is given,
-        with an optional disturbance; ``options`` go to :func:`landing.simulate`."""
+        with an optional disturbance; ``options`` go to :func:`landing.simulate`.
+
+        Parameters
+        ----------
+        disturbance : Disturbance, list of Disturbance or None
+            Added to the dynamics (default none).
+        t_final : float or None
+            Horizon, s (default the optimum's ``t_final``).
+        x0 : ArrayLike or None
+            Initial state [rx, ry, rz, vx, vy, vz, m] in m, m/s, kg (default ``states[0]``).
+        **options : Any
+            More keyword arguments of :func:`landing.simulate`.
+
+        Returns
+        -------
+        SimulationResult
+            The simulated case (no case axis).
+
+        Examples
+        --------
+        >>> import numpy as np, landing
+        >>> from landing.optimal import fuel_optimal
+        >>> plant = landing.plants.MarsLander(thrust_limit=[8e3, 8e3, 16e3], drag=False)
+        >>> x0 = np.array([200.0, 100.0, 1500.0, -10.0, 5.0, -75.0, 1905.0])
+        >>> r = fuel_optimal(plant, x0, 30.0, nodes=15, steps_per_node=2)
+        >>> end = r.replay().states[-1]
+        >>> print(f"{np.linalg.norm(end[:3]):.3f} m, {np.linalg.norm(end[3:6]):.3f} m/s")
+        0.000 m, 0.000 m/s
+        """
         start = self.states[0] if x0 is None else np.asarray(x0, dtype=float)
         return simulate(
             self.plant, self.controller(), start, t_final=self.t_final if t_final is None else t_final,
@@ -238,28 +342,64 @@ def fuel_optimal(
 
     Parameters
     ----------
-    plant : the lander; its ``thrust_limit`` (finite, per axis) is the thrust bound, and its
+    plant : MarsLander
+        The lander; its ``thrust_limit`` (finite, per axis, N) is the thrust bound, and its
         drag and mass depletion are modelled as in the simulator. One case (scalar parameters).
-    x0 : initial state [rx, ry, rz, vx, vy, vz, m] (rz >= 0, m > 0).
-    t_final : the flight time, s (seed 001: 30 s); with ``free_final_time`` the initial guess.
-    free_final_time : also optimise t_f, within ``t_final_bounds`` (default
-        ``(0.2 t_final, 3 t_final)``); the control period then scales with it.
-    nodes : thrust intervals (the thrust is constant on each).
-    steps_per_node : RK4 steps (control periods) per interval.
-    glide_slope : if given, the angle in degrees above the horizontal the lander must stay
-        above, as seen from the target: ``rz >= tan(angle) sqrt(rx^2 + ry^2 + 1 m^2)`` at every
+    x0 : ArrayLike
+        Initial state [rx, ry, rz, vx, vy, vz, m] in m, m/s, kg (rz >= 0, m > 0).
+    t_final : float
+        The flight time, s (the Mars fixed-time guidance paper: 30 s); with
+        ``free_final_time`` the initial guess.
+    free_final_time : bool
+        Also optimise t_f, within ``t_final_bounds``; the control period then scales with it.
+    t_final_bounds : tuple of float or None
+        ``(low, high)`` bounds on t_f, s (default ``(0.2 t_final, 3 t_final)``); only with
+        ``free_final_time``.
+    nodes : int
+        Thrust intervals (the thrust is constant on each).
+    steps_per_node : int
+        RK4 steps (control periods) per interval.
+    glide_slope : float or None
+        If given, the angle in degrees above the horizontal the lander must stay above, as
+        seen from the target: ``rz >= tan(angle) sqrt(rx^2 + ry^2 + 1 m^2)`` at every
         integration step before t_f (the softening keeps it smooth over the target).
-    thrust_magnitude : if given, ``(low, high)`` bounds on |F| in N besides the per-axis limit:
+    thrust_magnitude : tuple of float or None
+        If given, ``(low, high)`` bounds on |F| in N besides the per-axis limit:
         ``low <= |F| <= high`` throughout (an engine that cannot throttle below ``low`` nor
-        shut down, as in Acikmese and Ploen 2007, the seed's reference [1]; ``low = 0`` allows
-        coasting).
-    tolerance, max_iterations : IPOPT's ``tol`` and ``max_iter``.
-    verbose : print IPOPT's log.
+        shut down, as in Acikmese and Ploen 2007, the paper's reference [1]; ``low = 0``
+        allows coasting).
+    tolerance : float
+        IPOPT's ``tol``.
+    max_iterations : int
+        IPOPT's ``max_iter``.
+    verbose : bool
+        Print IPOPT's log.
 
     Returns
     -------
     FuelOptimalResult
         Check ``success`` (IPOPT's status is ``status``).
+
+    Raises
+    ------
+    ParameterError
+        If the plant has no thrust limit, ``x0`` is not one finite state with m > 0 and
+        rz >= 0, or an option is out of range (a glide slope not in (0, 90) degrees or one
+        ``x0`` lies below, ``t_final`` outside ``t_final_bounds``).
+    ParameterTypeError
+        If ``thrust_magnitude`` is not a pair of numbers.
+    ImportError
+        If CasADi is not installed.
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> from landing.optimal import fuel_optimal
+    >>> plant = landing.plants.MarsLander(thrust_limit=[8e3, 8e3, 16e3], drag=False)
+    >>> x0 = np.array([200.0, 100.0, 1500.0, -10.0, 5.0, -75.0, 1905.0])
+    >>> r = fuel_optimal(plant, x0, t_final=30.0, nodes=15, steps_per_node=2)
+    >>> print(r.status, f"{r.fuel:.1f} kg", f"{r.states[-1, 6]:.1f} kg left")
+    Solve_Succeeded 155.4 kg 1749.6 kg left
     """
     ca = _casadi()
     model = _model(plant)
