@@ -17,7 +17,28 @@ __all__ = ["GainSpec", "TuneResult"]
 
 @dataclass(frozen=True)
 class GainSpec:
-    """One searched gain: its law parameter name, bounds and scale (``"linear"`` or ``"log"``)."""
+    """One searched gain: its law parameter name, bounds and scale (``"linear"`` or ``"log"``).
+
+    :func:`~landing.tune.tune` makes them from its ``gains`` argument; the search runs in the
+    unit coordinate u in [0, 1], mapped linearly, or linearly in log10, onto the bounds.
+
+    Parameters
+    ----------
+    name : str
+        The law parameter's name (``"lambda_"``, ``"alpha1"``).
+    low, high : float
+        The bounds, in the gain's units; ``low > 0`` on a log scale.
+    scale : {"linear", "log"}
+        How u maps onto the bounds (default ``"linear"``).
+
+    Examples
+    --------
+    >>> k = GainSpec("k", 0.1, 2.0, "log")
+    >>> print(" ".join(f"{g:.3f}" for g in k.decode(np.array([0.0, 0.5, 1.0]))))
+    0.100 0.447 2.000
+    >>> print(f"{k.encode(1.0):.3f}")
+    0.769
+    """
 
     name: str
     low: float
@@ -25,13 +46,36 @@ class GainSpec:
     scale: str = "linear"
 
     def decode(self, u: np.ndarray) -> np.ndarray:
-        """From the search's unit coordinate to the gain."""
+        """From the search's unit coordinate to the gain.
+
+        Parameters
+        ----------
+        u : numpy.ndarray
+            Unit coordinates (clipped to [0, 1]).
+
+        Returns
+        -------
+        numpy.ndarray
+            The gains, same shape as ``u``, in the gain's units.
+        """
         u = np.clip(u, 0.0, 1.0)
         if self.scale == "log":
             return 10 ** (math.log10(self.low) + u * (math.log10(self.high) - math.log10(self.low)))
         return self.low + u * (self.high - self.low)
 
     def encode(self, g: float) -> float:
+        """From a gain to the search's unit coordinate (the inverse of :meth:`decode`).
+
+        Parameters
+        ----------
+        g : float
+            The gain, in its units.
+
+        Returns
+        -------
+        float
+            Its unit coordinate (outside [0, 1] for a gain outside the bounds).
+        """
         if self.scale == "log":
             return (math.log10(g) - math.log10(self.low)) / (math.log10(self.high) - math.log10(self.low))
         return (g - self.low) / (self.high - self.low)
@@ -41,27 +85,68 @@ class GainSpec:
 class TuneResult:
     """What :func:`tune` found, with every evaluation.
 
-    Attributes
+    Made by :func:`~landing.tune.tune`; its fields:
+
+    Parameters
     ----------
-    base : the scenario tuned (with its original gains); the first set-up for several.
-    gains : the searched gains' specifications.
-    objectives, constraints : their texts (or callables' names).
-    seed, cases, budget, popsize : the run's settings.
-    x : (E, G) the evaluated gain sets, in the order of ``gains``.
-    generation : (E,) the generation of each evaluation (0 first).
-    objective_values : (E, M).
-    constraint_values : (E, C) margins, satisfied when <= 0 (see :meth:`Expression.value`).
-    diverged : (E,) the fraction of each candidate's cases that diverged.
-    violation : (E,) the total violation by which infeasible candidates are ranked (0: feasible).
-    feasible : (E,) bool.
-    best : index of the best evaluation (single objective: the feasible one with the least
+    base : Scenario
+        The scenario tuned (with its original gains); the first set-up for several.
+    gains : tuple of GainSpec
+        The searched gains' specifications.
+    objectives, constraints : tuple of str
+        Their texts (or callables' names).
+    seed, cases, budget, popsize : int
+        The run's settings.
+    x : numpy.ndarray
+        Shape (E, G): the evaluated gain sets, in the order of ``gains``, in the gains' units.
+    generation : numpy.ndarray
+        Shape (E,): the generation of each evaluation (0 first).
+    objective_values : numpy.ndarray
+        Shape (E, M), in the units of the objectives' metrics.
+    constraint_values : numpy.ndarray
+        Shape (E, C): margins, satisfied when <= 0.
+    diverged : numpy.ndarray
+        Shape (E,): the fraction of each candidate's cases that diverged.
+    violation : numpy.ndarray
+        Shape (E,): the total violation by which infeasible candidates are ranked (0:
+        feasible).
+    feasible : numpy.ndarray
+        Shape (E,), bool.
+    best : int
+        Index of the best evaluation (single objective: the feasible one with the least
         objective, else the least violation; several: the front's member with the least first
         objective).
-    front : indices of the Pareto front of the feasible evaluations (the best alone for one
+    front : numpy.ndarray
+        Indices of the Pareto front of the feasible evaluations (the best alone for one
         objective).
-    interrupted : True when Ctrl-C stopped the search; the rest is what was done so far.
-    stop : why the search ended.
-    elapsed : seconds.
+    interrupted : bool
+        True when Ctrl-C stopped the search; the rest is what was done so far.
+    stop : str
+        Why the search ended.
+    elapsed : float
+        Wall time of the search, s.
+    setups : dict of str to Scenario
+        The other set-ups by label, when several were tuned together.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> from landing.tune import tune
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> r = tune(s, {"lambda_": (0.2, 2.0), "k": (0.1, 2.0, "log")}, "mean(iae)",
+    ...          ["max(peak_command) <= 5"], budget=12, seed=1, progress=False)
+    >>> r.n_evaluations, r.gain_names, r.best_feasible, r.unmet()
+    (12, ('lambda_', 'k'), True, [])
+    >>> print(", ".join(f"{k} = {v:.3f}" for k, v in r.best_gains.items()))
+    lambda_ = 0.949, k = 1.426
+    >>> print(f"{r.best_objectives['mean(iae)']:.3f}")
+    57.433
+    >>> print(f"{r.scenario().controller.k:.3f}")
+    1.426
     """
 
     base: Scenario
@@ -96,7 +181,18 @@ class TuneResult:
         return tuple(g.name for g in self.gains)
 
     def gains_of(self, index: int) -> dict[str, float]:
-        """Evaluation ``index``'s gains by name."""
+        """Evaluation ``index``'s gains by name.
+
+        Parameters
+        ----------
+        index : int
+            Row of ``x``.
+
+        Returns
+        -------
+        dict of str to float
+            The gains, in their units.
+        """
         return {g.name: float(self.x[index, j]) for j, g in enumerate(self.gains)}
 
     @property
@@ -117,7 +213,18 @@ class TuneResult:
 
     def unmet(self, index: Optional[int] = None) -> list[str]:
         """The constraints evaluation ``index`` (default: the best) does not meet, plus
-        "diverged cases" when some of its cases diverged."""
+        "diverged cases" when some of its cases diverged.
+
+        Parameters
+        ----------
+        index : int or None
+            The evaluation (default the best).
+
+        Returns
+        -------
+        list of str
+            The texts of the unmet constraints (empty when it is feasible).
+        """
         i = self.best if index is None else index
         out = [c for j, c in enumerate(self.constraints)
                if not (self.constraint_values[i, j] <= 0)]
@@ -127,14 +234,33 @@ class TuneResult:
 
     def scenario(self, index: Optional[int] = None, setup: Optional[str] = None) -> Scenario:
         """The tuned scenario: the base (or set-up ``setup``) with the best gains (or evaluation
-        ``index``'s)."""
+        ``index``'s).
+
+        Parameters
+        ----------
+        index : int or None
+            The evaluation whose gains to take (default the best).
+        setup : str or None
+            The label of the set-up, when several were tuned (default ``base``).
+
+        Returns
+        -------
+        Scenario
+            The scenario with those gains in its law.
+        """
         g = self.best_gains if index is None else self.gains_of(index)
         s = self.base if setup is None else self.setups[setup]
         return s.replace(controller=g)
 
     def best_so_far(self) -> np.ndarray:
         """(generations,) the best objective (the first) among the feasible evaluations up to
-        each generation (NaN before the first feasible one)."""
+        each generation (NaN before the first feasible one).
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (generations,), in the units of the first objective.
+        """
         n = int(self.generation.max()) + 1 if self.generation.size else 0
         out = np.full(n, np.nan)
         cur = np.inf
@@ -147,7 +273,13 @@ class TuneResult:
 
     def table(self) -> dict[str, np.ndarray]:
         """Every evaluation as columns: generation, each gain, each objective ("objective_j"),
-        each constraint's margin ("constraint_j"), diverged, violation, feasible."""
+        each constraint's margin ("constraint_j"), diverged, violation, feasible.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            The columns, each of shape (E,).
+        """
         cols: dict[str, np.ndarray] = {"generation": self.generation}
         for j, g in enumerate(self.gains):
             cols[g.name] = self.x[:, j]
@@ -162,7 +294,18 @@ class TuneResult:
 
     def write(self, folder: Union[str, Path]) -> list[Path]:
         """Writes ``evaluations.parquet`` (pyarrow present) or ``evaluations.csv``, the tuned
-        scenario ``tuned.toml`` and ``summary.txt`` (with the column legend) into ``folder``."""
+        scenario ``tuned.toml`` and ``summary.txt`` (with the column legend) into ``folder``.
+
+        Parameters
+        ----------
+        folder : str or Path
+            Made if missing.
+
+        Returns
+        -------
+        list of Path
+            The files written.
+        """
         out = Path(folder)
         out.mkdir(parents=True, exist_ok=True)
         cols = self.table()

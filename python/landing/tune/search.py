@@ -146,31 +146,59 @@ def tune(
 
     Parameters
     ----------
-    scenario : the set-up; its dispersion (if any) draws the K cases with ``seed``. Or several
+    scenario : Scenario or Mapping[str, Scenario]
+        The set-up; its dispersion (if any) draws the K cases with ``seed``. Or several
         set-ups by label, ``{"nominal": s1, "storm": s2}``, whose laws share the searched gains:
         every candidate runs on each, and the expressions name their metrics and bounds
         ``nominal.fuel_used``, ``storm.s1_radius`` (``t1``, ``t2``... alone: the first set-up's).
-    gains : ``{name: (low, high)}`` or ``{name: (low, high, "log")}``, law parameters shared by
-        every axis; the search runs in [0, 1] per gain (log10-mapped on a log scale), bounded
-        by CMA-ES's boundary transformation.
-    objective : an expression (module docstring) or a callable ``f(metrics, bounds) -> float``
-        (metrics: the candidate's K cases, a dict of them by label for several set-ups; bounds:
-        a dict of the bound names, or None), or a list of them (several objectives, every one
-        minimised).
-    constraints : expressions (one comparison each) or callables returning a margin that is
-        met when <= 0. A candidate with a diverged case is infeasible.
-    cases : K, the dispersed cases every candidate runs on (the same for all: common random
+    gains : Mapping[str, tuple]
+        ``{name: (low, high)}`` or ``{name: (low, high, "log")}``, law parameters (by their
+        Python field names, ``lambda_``) shared by every axis, bounds in the gains' units; the
+        search runs in [0, 1] per gain (log10-mapped on a log scale), bounded by CMA-ES's
+        boundary transformation.
+    objective : str, callable, or a list of them
+        An expression (module docstring) reducing the K cases to one number, such as
+        ``"mean(iae)"``, or a callable ``f(metrics, bounds) -> float`` (metrics: the
+        candidate's K cases, a dict of them by label for several set-ups; bounds: a dict of the
+        bound names, or None), or a list of them (several objectives, every one minimised).
+    constraints : sequence of str or callable
+        Expressions (one comparison each, ``"max(peak_command) <= 5"``) or callables returning
+        a margin that is met when <= 0. A candidate with a diverged case is infeasible.
+    cases : int
+        K, the dispersed cases every candidate runs on (the same for all: common random
         numbers).
-    budget : the most candidate evaluations (each runs K cases on every set-up).
-    seed : seeds the cases (dispersion and random streams) and the search: the same seed gives
+    budget : int
+        The most candidate evaluations (each runs K cases on every set-up).
+    seed : int
+        Seeds the cases (dispersion and random streams) and the search: the same seed gives
         the same evaluations and result, whatever ``threads``.
-    optimizer : ``"cma"`` (the only one).
-    popsize : candidates per generation (default: CMA-ES's 4 + 3 ln(number of gains)).
-    sigma0 : initial step in the unit coordinates.
-    start : the initial mean's gains (default: the middle of the box); the start itself is
-        one of the first generation's candidates.
-    threads : worker threads of the batches (default: all cores).
-    progress : show progress on stderr (default: when the run is long).
+    optimizer : str
+        ``"cma"`` (the only one).
+    popsize : int or None
+        Candidates per generation (default: CMA-ES's 4 + 3 ln(number of gains)).
+    sigma0 : float
+        Initial step in the unit coordinates.
+    start : Mapping[str, float] or None
+        The initial mean's gains (default: the middle of the box); the start itself is one of
+        the first generation's candidates.
+    threads : int or None
+        Worker threads of the batches (default: all cores).
+    progress : bool or None
+        Show progress on stderr (default: when the run is long).
+
+    Returns
+    -------
+    TuneResult
+        Every evaluation, the best and the Pareto front.
+
+    Raises
+    ------
+    ParameterError
+        If a gain is not a parameter of the law, its bounds are not ``low < high`` (``low > 0``
+        on a log scale), or an expression names an unknown metric or does not reduce the cases
+        to one number.
+    ImportError
+        If the ``cma`` package is not installed.
 
     Notes
     -----
@@ -181,6 +209,22 @@ def tune(
 
     Ctrl-C between or during generations stops the search and returns what was done so far,
     with ``interrupted=True``.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> from landing.tune import tune
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> r = tune(s, {"lambda_": (0.2, 2.0), "k": (0.1, 2.0, "log")}, "mean(iae)",
+    ...          ["max(peak_command) <= 5"], budget=12, seed=1, progress=False)
+    >>> print(r.stop, r.n_evaluations, int(r.feasible.sum()))
+    budget 12 12
+    >>> print(", ".join(f"{k} = {v:.3f}" for k, v in r.best_gains.items()))
+    lambda_ = 0.949, k = 1.426
     """
     if isinstance(scenario, Scenario):
         setups: dict[str, Scenario] = {"": scenario}
