@@ -33,7 +33,18 @@ ESTIMATES: tuple[str, ...] = ("estimated_position", "estimated_velocity")
 
 def kernel_levels() -> list[str]:
     """The instruction-set levels of the compiled kernel this CPU runs, lowest first (every
-    level gives the same bits; ``simulate_batch(..., kernel=...)`` forces one)."""
+    level gives the same bits; ``simulate_batch(..., kernel=...)`` forces one).
+
+    Returns
+    -------
+    list of str
+        The levels, such as ``["baseline", "avx2", "avx512"]`` on x86-64.
+
+    Examples
+    --------
+    >>> kernel_levels()[0]
+    'baseline'
+    """
     return list(_core.kernel_levels())
 
 
@@ -49,6 +60,46 @@ class RunOptions:
     them (t_final a whole number of steps, the cut-off below the Nyquist frequency) the core
     checks when it runs them. ``options.replace(dt=1e-2)`` is a
     copy, checked again.
+
+    Parameters
+    ----------
+    t_final : float
+        Horizon, s; > 0, a whole number of control periods.
+    dt : float
+        Control period, s; > 0.
+    integrator : str
+        ``"rk4"`` (default) or ``"euler"``.
+    substeps : int
+        Integrator steps per control period, >= 1.
+    record_every : int
+        Keep every k-th control instant, >= 0 (0: only the final states and the metrics).
+    settle_tolerance : float or None
+        Tolerance on the tracking-error norm behind ``settle_time``, units of q (None: 2 % of
+        the initial error norm).
+    chatter_cutoff : float or None
+        Cut-off frequency of the chattering metric's high-pass filter, Hz (None: 1 / (20 dt)).
+    threads : int or None
+        Worker threads, >= 1 (None: all cores).
+    kernel : str or None
+        One of :func:`kernel_levels` (None: ``LANDING_KERNEL``, else the best).
+    stop_at : str or None
+        ``"touchdown"`` to end each case at its touchdown, or None.
+
+    Raises
+    ------
+    ParameterError
+        If a field breaks its rule, or t_final / dt exceeds the core's step cap.
+    ParameterTypeError
+        If a field has the wrong type.
+
+    Examples
+    --------
+    >>> RunOptions(t_final=10.0, dt=0.01).replace(dt=0.02).dt
+    0.02
+    >>> RunOptions(t_final=0.0, dt=0.01)
+    Traceback (most recent call last):
+        ...
+    landing.errors.ParameterError: t_final = 0 violates t_final > 0
     """
 
     t_final: float
@@ -149,34 +200,52 @@ def simulate_batch(
 
     Parameters
     ----------
-    plant : a :mod:`landing.plants` plant; its numeric parameters may be per case.
-    controller : a :mod:`landing.controllers` law; its gains may be per case.
-    x0 : (N, n_state) initial states, one row per case.
-    t_final : horizon, s; a whole number of control periods.
-    dt : control period, s. The command is computed from the state at t_k, saturated, and held
+    plant : Plant
+        A :mod:`landing.plants` plant; its numeric parameters may be per case.
+    controller : Controller
+        A :mod:`landing.controllers` law; its gains may be per case.
+    x0 : ArrayLike
+        Shape (N, n_state): initial states, one row per case, in the plant's units (q, q/s,
+        and kg for a lander's mass).
+    t_final : float
+        Horizon, s; a whole number of control periods.
+    dt : float
+        Control period, s. The command is computed from the state at t_k, saturated, and held
         over ``[t_k, t_k + dt)``.
-    integrator : ``"rk4"`` or ``"euler"``.
-    substeps : integrator steps per control period.
-    reference : target the law tracks (default: the origin at rest).
-    disturbance : unknown disturbance (a component, a sum or a list of components).
-    record_every : keep every k-th control instant (always the first and the last); 0 keeps
-        only the final states and the metrics.
-    seed : seed of the counter-based random streams; case i's numbers depend only on
+    integrator : str
+        ``"rk4"`` or ``"euler"``.
+    substeps : int
+        Integrator steps per control period.
+    reference : Reference or None
+        Target the law tracks (default: the origin at rest).
+    disturbance : Disturbance, list of Disturbance or None
+        Unknown disturbance (a component, a sum or a list of components).
+    record_every : int
+        Keep every k-th control instant (always the first and the last); 0 keeps only the
+        final states and the metrics.
+    seed : int
+        Seed of the counter-based random streams; case i's numbers depend only on
         (seed, first_case + i), never on the thread count or the batch size.
-    first_case : global index of the first case, so that a slice of a campaign run alone
-        (or in chunks) draws the same random numbers as in the whole batch.
-    settle_tolerance : the tolerance on the tracking-error norm |q - q_ref| behind
-        ``metrics["settle_time"]`` (the first control instant from which the error stays
-        within it), in units of q; None for 2 % of the initial error norm.
-    chatter_cutoff : cut-off frequency (Hz) of the high-pass filter behind
+    first_case : int
+        Global index of the first case, so that a slice of a campaign run alone (or in
+        chunks) draws the same random numbers as in the whole batch.
+    settle_tolerance : float or None
+        The tolerance on the tracking-error norm |q - q_ref| behind ``metrics["settle_time"]``
+        (the first control instant from which the error stays within it), in units of q; None
+        for 2 % of the initial error norm.
+    chatter_cutoff : float or None
+        Cut-off frequency (Hz) of the high-pass filter behind
         ``metrics["chattering_hf_share"]``; None for a tenth of the Nyquist frequency,
         1 / (20 dt).
-    threads : worker threads (default: all cores).
-    kernel : the instruction-set level of the compiled kernel, one of
+    threads : int or None
+        Worker threads (default: all cores).
+    kernel : str or None
+        The instruction-set level of the compiled kernel, one of
         ``landing.kernel_levels()`` (``"baseline"``, ``"avx2"``, ``"avx512"`` on x86-64); the
         default is the ``LANDING_KERNEL`` environment variable, else the best this CPU has. Every
         level gives the same bits; forcing one is for testing and benchmarking.
-    stop_at : an event that ends each case, or None to run every case to ``t_final``.
+    stop_at : str or None
+        An event that ends each case, or None to run every case to ``t_final``.
         ``"touchdown"`` (a plant with an altitude: the landers) ends a case at its first
         crossing of the ground, ``rz = 0``, located inside the integrator step (on the step's
         cubic Hermite interpolant, to 1e-12 of the step): the case is then frozen in its state
@@ -187,8 +256,35 @@ def simulate_batch(
 
     Returns
     -------
-    SimulationResult. Cases whose state leaves the model's domain are stopped, flagged in
-    ``metrics["diverged"]`` and reported with a :class:`~landing.errors.DivergenceWarning`.
+    SimulationResult
+        ``t`` (T,) in s, ``states`` (N, T, n_state), ``controls`` and the ``metrics`` by name,
+        one value (or row) per case. Cases whose state leaves the model's domain are stopped,
+        flagged in ``metrics["diverged"]`` and reported with a
+        :class:`~landing.errors.DivergenceWarning`.
+
+    Raises
+    ------
+    ParameterError
+        If an argument breaks its rule (``x0`` not of shape (N, n_state), ``t_final`` not a
+        whole number of periods, a per-case parameter with the wrong number of rows...).
+    ParameterTypeError
+        If an argument has the wrong type.
+    UserFunctionError
+        If a function given in Python (a :class:`~landing.controllers.PythonLaw`'s) fails.
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+    >>> x0 = np.zeros((4, 6))
+    >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+    >>> r = simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+    ...                    record_every=10)
+    >>> r.t.shape, r.states.shape
+    ((101,), (4, 101, 6))
+    >>> print(" ".join(f"{e:.3f}" for e in r.metrics["final_position_error"]))
+    0.000 0.001 0.500 5.497
     """
     x = _as_states(x0)
     if x.ndim != 2:
@@ -284,7 +380,38 @@ def simulate(
     **kwargs: Any,
 ) -> SimulationResult:
     """One case: :func:`simulate_batch` with ``x0`` of shape ``(n_state,)``; the result has no
-    case axis (``states`` is (T, n_state), metrics are scalars)."""
+    case axis (``states`` is (T, n_state), metrics are scalars).
+
+    Parameters
+    ----------
+    plant : Plant
+        A :mod:`landing.plants` plant (scalar parameters).
+    controller : Controller
+        A :mod:`landing.controllers` law.
+    x0 : ArrayLike
+        Shape (n_state,): the initial state, in the plant's units.
+    **kwargs : Any
+        The keywords of :func:`simulate_batch` (``t_final`` and ``dt``, s, are required).
+
+    Returns
+    -------
+    SimulationResult
+        ``t`` (T,) in s, ``states`` (T, n_state), and the metrics as scalars.
+
+    Raises
+    ------
+    ParameterError
+        As :func:`simulate_batch`, and if ``x0`` is not one state.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+    >>> r = simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0], t_final=10.0, dt=0.01)
+    >>> r.states.shape, f"{r.metrics['settle_time']:.2f} s"
+    ((1001, 6), '5.10 s')
+    """
     x = _as_states(x0)
     if x.ndim != 1:
         raise ParameterError(
