@@ -51,11 +51,6 @@ NOT_YET: frozenset[str] = frozenset({
     "landing.controllers.PDSlidingMode",
     "landing.controllers.SuperTwisting",
     "landing.controllers.Tabulated",
-    "landing.plants.DoubleIntegrator",
-    "landing.plants.MarsLander",
-    "landing.plants.Plant",
-    "landing.plants.SmallBody",
-    "landing.plants.TetheredSatellite",
     "landing.scenarios._scenario.Scenario",
     "landing.scenarios.files.FileError",
     "landing.scenarios.files.dumps",
@@ -63,10 +58,6 @@ NOT_YET: frozenset[str] = frozenset({
     "landing.scenarios.files.scenario_from_dict",
     "landing.scenarios.files.scenario_to_dict",
     "landing.scenarios.files.scenario_to_toml",
-    "landing.simulation.RunOptions",
-    "landing.simulation.kernel_levels",
-    "landing.simulation.simulate",
-    "landing.simulation.simulate_batch",
 })
 
 

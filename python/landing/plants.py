@@ -29,7 +29,21 @@ __all__ = ["Plant", "MarsLander", "DoubleIntegrator", "SmallBody", "TetheredSate
 
 
 class Plant(Table):
-    """Base class of the plants."""
+    """Base class of the plants: the dynamics a law controls, with generalized coordinates q
+    (one per axis) and their rates q' read from the state.
+
+    Parameters
+    ----------
+    **fields : Any
+        The subclass's fields (see each one); the base class takes none of its own.
+
+    Examples
+    --------
+    >>> import landing
+    >>> plant = landing.plants.DoubleIntegrator()
+    >>> plant.axes, plant.state_dim, plant.state_names
+    (3, 6, ('x', 'y', 'z', 'vx', 'vy', 'vz'))
+    """
 
     family: ClassVar[str] = "plant"
 
@@ -73,7 +87,7 @@ class Plant(Table):
 
 @dataclass(frozen=True, eq=False)
 class MarsLander(Plant):
-    """Mars powered descent (seed 001).
+    """Mars powered descent (the Mars fixed-time guidance paper).
 
     State ``[rx, ry, rz, vx, vy, vz, m]`` in an inertial frame at the target, z up; the
     command is the engine force ``F = m a`` (N), clipped per axis to ``thrust_limit``, or, for
@@ -91,29 +105,55 @@ class MarsLander(Plant):
 
     Parameters
     ----------
-    isp : specific impulse, s (225 s, Acikmese and Ploen 2007, the seed's reference [1]).
-    area : effective cross-sections perpendicular to x, y, z, m^2 (seed Table I).
-    gravity : Mars surface gravity, m/s^2 (acts along -z).
-    drag : whether the plant has drag (the guidance then models it).
-    thrust_limit : per-axis limit on |F_i|, N; ``None`` for unlimited (seed part 3: 50 kN).
+    isp : ArrayLike
+        Specific impulse, s, scalar; isp > 0 (225 s, Acikmese and Ploen 2007, the paper's
+        reference [1]).
+    area : ArrayLike
+        Effective cross-sections perpendicular to x, y, z, m^2, per axis; area > 0 (the
+        paper's Table I).
+    gravity : ArrayLike
+        Mars surface gravity, m/s^2, scalar, >= 0 (acts along -z).
+    drag : bool
+        Whether the plant has drag (the guidance then models it).
+    thrust_limit : ArrayLike or None
+        Per-axis limit on |F_i|, N, > 0; ``None`` for unlimited (the paper's part 3: 50 kN).
         Not combined with the engine's limits below.
-    thrust_magnitude_limit : limit on |F|, N (the engine's full thrust); ``None`` for none.
-    min_throttle : the least |F| as a fraction of ``thrust_magnitude_limit``, in [0, 1);
-        ``None`` for 0.
-    pointing_limit : largest angle of F from +z, rad, in (0, pi/2]; ``None`` for any direction.
-    control_delay : the command's transport delay in whole control periods, an integer in
-        [0, 1000]; ``None`` for none. Before the first command arrives, the limits applied to a
-        zero command (Simulink's Transport Delay default of an initial output 0).
-    engine_time_constant : the engine's first-order lag time constant, s, >= 0; ``None`` or 0
-        for none. The lag starts in steady state, at the first command that reaches it.
-    drag_coefficient : k_d of seed eq. 12, kg/m.
-    density_decay : h_d of seed eq. 12, 1/m (the seed's 0.0009; the Mars-atmosphere model it
+    thrust_magnitude_limit : ArrayLike or None
+        Limit on |F|, N, > 0 (the engine's full thrust); ``None`` for none.
+    min_throttle : ArrayLike or None
+        The least |F| as a fraction of ``thrust_magnitude_limit``, in [0, 1); ``None`` for 0.
+    pointing_limit : ArrayLike or None
+        Largest angle of F from +z, rad, in (0, pi/2]; ``None`` for any direction.
+    control_delay : ArrayLike or None
+        The command's transport delay in whole control periods, an integer in [0, 1000];
+        ``None`` for none. Before the first command arrives, the limits applied to a zero
+        command (Simulink's Transport Delay default of an initial output 0).
+    engine_time_constant : ArrayLike or None
+        The engine's first-order lag time constant, s, >= 0; ``None`` or 0 for none. The lag
+        starts in steady state, at the first command that reaches it.
+    drag_coefficient : ArrayLike
+        k_d of the paper's eq. 12, kg/m, >= 0.
+    density_decay : ArrayLike
+        h_d of the paper's eq. 12, 1/m, >= 0 (the paper's 0.0009; the Mars-atmosphere model it
         cites uses 0.00009).
-    g0 : standard gravity in the rocket equation, m/s^2.
-    sensor : what the law reads the position and velocity through (:class:`landing.sensors.Noise`);
+    g0 : ArrayLike
+        Standard gravity in the rocket equation, m/s^2, > 0.
+    sensor : Sensor or None
+        What the law reads the position and velocity through (:class:`landing.sensors.Noise`);
         ``None`` for the true state. The mass is known to the law.
-    filter : the estimator between the sensor and the law (:class:`landing.sensors.KalmanFilter`);
+    filter : Filter or None
+        The estimator between the sensor and the law (:class:`landing.sensors.KalmanFilter`);
         ``None`` for none (the law reads the measurement). Needs a sensor.
+
+    Each numeric parameter may be given per case.
+
+    Examples
+    --------
+    >>> plant = MarsLander(thrust_limit=50e3)
+    >>> plant.state_names
+    ('rx', 'ry', 'rz', 'vx', 'vy', 'vz', 'm')
+    >>> MarsLander.initial_state([200.0, 100.0, 1500.0], [-10.0, 5.0, -75.0], 1905.0)
+    array([ 200.,  100., 1500.,  -10.,    5.,  -75., 1905.])
     """
 
     isp: ArrayLike = 225.0
@@ -136,7 +176,22 @@ class MarsLander(Plant):
 
     @staticmethod
     def initial_state(position: ArrayLike, velocity: ArrayLike, mass: ArrayLike) -> np.ndarray:
-        """Stack positions ``(..., 3)``, velocities ``(..., 3)`` and masses ``(...)`` into states ``(..., 7)``."""
+        """Stack positions ``(..., 3)``, velocities ``(..., 3)`` and masses ``(...)`` into states ``(..., 7)``.
+
+        Parameters
+        ----------
+        position : ArrayLike
+            Positions, m, shape (..., 3).
+        velocity : ArrayLike
+            Velocities, m/s, shape (..., 3).
+        mass : ArrayLike
+            Masses, kg, shape (...).
+
+        Returns
+        -------
+        numpy.ndarray
+            The states ``[rx, ry, rz, vx, vy, vz, m]``, shape (..., 7).
+        """
         r = real_array("position", position, owner="MarsLander.initial_state")
         v = real_array("velocity", velocity, owner="MarsLander.initial_state")
         m = real_array("mass", mass, owner="MarsLander.initial_state")
@@ -166,6 +221,27 @@ class DoubleIntegrator(Plant):
     the command is the acceleration, clipped per axis to ``acceleration_limit`` (None: none).
     ``sensor`` and ``filter`` (:mod:`landing.sensors`) put a measurement and an estimator
     between the plant and the law (``None``: the law reads the true state).
+
+    Parameters
+    ----------
+    acceleration_limit : ArrayLike or None
+        Per-axis limit on |u_i|, q/s^2 (m/s^2 as the core's table writes it), > 0; None for
+        none. May be given per case.
+    sensor : Sensor or None
+        The sensor between the plant and the law (:class:`landing.sensors.Noise`).
+    filter : Filter or None
+        The estimator between the sensor and the law (:class:`landing.sensors.KalmanFilter`);
+        needs a sensor.
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+    >>> r = landing.simulate(DoubleIntegrator(acceleration_limit=0.2), law, [10.0, 0, 0, 0, 0, 0],
+    ...                      t_final=5.0, dt=0.01)
+    >>> print(f"{r.metrics['peak_command']:.3f}")
+    0.200
     """
 
     acceleration_limit: Optional[ArrayLike] = None
@@ -177,9 +253,10 @@ class DoubleIntegrator(Plant):
 
 @dataclass(frozen=True, eq=False)
 class SmallBody(Plant):
-    """A probe near a small body, in the body's frame rotating at ``omega`` about z (seeds 000
-    and 002). State ``[x, y, z, vx, vy, vz]``; the command is a control acceleration
-    (m/s^2), clipped per axis to ``acceleration_limit`` (None: none), then scaled into
+    """A probe near a small body, in the body's frame rotating at ``omega`` about z (the fuzzy
+    fast-terminal and the fuzzy variable-rate asteroid papers). State ``[x, y, z, vx, vy, vz]``;
+    the command is a control acceleration (m/s^2), clipped per axis to ``acceleration_limit``
+    (None: none), then scaled into
     ``|u| <= acceleration_magnitude_limit`` (None: none; the scaling keeps the per-axis bounds).
     Between the law and those limits, the command may be delayed by ``control_delay`` whole
     control periods and lagged by the thrusters, ``u' = (u_c - u) / engine_time_constant``,
@@ -187,10 +264,44 @@ class SmallBody(Plant):
     lander (docs/parameters.md, "actuator"). Each of the four per case.
 
     ``x'' - 2 omega y' - omega^2 x = g_x + u_x + d_x``, ``y'' + 2 omega x' - omega^2 y = g_y + u_y + d_y``,
-    ``z'' = g_z + u_z + d_z``, with g from a :mod:`landing.gravity` field. Defaults: seed 000
-    (433 Eros as two mass points, omega = 3.3118e-4 rad/s). ``sensor`` and ``filter``
-    (:mod:`landing.sensors`) put a measurement and an estimator between the plant and the law
-    (``None``: the law reads the true state).
+    ``z'' = g_z + u_z + d_z``, with g from a :mod:`landing.gravity` field. Defaults: the fuzzy
+    fast-terminal asteroid paper's (433 Eros as two mass points, omega = 3.3118e-4 rad/s).
+    ``sensor`` and ``filter`` (:mod:`landing.sensors`) put a measurement and an estimator
+    between the plant and the law (``None``: the law reads the true state).
+
+    Parameters
+    ----------
+    gravity : Gravity
+        The body's gravity field (a :mod:`landing.gravity` field); default
+        :class:`~landing.gravity.TwoPointMass` (433 Eros).
+    omega : ArrayLike
+        The body's rotation rate about z, rad/s, scalar.
+    acceleration_limit : ArrayLike or None
+        Per-axis limit on |u_i|, m/s^2, > 0; None for none.
+    acceleration_magnitude_limit : ArrayLike or None
+        Limit on |u| after the per-axis one, m/s^2, > 0; None for none.
+    control_delay : ArrayLike or None
+        The command's transport delay in whole control periods, an integer in [0, 1000];
+        None for none.
+    engine_time_constant : ArrayLike or None
+        The thrusters' first-order lag time constant, s, >= 0; None (or 0) for none.
+    sensor : Sensor or None
+        The sensor between the plant and the law (:class:`landing.sensors.Noise`).
+    filter : Filter or None
+        The estimator between the sensor and the law (:class:`landing.sensors.KalmanFilter`);
+        needs a sensor.
+
+    Raises
+    ------
+    ParameterTypeError
+        If ``gravity`` is not a :mod:`landing.gravity` field.
+
+    Examples
+    --------
+    >>> from landing.gravity import Harmonic2
+    >>> plant = SmallBody(gravity=Harmonic2(), omega=3.3118e-4, acceleration_limit=0.01)
+    >>> plant.state_names, plant.control_names
+    (('x', 'y', 'z', 'vx', 'vy', 'vz'), ('ux', 'uy', 'uz'))
     """
 
     gravity: Gravity = field(default_factory=TwoPointMass)
@@ -214,18 +325,18 @@ class SmallBody(Plant):
 
 @dataclass(frozen=True, eq=False)
 class TetheredSatellite(Plant):
-    """The space-tethered satellite in its orbital plane (seed 003).
+    """The space-tethered satellite in its orbital plane (the tethered-satellite paper).
 
     Generalized coordinates ``q = (phi, theta)``: the in-plane angle of the line from the main
     satellite to the sub-satellite's centre (from nadir) and the sub-satellite's attitude, both
     in the orbital (Hill) frame, rad. Commands: the in-plane thrust (N, on the sub-satellite,
     perpendicular to that line) and the attitude torque (N m), each saturated. The controller
-    sees the seed's inertia ``M = diag(mu L0, m_s a^2/6)`` (eq. 17 in the actuators' units,
+    sees the paper's inertia ``M = diag(mu L0, m_s a^2/6)`` (eq. 17 in the actuators' units,
     mu the reduced mass) and no other model term.
 
     Two fidelities share that interface:
 
-    - ``"simplified"``: the rigid dumbbell of seed eq. 17 with its unknown terms written out
+    - ``"simplified"``: the rigid dumbbell of the paper's eq. 17 with its unknown terms written out
       (gravity gradient, tension torque); state ``[phi, theta, phi_dot, theta_dot]``.
     - ``"flexible"``: the validation plant: the tether as ``nodes`` lumped masses joined by
       tension-only Kelvin-Voigt spring-dampers, gravity gradient and Coriolis terms of the Hill
@@ -238,21 +349,45 @@ class TetheredSatellite(Plant):
 
     Parameters
     ----------
-    fidelity : ``"simplified"`` or ``"flexible"``.
-    main_mass, sub_mass : m_m and m_s, kg (seed Table 1: 1000, 10).
-    tether_length : L0, m (seed: 100).
-    side : a, the sub-satellite cube's side, m (seed: 1); the tether is attached a/2 from its
-        centre.
-    orbit_altitude : altitude of the main satellite's circular orbit, m (seed: 500 km).
-    thrust_limit : limit on the thrust, N (seed: 0.1); None for none.
-    torque_limit : limit on the torque, N m; None for ``thrust_limit * side / 2``.
-    nodes : tether nodes of the flexible model, one of 2, 4, 8, 16 (each is its own compiled
-        state size); 8 is within 0.01 s of 16 on the seed comparison (docs/parameters.md).
-    tether_density, axial_stiffness, axial_damping : the tether's linear density (kg/m), EA (N)
-        and Kelvin-Voigt damping c_A (N s): a YES2-class 0.5 mm Dyneema line
-        (docs/parameters.md).
+    fidelity : {"simplified", "flexible"}
+        The model (default ``"flexible"``).
+    main_mass, sub_mass : ArrayLike
+        m_m and m_s, kg, > 0 (the paper's Table 1: 1000, 10).
+    tether_length : ArrayLike
+        L0, the unstretched length, m, > 0 (the paper: 100).
+    side : ArrayLike
+        a, the sub-satellite cube's side, m, 0 < side < tether_length (the paper: 1); the
+        tether is attached a/2 from its centre.
+    orbit_altitude : ArrayLike
+        Altitude of the main satellite's circular Earth orbit, m (the paper: 500 km).
+    thrust_limit : ArrayLike or None
+        Limit on the in-plane thrust, N, > 0 (the paper: 0.1); None for none.
+    torque_limit : ArrayLike or None
+        Limit on the attitude torque, N m, > 0; None for ``thrust_limit * side / 2``.
+    nodes : int
+        Tether nodes of the flexible model, one of 2, 4, 8, 16 (each is its own compiled
+        state size); 8 is within 0.01 s of 16 on the paper's comparison (docs/parameters.md).
+    tether_density : ArrayLike
+        The tether's linear density, kg/m, > 0.
+    axial_stiffness : ArrayLike
+        EA, N, > 0.
+    axial_damping : ArrayLike
+        Kelvin-Voigt damping c_A, N s, >= 0 (with the two above: a YES2-class 0.5 mm Dyneema
+        line, docs/parameters.md).
 
     Any numeric parameter but ``nodes`` may be given per case.
+
+    Examples
+    --------
+    >>> rigid = TetheredSatellite(fidelity="simplified")
+    >>> rigid.state_names
+    ('phi', 'theta', 'phi_dot', 'theta_dot')
+    >>> print(" ".join(f"{m:.3f}" for m in rigid.inertia), f"{rigid.orbital_rate:.6f} rad/s")
+    990.099 1.667 0.001107 rad/s
+    >>> flexible = TetheredSatellite()
+    >>> q, dq = flexible.coordinates(flexible.initial_state(0.1, 0.05))
+    >>> print(" ".join(f"{v:.3f}" for v in q), flexible.state_dim)
+    0.100 0.050 38
     """
 
     fidelity: Literal["simplified", "flexible"] = "flexible"
@@ -353,18 +488,26 @@ class PythonPlant(Plant):
 
     Parameters
     ----------
-    derivative, n_state, positions, velocities : the dynamics, the number of state components
-        (at most 32) and the components holding q and q' (one per axis, 2 or 3 axes, 2 D
-        distinct components).
-    model, actuate, in_domain : the optional hooks above.
-    params : the plant's parameters by name: a scalar (the functions see (n,)), a vector (k,)
+    derivative : Callable
+        ``derivative(t, x, u, params) -> x'``, shapes above; t in s.
+    n_state : int
+        The number of state components (at most 32).
+    positions, velocities : Sequence[int]
+        The components holding q and q' (one per axis, 2 or 3 axes, 2 D distinct components).
+    model, actuate, in_domain : Callable or None
+        The optional hooks above.
+    params : Mapping[str, ArrayLike]
+        The plant's parameters by name: a scalar (the functions see (n,)), a vector (k,)
         shared by every case (seen as (n, k)), or a value per case (N,) or (N, k).
-    state_names, control_names : names for tables and plots (default x0, x1, ... and u0, ...).
-    mass, altitude : the components holding the mass (fuel metrics) and the height above the
-        ground (touchdown metrics and ``stop_at="touchdown"``), if any. An altitude that is one
-        of ``positions`` has its crossing located on the step's interpolant, as the built-in
+    state_names, control_names : tuple of str
+        Names for tables and plots (default x0, x1, ... and u0, ...).
+    mass, altitude : int or None
+        The components holding the mass (fuel metrics) and the height above the ground
+        (touchdown metrics and ``stop_at="touchdown"``), if any. An altitude that is one of
+        ``positions`` has its crossing located on the step's interpolant, as the built-in
         landers do; another component, on the chord between the step's ends.
-    name : how the plant is named in messages (default: the derivative's ``module:qualname``).
+    name : str or None
+        How the plant is named in messages (default: the derivative's ``module:qualname``).
 
     The cases run one after the other between the calls, on the calling thread, with the
     baseline kernel (``threads`` and ``kernel`` do not apply): the functions' time dominates.
@@ -378,6 +521,9 @@ class PythonPlant(Plant):
     >>> plant = landing.plants.PythonPlant(falling, 6, positions=(0, 1, 2), velocities=(3, 4, 5),
     ...     model=lambda t, x, p: (np.tile([0.0, 0.0, -9.81], (len(x), 1)), np.repeat(p["mass"][:, None], 3, 1)),
     ...     params={"mass": 2.0})
+    >>> r = landing.simulate(plant, landing.controllers.OpenLoop(), np.zeros(6), t_final=1.0, dt=0.1)
+    >>> print(f"{r.final_state[2]:.3f} m")
+    -4.905 m
     """
 
     derivative: Callable[..., Any]
