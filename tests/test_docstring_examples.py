@@ -51,13 +51,6 @@ NOT_YET: frozenset[str] = frozenset({
     "landing.controllers.PDSlidingMode",
     "landing.controllers.SuperTwisting",
     "landing.controllers.Tabulated",
-    "landing.scenarios._scenario.Scenario",
-    "landing.scenarios.files.FileError",
-    "landing.scenarios.files.dumps",
-    "landing.scenarios.files.read_toml",
-    "landing.scenarios.files.scenario_from_dict",
-    "landing.scenarios.files.scenario_to_dict",
-    "landing.scenarios.files.scenario_to_toml",
 })
 
 

@@ -34,13 +34,74 @@ class Scenario:
 
     ``x0`` is the nominal initial state; ``dispersion`` (if any) draws the initial states of
     a Monte Carlo campaign, and ``dispersions`` (parameter path -> dispersion, see
-    :meth:`disperse`) draws its dispersed parameters. ``theta`` holds the splitting constants (theta1, theta2) of seed
-    001's practical fixed-time analysis, for the bounds a campaign is checked against.
+    :meth:`disperse`) draws its dispersed parameters. ``theta`` holds the splitting constants
+    (theta1, theta2) of the Mars fixed-time guidance paper's practical fixed-time analysis, for
+    the bounds a campaign is checked against.
     ``options`` is the :class:`~landing.simulation.RunOptions` of ``t_final``, ``dt``,
     ``integrator``, ``substeps``, ``record_every``, ``settle_tolerance``, ``chatter_cutoff``
     and ``stop_at`` (None, the default: every case runs to ``t_final``; ``"touchdown"`` ends
     each lander case at its touchdown, see :func:`~landing.simulate_batch`), checked once when
     the scenario is made. A scenario is changed by making a new one, :meth:`replace`.
+
+    Parameters
+    ----------
+    name : str
+        The scenario's name (in printouts, stores and messages).
+    plant : Plant
+        A :mod:`landing.plants` plant.
+    controller : Controller
+        A :mod:`landing.controllers` law.
+    x0 : ArrayLike
+        The nominal initial state, shape (n_state,), in the plant's units.
+    t_final : float
+        Horizon, s; a whole number of control periods.
+    dt : float
+        Control period, s.
+    dispersion : Dispersion or None
+        Draws a campaign's initial states (one component per state component).
+    reference : Reference or None
+        The target the law tracks (default: the origin at rest).
+    disturbance : Disturbance, list of Disturbance or None
+        Unknown disturbance, q/s^2.
+    integrator : str
+        ``"rk4"`` (default) or ``"euler"``.
+    substeps : int
+        Integrator steps per control period, >= 1.
+    record_every : int
+        Keep every k-th control instant (0: only the final states and the metrics).
+    settle_tolerance : float or None
+        Tolerance on the tracking-error norm behind ``settle_time``, units of q.
+    chatter_cutoff : float or None
+        Cut-off of the chattering metric's high-pass filter, Hz.
+    stop_at : str or None
+        ``"touchdown"`` to end each lander case at its touchdown, or None.
+    theta : tuple of float or None
+        (theta1, theta2), each in (0, 1).
+    description : str
+        Free text (``landing list`` shows it).
+    dispersions : Mapping[str, Dispersion]
+        Parameter path -> dispersion (see :meth:`disperse`).
+
+    Raises
+    ------
+    ParameterError
+        If a field breaks its rule (the message names the scenario and the field).
+    ParameterTypeError
+        If a field has the wrong type.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> r = s.simulate()
+    >>> print(f"{r.metrics['final_position_error']:.3f}")
+    5.509
+    >>> s.replace(dt=0.01).dt, s.replace(controller={"k": 1.0}).controller.k
+    (0.01, 1.0)
     """
 
     #: The fields that are run options (the threads and the kernel level are the machine's,

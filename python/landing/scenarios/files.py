@@ -76,7 +76,21 @@ _SETTINGS = ("name", "description", "x0", "t_final", "dt", "integrator", "subste
 
 class FileError(ParameterError):
     """A scenario file that cannot be read: the message names the file, the key, the value and
-    the rule."""
+    the rule. A :class:`~landing.errors.ParameterError`.
+
+    Parameters
+    ----------
+    *args : object
+        The message (a str), as for any exception.
+
+    Examples
+    --------
+    >>> try:
+    ...     read_toml("a = ", "broken.toml")
+    ... except FileError as e:
+    ...     print(e)
+    broken.toml: not valid TOML (Invalid value (at end of document))
+    """
 
 
 # ---------------------------------------------------------------------------------------------
@@ -158,7 +172,31 @@ def _encode_table(obj: Table) -> dict[str, Any]:
 
 
 def scenario_to_dict(scenario: Scenario) -> dict[str, Any]:
-    """The scenario as the nested dict a TOML file holds."""
+    """The scenario as the nested dict a TOML file holds.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The scenario; its parts are written by class name (``kind``) and fields.
+
+    Returns
+    -------
+    dict
+        Plain values (numbers, strings, lists) and nested dicts, as :func:`dumps` writes them
+        and :func:`scenario_from_dict` reads them.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> d = scenario_to_dict(s)
+    >>> d["dt"], d["plant"], d["controller"]["kind"]
+    (0.05, {'kind': 'DoubleIntegrator'}, 'PDSlidingMode')
+    """
     out: dict[str, Any] = {}
     for key in _SETTINGS:
         value = getattr(scenario, key)
@@ -191,7 +229,33 @@ def scenario_to_dict(scenario: Scenario) -> dict[str, Any]:
 
 
 def scenario_to_toml(scenario: Scenario) -> str:
-    """The scenario as TOML text (what ``landing show`` prints and a store keeps)."""
+    """The scenario as TOML text (what ``landing show`` prints and a store keeps).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The scenario.
+
+    Returns
+    -------
+    str
+        The TOML text; :func:`landing.scenarios.load_scenario` reads it back.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> print(scenario_to_toml(s).split("[controller]")[1].strip())
+    kind = "PDSlidingMode"
+    lambda_ = 1.0
+    k = 0.5
+    switch = "sat"
+    boundary_layer = 0.1
+    """
     header = f"# landing scenario{': ' + scenario.description if scenario.description else ''}\n"
     return header + dumps(scenario_to_dict(scenario))
 
@@ -243,7 +307,27 @@ def _emit(table: Mapping[str, Any], path: list[str], lines: list[str]) -> None:
 def dumps(d: Mapping[str, Any]) -> str:
     """TOML text of a nested dict of the kinds :func:`scenario_to_dict` makes: plain values
     first, then each table as a ``[section]`` and each list of tables as ``[[sections]]``, every
-    number written so that it reads back bit for bit."""
+    number written so that it reads back bit for bit.
+
+    Parameters
+    ----------
+    d : Mapping[str, Any]
+        Plain values (numbers, strings, booleans, lists of them), tables and lists of tables.
+
+    Returns
+    -------
+    str
+        The TOML text.
+
+    Examples
+    --------
+    >>> print(dumps({"a": 1, "b": {"c": 0.1, "d": "x"}}).strip())
+    a = 1
+    <BLANKLINE>
+    [b]
+    c = 0.1
+    d = "x"
+    """
     lines: list[str] = []
     _emit(d, [], lines)
     return "\n".join(lines) + "\n"
@@ -255,7 +339,32 @@ def dumps(d: Mapping[str, Any]) -> str:
 
 def read_toml(text: str, source: str) -> dict[str, Any]:
     """The TOML ``text`` of the file ``source`` as a dict; what is not TOML, or nested more
-    deeply than the parser can follow (its recursion), is a :class:`FileError` naming the file."""
+    deeply than the parser can follow (its recursion), is a :class:`FileError` naming the file.
+
+    Parameters
+    ----------
+    text : str
+        The file's text.
+    source : str
+        The file's name, for the messages.
+
+    Returns
+    -------
+    dict
+        The parsed tables.
+
+    Raises
+    ------
+    FileError
+        If the text is not TOML or is nested too deeply.
+
+    Examples
+    --------
+    >>> read_toml("a = 1", "x.toml")
+    {'a': 1}
+    >>> read_toml(dumps({"b": {"c": 0.1}}), "x.toml")
+    {'b': {'c': 0.1}}
+    """
     try:
         return tomllib.loads(text)
     except ValueError as exc:  # a TOMLDecodeError, or a value Python cannot hold (an integer of 5000 digits)
@@ -446,7 +555,41 @@ def _check_settings(d: Mapping[str, Any], source: str) -> None:
 
 def scenario_from_dict(d: Mapping[str, Any], source: str = "<scenario>") -> Scenario:
     """A :class:`~landing.scenarios.Scenario` from the nested dict of a file; ``source`` names
-    the file in error messages."""
+    the file in error messages.
+
+    Parameters
+    ----------
+    d : Mapping[str, Any]
+        The dict (as :func:`read_toml` or :func:`scenario_to_dict` makes it).
+    source : str
+        The file's name, for the messages (default ``"<scenario>"``).
+
+    Returns
+    -------
+    Scenario
+        The scenario, checked.
+
+    Raises
+    ------
+    FileError
+        If a key, a kind or a value is refused: the message names the file, the key and the
+        rule.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> scenario_from_dict(scenario_to_dict(s)).controller
+    PDSlidingMode(lambda_=1.0, k=0.5, switch='sat', boundary_layer=0.1)
+    >>> scenario_from_dict({**scenario_to_dict(s), "dt": -1.0}, "my.toml")
+    Traceback (most recent call last):
+        ...
+    landing.scenarios.files.FileError: my.toml: dt = -1 violates dt > 0
+    """
     allowed = set(_SETTINGS) | set(SECTIONS) | {"dispersions"}
     for key in d:
         if key not in allowed:
