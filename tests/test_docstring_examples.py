@@ -36,24 +36,6 @@ MODULES = [
     "landing.scenarios.files",
 ]
 
-# Objects whose docstrings do not have all the sections yet (issue 26, item 2): this set only
-# shrinks; an object added to a module above must come with the sections.
-NOT_YET: frozenset[str] = frozenset({
-    "landing.controllers.Controller",
-    "landing.controllers.FastTerminalSMC",
-    "landing.controllers.FixedTimeMSS",
-    "landing.controllers.FixedTimeNTSMC",
-    "landing.controllers.FuzzyFastTerminalSMC",
-    "landing.controllers.FuzzyVariableRate",
-    "landing.controllers.IntegralExponentialReaching",
-    "landing.controllers.NTSMC",
-    "landing.controllers.OpenLoop",
-    "landing.controllers.PDSlidingMode",
-    "landing.controllers.SuperTwisting",
-    "landing.controllers.Tabulated",
-})
-
-
 def _public(module: ModuleType) -> Iterator[tuple[str, Any]]:
     for name in getattr(module, "__all__", []):
         obj = getattr(module, name)
@@ -101,10 +83,6 @@ PUBLIC = [item for name in MODULES for item in _public(importlib.import_module(n
 @pytest.mark.parametrize("qualname, obj", PUBLIC, ids=[q for q, _ in PUBLIC])
 def test_sections(qualname: str, obj: Any) -> None:
     missing = _missing(obj)
-    if qualname in NOT_YET:
-        if not missing:
-            pytest.fail(f"{qualname} has every section now: take it out of NOT_YET")
-        pytest.skip(f"not documented yet: {missing}")
     assert not missing, f"{qualname}: the docstring has no {', '.join(missing)} section"
 
 

@@ -42,7 +42,19 @@ __all__ = [
 
 
 class Controller(Table):
-    """Base class of the control laws."""
+    """Base class of the control laws: each maps the tracking errors (and the plant's model)
+    to a commanded generalized acceleration, q/s^2.
+
+    Parameters
+    ----------
+    **fields : ArrayLike
+        The subclass's fields (see each one); the base class takes none of its own.
+
+    Examples
+    --------
+    >>> PDSlidingMode(lambda_=1.0, k=0.5).diagnostic_layout(3)
+    [('s', 3)]
+    """
 
     family: ClassVar[str] = "law"
 
@@ -50,13 +62,25 @@ class Controller(Table):
 
     def diagnostic_layout(self, axes: int) -> list[tuple[str, int]]:
         """Names and widths of the law's diagnostic signals on a plant of ``axes`` axes, in
-        recording order."""
+        recording order.
+
+        Parameters
+        ----------
+        axes : int
+            The plant's number of axes, 2 or 3.
+
+        Returns
+        -------
+        list of tuple of (str, int)
+            ``(name, width)``: width ``axes`` for a per-axis signal, 1 for a scalar one.
+        """
         return [(str(name), int(width)) for name, width in self._core.diagnostic_layout(axes)]
 
 
 @dataclass(frozen=True, eq=False)
 class FixedTimeMSS(Controller):
-    """Fixed-time multiple-sliding-surface guidance (seed 001 eq. 15-25).
+    """Fixed-time multiple-sliding-surface guidance (the Mars fixed-time guidance paper,
+    eq. 15-25).
 
     ``s1 = r - r_d``, ``s2 = s1' + beta1 sig^q1(s1) + beta2 sig^q2(s1)``; the law drives
     ``s2' = -alpha1 sig^gamma1(s2) - alpha2 sig^gamma2(s2)``, after which s1 reaches zero in a
@@ -65,15 +89,35 @@ class FixedTimeMSS(Controller):
 
     Parameters
     ----------
-    beta1, beta2 : gains of the first reaching law (> 0).
-    q1, q2 : its exponents, 0 < q1 < 1 < q2.
-    alpha1, alpha2 : gains of the second reaching law (> 0).
-    gamma1, gamma2 : its exponents (the seed's g1, g2), 0 < gamma1 < 1 < gamma2.
-    variant : ``"printed"`` is eq. 25 as printed (drops the s2-coupling terms of the exact
+    beta1, beta2 : ArrayLike
+        Gains of the first reaching law's sig^q1 and sig^q2 terms, > 0, units m^(1 - q1)/s and
+        m^(1 - q2)/s.
+    q1, q2 : ArrayLike
+        Its exponents, 0 < q1 < 1 < q2.
+    alpha1, alpha2 : ArrayLike
+        Gains of the second reaching law's sig^gamma1 and sig^gamma2 terms, > 0, units
+        (m/s)^(1 - gamma1)/s and (m/s)^(1 - gamma2)/s.
+    gamma1, gamma2 : ArrayLike
+        Its exponents (the paper's g1, g2), 0 < gamma1 < 1 < gamma2.
+    variant : {"printed", "exact"}
+        ``"printed"`` is eq. 25 as printed (drops the s2-coupling terms of the exact
         derivative of s2); ``"exact"`` uses the exact derivative, so the second reaching law
         holds everywhere, not only on s2 = 0.
-    s1_floor : singularity guard, m: floor on |s1| wherever it is raised to a negative power
-        (``|s1|^(q1-1)`` in the exact variant; ``|s1|^(2 q1 - 1)`` when q1 < 1/2).
+    s1_floor : ArrayLike
+        Singularity guard, m, scalar, > 0: floor on |s1| wherever it is raised to a negative
+        power (``|s1|^(q1-1)`` in the exact variant; ``|s1|^(2 q1 - 1)`` when q1 < 1/2).
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = FixedTimeMSS(beta1=1.0, beta2=1.0, q1=0.5, q2=1.5, alpha1=1.0, alpha2=1.0,
+    ...                  gamma1=0.5, gamma2=1.5)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.045 0.008
+    >>> law.diagnostic_layout(3)
+    [('s1', 3), ('s2', 3)]
     """
 
     beta1: ArrayLike
@@ -92,18 +136,31 @@ class FixedTimeMSS(Controller):
 
 @dataclass(frozen=True, eq=False)
 class SuperTwisting(Controller):
-    """Super-twisting guidance, the seed-001 baseline (eq. 46).
+    """Super-twisting guidance, the Mars fixed-time guidance paper's baseline (eq. 46).
 
     Parameters
     ----------
-    b1, b2 : gains in force units, divided by the plant's inertia (the lander's mass), as in
-        eq. 46. Defaults: the seed's B1 = (1200, 1000, 1000), B2 = (5500, 5000, 5000).
-    variant : ``"printed"``: eq. 46, ``a = -(1/m)((b1/2)|s|^(-1/2) s' + b2 sgn(s)) - g`` with
+    b1, b2 : ArrayLike
+        Gains in force units, N, > 0, divided by the plant's inertia (the lander's mass), as
+        in eq. 46. Defaults: the paper's B1 = (1200, 1000, 1000), B2 = (5500, 5000, 5000).
+    variant : {"printed", "standard"}
+        ``"printed"``: eq. 46, ``a = -(1/m)((b1/2)|s|^(-1/2) s' + b2 sgn(s)) - g`` with
         s the position error (singular at s = 0, guarded by ``s_floor``). ``"standard"``: the
         textbook algorithm on ``sigma = s' + c s`` with its integral state,
         ``a = -c s' + (1/m)(-b1 sig^(1/2)(sigma) + w)``, ``w' = -b2 sgn(sigma)``.
-    c : slope of sigma in the standard variant, 1/s.
-    s_floor : floor on |s| in ``|s|^(-1/2)`` of the printed variant, m.
+    c : ArrayLike
+        Slope of sigma in the standard variant, 1/s, > 0.
+    s_floor : ArrayLike
+        Floor on |s| in ``|s|^(-1/2)`` of the printed variant, m, scalar, > 0.
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = SuperTwisting(b1=2.0, b2=1.0, variant="standard", c=1.0)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.000 0.000
     """
 
     b1: ArrayLike = (1200.0, 1000.0, 1000.0)
@@ -120,6 +177,22 @@ class OpenLoop(Controller):
     """A constant commanded acceleration (free flight, ballistic baselines, closed-form checks).
 
     The plant's actuator applies it as usual: a lander's thrust is ``m a``, clipped to its limit.
+
+    Parameters
+    ----------
+    acceleration : ArrayLike
+        The commanded generalized acceleration, q/s^2, per axis (default 0).
+
+    Examples
+    --------
+    x = 1 + 0.1 t^2 / 2 = 6 and v = 1 at t = 10 s:
+
+    >>> import landing
+    >>> law = OpenLoop(acceleration=[0.1, 0.0, 0.0])
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    6.000 1.000
     """
 
     acceleration: ArrayLike = 0.0
@@ -129,16 +202,32 @@ class OpenLoop(Controller):
 
 @dataclass(frozen=True, eq=False)
 class PDSlidingMode(Controller):
-    """PD sliding mode, the seed-000 baseline: ``s = e' + lambda e``,
+    """PD sliding mode, the fuzzy fast-terminal asteroid paper's baseline: ``s = e' + lambda e``,
     ``u = u_eq - k switch(s)``, the equivalent control from s' = 0 with the plant's model.
 
     Each parameter is per axis, or given per case.
 
     Parameters
     ----------
-    lambda_ : slope of the surface, 1/s (``lambda`` is a Python keyword).
-    k : switching gain, in command units (m/s^2 on a small body).
-    switch, boundary_layer : "sign", "sat" or "tanh", and the layer width phi.
+    lambda_ : ArrayLike
+        Slope of the surface, 1/s, > 0 (``lambda`` is a Python keyword; the core's table and
+        ``PDSlidingMode.parameters`` name it ``lambda``).
+    k : ArrayLike
+        Switching gain, in command units, q/s^2 (m/s^2 on a small body), > 0.
+    switch : {"sign", "sat", "tanh"}
+        Switching function: sign(s), sat(s / phi) = clamp(s / phi, -1, 1) or tanh(s / phi)
+        (default ``"sign"``).
+    boundary_layer : float
+        Boundary-layer width phi of sat and tanh, units of s, > 0 (unused by sign).
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.000 0.000
     """
 
     lambda_: ArrayLike
@@ -152,16 +241,37 @@ class PDSlidingMode(Controller):
 
 @dataclass(frozen=True, eq=False)
 class FastTerminalSMC(Controller):
-    """Fast terminal sliding mode (seed 000 eq. 6, 14, 19):
+    """Fast terminal sliding mode (the fuzzy fast-terminal asteroid paper, eq. 6, 14, 19):
     ``s = e' + alpha e + beta sig^(p/q)(e)``, ``u = u_eq - k switch(s)``.
 
     Parameters
     ----------
-    alpha, beta : surface gains (> 0). p, q : the exponent p/q, 0 < p < q (the seed takes odd
-        integers; with sig any ratio keeps the sign of e). k : switching gain.
-    switch, boundary_layer : as for :class:`PDSlidingMode`.
-    e_floor : singularity guard, in units of q: |e| is floored there in |e|^(p/q - 1) of the
-        equivalent control.
+    alpha : ArrayLike
+        Gain of e in the surface, 1/s, > 0.
+    beta : ArrayLike
+        Gain of sig^(p/q)(e) in the surface, q^(1 - p/q)/s, > 0.
+    p, q : ArrayLike
+        The exponent p/q, 0 < p < q (the paper takes odd integers; with sig any ratio keeps
+        the sign of e).
+    k : ArrayLike
+        Switching gain, in command units, q/s^2, > 0.
+    switch : {"sign", "sat", "tanh"}
+        Switching function: sign(s), sat(s / phi) = clamp(s / phi, -1, 1) or tanh(s / phi)
+        (default ``"sign"``).
+    boundary_layer : float
+        Boundary-layer width phi of sat and tanh, units of s, > 0 (unused by sign).
+    e_floor : ArrayLike
+        Singularity guard, in units of q, scalar, > 0: |e| is floored there in |e|^(p/q - 1)
+        of the equivalent control.
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = FastTerminalSMC(alpha=1.0, beta=0.5, p=3, q=5, k=0.5, switch="sat", boundary_layer=0.1)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.000 0.000
     """
 
     alpha: ArrayLike
@@ -178,12 +288,41 @@ class FastTerminalSMC(Controller):
 
 @dataclass(frozen=True, eq=False)
 class FuzzyFastTerminalSMC(Controller):
-    """Fuzzy-blended fast terminal sliding mode (seed 000 eq. 20-22):
+    """Fuzzy-blended fast terminal sliding mode (the fuzzy fast-terminal asteroid paper,
+    eq. 20-22):
     ``u = a(D) u_eq + b(D) u_s`` with ``a = exp(-n D)``, ``b = 1 - exp(-m D)`` and D the
     distance of the state to the surface, ``D_i = s_i / sqrt(1 + alpha_i^2)``.
     Records the blend (a, b, D) as scalar diagnostics.
 
-    Parameters: those of :class:`FastTerminalSMC`, and n, m (the seed's N, M).
+    Parameters
+    ----------
+    alpha, beta, p, q, k : ArrayLike
+        As for :class:`FastTerminalSMC`.
+    n : ArrayLike
+        The paper's N: how fast the equivalent control's weight a(D) = exp(-N D) falls, s/q,
+        scalar, > 0.
+    m : ArrayLike
+        The paper's M: how fast the switching weight b(D) = 1 - exp(-M D) rises, s/q, scalar,
+        > 0.
+    switch : {"sign", "sat", "tanh"}
+        Switching function: sign(s), sat(s / phi) = clamp(s / phi, -1, 1) or tanh(s / phi)
+        (default ``"sign"``).
+    boundary_layer : float
+        Boundary-layer width phi of sat and tanh, units of s, > 0 (unused by sign).
+    e_floor : ArrayLike
+        As for :class:`FastTerminalSMC`.
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = FuzzyFastTerminalSMC(alpha=1.0, beta=0.5, p=3, q=5, k=0.5, n=2.0, m=2.0, switch="sat",
+    ...                          boundary_layer=0.1)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.002 0.000
+    >>> law.diagnostic_layout(3)
+    [('s', 3), ('a', 1), ('b', 1), ('distance', 1)]
     """
 
     alpha: ArrayLike
@@ -202,11 +341,38 @@ class FuzzyFastTerminalSMC(Controller):
 
 @dataclass(frozen=True, eq=False)
 class IntegralExponentialReaching(Controller):
-    """Integral sliding surface with the exponential reaching law (seed 002 eq. 10-12) in the
+    """Integral sliding surface with the exponential reaching law (the fuzzy variable-rate
+    asteroid paper, eq. 10-12) in the
     stable form ``s = -sigma' - int(c1 sigma + c2 sigma')``:
     ``u = q_ref'' - drift - c1 sigma - c2 sigma' + k s + epsilon switch(s)``, so that
     ``s' = -k s - epsilon sgn(s)`` and, on s = 0, ``sigma'' + c2 sigma' + c1 sigma = 0``.
-    (The seed's printed surface gives unstable sliding dynamics.)
+    (The paper's printed surface gives unstable sliding dynamics.)
+
+    Parameters
+    ----------
+    c1 : ArrayLike
+        Gain of sigma in the integral, I' = c1 sigma + c2 sigma', 1/s^2, > 0.
+    c2 : ArrayLike
+        Gain of sigma' in the integral, 1/s, > 0.
+    k : ArrayLike
+        Rate of the exponential reaching law, 1/s, >= 0.
+    epsilon : ArrayLike
+        Switching gain of the reaching law, q/s^2, >= 0.
+    switch : {"sign", "sat", "tanh"}
+        Switching function: sign(s), sat(s / phi) = clamp(s / phi, -1, 1) or tanh(s / phi)
+        (default ``"sign"``).
+    boundary_layer : float
+        Boundary-layer width phi of sat and tanh, units of s, > 0 (unused by sign).
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = IntegralExponentialReaching(c1=1.0, c2=2.0, k=1.0, epsilon=0.05, switch="sat",
+    ...                                 boundary_layer=0.1)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.001 0.000
     """
 
     c1: ArrayLike
@@ -221,18 +387,36 @@ class IntegralExponentialReaching(Controller):
 
 @dataclass(frozen=True, eq=False)
 class FuzzyVariableRate(Controller):
-    """Fuzzy variable-rate reaching law (seed 002 sec. 2.3): the surface of
+    """Fuzzy variable-rate reaching law (the fuzzy variable-rate asteroid paper, sec. 2.3): the
+    surface of
     :class:`IntegralExponentialReaching`, with ``epsilon sgn(s)`` replaced by
-    ``ku F(ke s, kec s')``, F the Mamdani system (by default the seed's 5x5 rules,
+    ``ku F(ke s, kec s')``, F the Mamdani system (by default the paper's 5x5 rules,
     :func:`landing.fuzzy.variable_rate_system`) and s' the backward difference of s over the
     control period. Records s, s' and the fuzzy term.
 
     Parameters
     ----------
-    c1, c2, k : surface and exponential-rate gains.
-    ke, kec : input scaling factors of s and s' onto the universe [-5, 5].
-    ku : output scaling factor (command units per unit of the output universe).
-    system : a :class:`landing.fuzzy.Mamdani` with two inputs.
+    c1, c2, k : ArrayLike
+        Surface and exponential-rate gains, as for :class:`IntegralExponentialReaching`
+        (1/s^2, 1/s, 1/s).
+    ke : ArrayLike
+        Input scaling of s onto the system's universe [-5, 5], s/q, > 0.
+    kec : ArrayLike
+        Input scaling of s' onto the universe, s^2/q, > 0.
+    ku : ArrayLike
+        Output scaling factor, command units (q/s^2) per unit of the output universe, > 0.
+    system : Mamdani or None
+        A :class:`landing.fuzzy.Mamdani` with two inputs (s and s'); None (default) for
+        :func:`landing.fuzzy.variable_rate_system`.
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = FuzzyVariableRate(c1=1.0, c2=2.0, k=1.0, ke=5.0, kec=5.0, ku=0.02)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.001 0.000
     """
 
     c1: ArrayLike
@@ -253,16 +437,37 @@ class FuzzyVariableRate(Controller):
 
 @dataclass(frozen=True, eq=False)
 class NTSMC(Controller):
-    """Conventional nonsingular terminal sliding mode, the seed-003 baseline (its eq. 47/48).
+    """Conventional nonsingular terminal sliding mode, the tethered-satellite paper's baseline
+    (its eq. 47/48).
 
     ``s = e1 + (1/beta) sig^(gamma/alpha)(e2)``,
     ``u = -M (beta (alpha/gamma) sig^(2 - gamma/alpha)(e2) + k sign(s))``, with e1 = q - q_d,
-    e2 = q' - q_d' and M the plant's inertia. Defaults: the seed's alpha = diag(1, 1),
+    e2 = q' - q_d' and M the plant's inertia. Defaults: the paper's alpha = diag(1, 1),
     beta = diag(0.05, 0.3), gamma = diag(1.07, 1.1), K = diag(0.001, 0.001) for the tethered
     satellite's (phi, theta); give three values per gain on a 3-axis plant.
 
     The law is nonsingular by construction: every power is non-negative because
     ``1 < gamma/alpha < 2`` is required (that range is its singularity guard).
+
+    Parameters
+    ----------
+    alpha : ArrayLike
+        Denominator of the surface's exponent gamma / alpha, dimensionless, > 0.
+    beta : ArrayLike
+        The surface's gain, s^(gamma/alpha) q^(1 - gamma/alpha), > 0.
+    gamma : ArrayLike
+        Numerator of the surface's exponent, > 0, with 1 < gamma / alpha < 2.
+    k : ArrayLike
+        Switching gain, in command units divided by the inertia, q/s^2, > 0.
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = NTSMC(alpha=1.0, beta=1.0, gamma=1.5, k=0.05)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.945 0.006
     """
 
     alpha: ArrayLike = 1.0
@@ -275,7 +480,8 @@ class NTSMC(Controller):
 
 @dataclass(frozen=True, eq=False)
 class FixedTimeNTSMC(Controller):
-    """Fixed-time nonsingular terminal sliding mode with RBF compensation (seed 003 eq. 19-24).
+    """Fixed-time nonsingular terminal sliding mode with RBF compensation (the tethered-satellite
+    paper, eq. 19-24).
 
     ``s = e2 + k1 zeta1(e1) + k2 zeta2(e1)`` with the piecewise zeta of eq. 21 (``sig^p`` outside
     ``sigma_phi``, the quadratic matching its value and slope inside: the singularity guard);
@@ -285,7 +491,7 @@ class FixedTimeNTSMC(Controller):
     ``z = (e1 / rbf_scale_e1, e2 / rbf_scale_e2)``, ``rbf_nodes``^2 centres on a grid over
     [-1, 1]^2 with width ``rbf_width``; its weights start at zero and are the law's state.
 
-    Defaults: the seed's Table 2 for the tethered satellite's (phi, theta), with alpha_s and
+    Defaults: the paper's Table 2 for the tethered satellite's (phi, theta), with alpha_s and
     beta_s in the roles the text gives them (Table 2 prints them swapped; the law is symmetric
     in the two) and the network of the tuning study (docs/parameters.md).
 
@@ -293,15 +499,37 @@ class FixedTimeNTSMC(Controller):
 
     Parameters
     ----------
-    k1, k2, k3 : gains (> 0).
-    eps_max : bound of the network's error, in actuator units (N, N m), >= 0.
-    p1, p2 : exponents of zeta1, zeta2: p1 > 1, 0 < p2 < 1.
-    alpha_s, beta_s : exponents of the reaching law, 1/2 < alpha_s < 1 < beta_s.
-    sigma_phi : threshold of the piecewise zeta (> 0), in units of q.
-    gamma : adaptation gain (Gamma = gamma I), >= 0; 0 switches the network off.
-    rbf_nodes : centres per input (1 to 7), shared by the axes and the cases.
-    rbf_scale_e1, rbf_scale_e2 : the errors at the edge of the centre grid.
-    rbf_width : Gaussian width b on the normalised inputs.
+    k1, k2 : ArrayLike
+        Gains of zeta1 and zeta2 in the surface, q^(1 - p1)/s and q^(1 - p2)/s, > 0.
+    k3 : ArrayLike
+        Gain of the reaching law, 1/s, > 0.
+    eps_max : ArrayLike
+        Bound of the network's error, in actuator units (N, N m), >= 0.
+    p1, p2 : ArrayLike
+        Exponents of zeta1, zeta2: p1 > 1, 0 < p2 < 1.
+    alpha_s, beta_s : ArrayLike
+        Exponents of the reaching law, 1/2 < alpha_s < 1 < beta_s.
+    sigma_phi : ArrayLike
+        Threshold of the piecewise zeta, in units of q, > 0.
+    gamma : ArrayLike
+        Adaptation gain (Gamma = gamma I), dimensionless, >= 0; 0 switches the network off.
+    rbf_nodes : int
+        Centres per input (1 to 7), shared by the axes and the cases.
+    rbf_scale_e1, rbf_scale_e2 : ArrayLike
+        The errors at the edge of the centre grid, q and q/s, > 0.
+    rbf_width : ArrayLike
+        Gaussian width b on the normalised inputs, > 0.
+
+    Examples
+    --------
+    >>> import landing
+    >>> law = FixedTimeNTSMC(k1=1.0, k2=1.0, k3=1.0, eps_max=0.0, p1=1.1, p2=0.6, alpha_s=0.8,
+    ...                    beta_s=1.2, sigma_phi=0.01, gamma=0.0, rbf_scale_e1=1.0, rbf_scale_e2=1.0,
+    ...                    rbf_width=1.0)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    0.000 0.000
     """
 
     k1: ArrayLike = (0.08, 0.6)
@@ -325,7 +553,8 @@ class FixedTimeNTSMC(Controller):
 @dataclass(frozen=True, eq=False)
 class Tabulated(Controller):
     """A tabulated open-loop force, held: the replay of an offline thrust profile
-    (:func:`landing.optimal.fuel_optimal`; seed 001 Fig. 3 flies its optimum this way).
+    (:func:`landing.optimal.fuel_optimal`; the Mars fixed-time guidance paper's Fig. 3 flies its
+    optimum this way).
 
     Row ``j`` of ``force`` is a generalized force per axis (N on the Mars lander), held for
     ``hold`` control periods: at control instant ``k`` (t = k dt) the law commands
@@ -336,11 +565,32 @@ class Tabulated(Controller):
 
     Parameters
     ----------
-    force : the table, shape (rows, axes), or (cases, rows, axes) for a table per case (every
-        case the same number of rows).
-    hold : control periods per row, a whole number >= 1 (the row period over the control
-        period of the run).
-    after : ``"hold"`` or ``"zero"``.
+    force : ArrayLike
+        The table of generalized forces (N on the Mars lander), shape (rows, axes), or
+        (cases, rows, axes) for a table per case (every case the same number of rows).
+    hold : int
+        Control periods per row, a whole number >= 1 (the row period over the control period
+        of the run).
+    after : {"hold", "zero"}
+        Past the table: hold the last row, or command zero (default).
+
+    Raises
+    ------
+    ParameterError
+        If ``force`` is not of shape (rows, axes) or (cases, rows, axes) with a row.
+    ParameterTypeError
+        If ``hold`` is not a whole number.
+
+    Examples
+    --------
+    On a unit inertia, 0.1 for 1 s then -0.1 for 1 s moves the point by 0.1 and stops it:
+
+    >>> import landing
+    >>> law = Tabulated(force=[[0.1, 0.0, 0.0], [-0.1, 0.0, 0.0]], hold=100)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f} {r.metrics['final_velocity_error']:.3f}")
+    1.100 0.000
     """
 
     force: ArrayLike
@@ -401,21 +651,27 @@ class PythonLaw(Controller):
 
     Parameters
     ----------
-    function : the law.
-    params : its parameters, by name: each a scalar, a per-axis ``(D,)`` value, or per case
+    function : Callable
+        The law, ``function(t, e, de, ref, drift, inertia, params, memory)`` as above.
+    params : Mapping[str, ArrayLike]
+        Its parameters, by name: each a scalar, a per-axis ``(D,)`` value, or per case
         ``(N,)``, ``(N, 1)``, ``(N, D)`` (N the batch's or campaign's cases; a 1-d value of length D is per
         axis, so give ``(N, 1)`` for a value per case when N equals D). The function sees each
         as (n, D). ``law.replace(kp=2.0)`` changes one; ``landing.tune`` tunes them.
-    memory : the law's internal state at t = 0: a dict of initial values shared by every case
+    memory : Mapping, Callable or None
+        The law's internal state at t = 0: a dict of initial values shared by every case
         (each broadcast to one row per case), or a function ``memory(t, e, de, ref, drift,
         inertia, params)`` returning the dict from the first inputs, or None for a law
         without one. The function returns the new memory, advanced over the period.
-    diagnostics : names of signals the function returns in its diagnostics dict, recorded with
+    diagnostics : Sequence[str] or Mapping[str, str]
+        Names of signals the function returns in its diagnostics dict, recorded with
         the states: a sequence of names of per-axis signals ((n, D) each), or a mapping of
         name to ``"axes"`` or ``"scalar"`` ((n,) each).
-    name : how the law is named in messages and a campaign's provenance (default: the
+    name : str or None
+        How the law is named in messages and a campaign's provenance (default: the
         function's ``module:qualname``).
-    cases_per_call : at most this many cases per call (default 1024; None: the whole batch in
+    cases_per_call : int or None
+        At most this many cases per call (default 1024; None: the whole batch in
         every call). A larger batch is run a slice of cases at a time, each slice through all
         its control instants, so that the slice's arrays and the core's state of its cases
         stay in the processor's caches between calls; with the whole batch at every call they
@@ -435,6 +691,10 @@ class PythonLaw(Controller):
     >>> def pd(t, e, de, ref, drift, inertia, params, memory):
     ...     return -drift - params["kp"] * e - params["kd"] * de
     >>> law = landing.controllers.PythonLaw(pd, params={"kp": 1.0, "kd": 2.0})
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 0, 0, 0, 0, 0],
+    ...                      t_final=10.0, dt=0.01)
+    >>> print(f"{r.metrics['final_position_error']:.3f}, settled at {r.metrics['settle_time']:.2f} s")
+    0.001, settled at 5.84 s
     """
 
     function: Callable[..., Any]
