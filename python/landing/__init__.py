@@ -8,6 +8,8 @@ laws, references and disturbances, runs batches and reads the results.
 >>> law = landing.controllers.SuperTwisting()
 >>> x0 = plant.initial_state([-2000, 1000, 1500], [100, -15, -75], 1905)
 >>> res = landing.simulate(plant, law, x0, t_final=10.0, dt=0.01)
+>>> res.states.shape, f"{res.metrics['fuel_used']:.3f} kg"
+((1001, 7), '31.694 kg')
 """
 
 import importlib

@@ -17,9 +17,10 @@ The expression grammar (parsed with :mod:`ast`, then walked node by node; nothin
 
 - numbers; the names of metric columns (``fuel_used``, ``peak_command``, ``final_error``...,
   one value per case, or per case and axis); the bound names (FixedTimeMSS laws only):
-  ``t1``, ``t2`` (seed 001 eq. 18, 26), ``s1_radius``, ``s1_time``, ``s2_radius``, ``s2_time``,
-  ``settle_bound`` (the sound total s2_time + s1_time), each the largest over the axes, computed
-  with the scenario's disturbance bound and ``theta`` (0.5, 0.5 when the scenario has none);
+  ``t1``, ``t2`` (the Mars fixed-time guidance paper, eq. 18, 26), ``s1_radius``, ``s1_time``,
+  ``s2_radius``, ``s2_time``, ``settle_bound`` (the sound total s2_time + s1_time), each the
+  largest over the axes, computed with the scenario's disturbance bound and ``theta`` (0.5, 0.5
+  when the scenario has none);
 - ``+ - * / **``, unary ``-``, the comparisons ``< <= > >=`` (true/false per case inside an
   aggregate, e.g. ``mean(touchdown_speed < 1)``);
 - element-wise ``abs``, ``sqrt``, ``log``, ``log10``, ``exp``;
