@@ -143,6 +143,9 @@ def test_fuel_is_above_the_impulsive_bound(nominal: optimal.FuelOptimalResult) -
     assert free.success
     bound_free = rocket_bound(X0[6], dv_free)
     assert bound_free < free.fuel < 1.1 * bound_free
+    # the library's bound is this file's, with or without a thrust limit (it uses none)
+    for plant in (plants.MarsLander(drag=False), plants.MarsLander(drag=False, thrust_limit=FMAX)):
+        assert optimal.impulsive_fuel_bound(plant, X0, tf) == pytest.approx(bound_free, rel=1e-12)
     a = np.array([drag(x) for x in nominal.states_fine])
     trapezoid = np.trapezoid if hasattr(np, "trapezoid") else np.trapz
     impulse = trapezoid(a, nominal.t_fine, axis=0)

@@ -70,15 +70,14 @@ def _table(cls: type) -> list[str]:
     declared = getattr(cls, "parameters", {})
     if not isinstance(declared, Mapping):  # a law or plant written in Python: its own params
         declared = {}
-    renamed = getattr(cls, "_renamed", {})
     doc = (inspect.getdoc(cls) or "").split("\n\n")[0].replace("\n", " ")
     lines = [f"### `kind = \"{cls.__name__}\"`", "", doc, ""]
     rows = []
     for f in dataclasses.fields(cls):
         if f.name.startswith("_"):
             continue
-        key = f.name  # a file's key is the Python field's name (``lambda_``, not the core's ``lambda``)
-        p = declared.get(renamed.get(f.name, f.name))
+        key = f.name  # a file's key is the Python field's name, the core's name too
+        p = declared.get(f.name)
         if p is None:
             rows.append(f"| `{key}` | | | | {_default(f)} | |")
             continue

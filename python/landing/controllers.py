@@ -210,8 +210,8 @@ class PDSlidingMode(Controller):
     Parameters
     ----------
     lambda_ : ArrayLike
-        Slope of the surface, 1/s, > 0 (``lambda`` is a Python keyword; the core's table and
-        ``PDSlidingMode.parameters`` name it ``lambda``).
+        Slope of the surface, 1/s, > 0 (``lambda`` is a Python keyword, so the field, the TOML
+        key and ``PDSlidingMode.parameters`` are all ``lambda_``).
     k : ArrayLike
         Switching gain, in command units, q/s^2 (m/s^2 on a small body), > 0.
     switch : {"sign", "sat", "tanh"}
@@ -236,7 +236,6 @@ class PDSlidingMode(Controller):
     boundary_layer: float = 1.0
 
     kind: ClassVar[str] = "pd_sliding_mode"
-    _renamed: ClassVar[Mapping[str, str]] = MappingProxyType({"lambda_": "lambda"})
 
 
 @dataclass(frozen=True, eq=False)

@@ -78,12 +78,11 @@ class MarsModel:
         return self.isp * self.g0
 
 
-def _scalar(name: str, value: Any) -> float:
+def _scalar(name: str, value: Any, who: str = "fuel_optimal") -> float:
     arr = np.asarray(value, dtype=float)
     if arr.size != 1:
         raise ParameterError(
-            f"fuel_optimal: the plant's {name} has shape {arr.shape}; the optimiser takes one case "
-            "(a scalar)"
+            f"{who}: the plant's {name} has shape {arr.shape}; it takes one case (a scalar)"
         )
     return float(arr.reshape(()))
 
@@ -139,8 +138,8 @@ def impulsive_fuel_bound(plant: Any, x0: Any, t_final: float) -> float:
     Parameters
     ----------
     plant : MarsLander
-        The lander (one case, scalar parameters); its ``isp``, ``g0`` and ``gravity`` are used.
-        It must have a ``thrust_limit``, although the bound does not depend on it.
+        The lander (one case, scalar parameters); its ``isp``, ``g0`` and ``gravity`` are used
+        (the bound holds whatever its thrust limit, or none).
     x0 : ArrayLike
         Initial state ``[rx, ry, rz, vx, vy, vz, m]``: m, m/s, kg.
     t_final : float
@@ -154,7 +153,7 @@ def impulsive_fuel_bound(plant: Any, x0: Any, t_final: float) -> float:
     Raises
     ------
     ParameterError
-        If the plant has no thrust limit or a parameter is not a scalar.
+        If ``isp``, ``g0`` or ``gravity`` is not a scalar.
 
     Examples
     --------
@@ -166,10 +165,15 @@ def impulsive_fuel_bound(plant: Any, x0: Any, t_final: float) -> float:
     >>> print(f"{impulsive_fuel_bound(plant, x0, 30.0):.1f} kg")
     154.5 kg
     """
-    m = _model(plant)
+    if not isinstance(plant, MarsLander):
+        raise ParameterTypeError(
+            f"impulsive_fuel_bound: plant must be a landing.plants.MarsLander, got {type(plant).__name__}")
+    who = "impulsive_fuel_bound"
+    exhaust_velocity = _scalar("isp", plant.isp, who) * _scalar("g0", plant.g0, who)
+    gravity = _scalar("gravity", plant.gravity, who)
     x = np.asarray(x0, dtype=float)
-    dv = -x[3:6] - np.array([0.0, 0.0, -m.gravity]) * t_final
-    return float(x[6] * (1.0 - math.exp(-np.linalg.norm(dv) / m.exhaust_velocity)))
+    dv = -x[3:6] - np.array([0.0, 0.0, -gravity]) * t_final
+    return float(x[6] * (1.0 - math.exp(-np.linalg.norm(dv) / exhaust_velocity)))
 
 
 @dataclass(frozen=True, eq=False)

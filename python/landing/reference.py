@@ -104,7 +104,7 @@ class Constant(Reference):
 @dataclass(frozen=True, eq=False)
 class Cubic(Reference):
     """``p(t) = c0 + c1 t + c2 t^2 + c3 t^3`` per axis on ``[0, t_end]``; then, by ``after``, the
-    end point held at rest (``"hold"``, the seeds' references) or extended at the end velocity,
+    end point held at rest (``"hold"``, the asteroid papers' references) or extended at the end velocity,
     ``p(t) = p(t_end) + p'(t_end) (t - t_end)`` (``"extend"``: a constant-velocity phase, such
     as a lander's terminal descent).
 

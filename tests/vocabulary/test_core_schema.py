@@ -49,7 +49,7 @@ def test_the_schemas_name_each_kinds_keys():
     def names(family, kind):
         return [p["name"] for p in _core.SCHEMAS[family][kind]["parameters"]]
 
-    assert names("law", "pd_sliding_mode") == ["lambda", "k", "switch", "boundary_layer"]
+    assert names("law", "pd_sliding_mode") == ["lambda_", "k", "switch", "boundary_layer"]
     assert names("reference", "cubic") == ["t_end", "c0", "c1", "c2", "c3", "after"]
     assert names("plant", "small_body") == [
         "gravity", "omega", "acceleration_limit", "acceleration_magnitude_limit", "control_delay",
@@ -100,15 +100,15 @@ def test_the_metric_columns_are_the_declared_ones_in_order():
 
 def test_a_handle_gives_its_parameters_as_the_core_reads_them():
     law = _core.Law("PDSlidingMode", {
-        "kind": "pd_sliding_mode", "lambda": np.array([1.0, 2.0, 3.0]), "k": np.array([[1.0], [2.0]]),
+        "kind": "pd_sliding_mode", "lambda_": np.array([1.0, 2.0, 3.0]), "k": np.array([[1.0], [2.0]]),
         "switch": "sat", "boundary_layer": np.array(0.5),
     })
-    np.testing.assert_array_equal(law.parameter("lambda", 3), [[1.0, 2.0, 3.0]])
+    np.testing.assert_array_equal(law.parameter("lambda_", 3), [[1.0, 2.0, 3.0]])
     np.testing.assert_array_equal(law.parameter("k", 3), [[1.0, 1.0, 1.0], [2.0, 2.0, 2.0]])
     np.testing.assert_array_equal(law.parameter("k", 2), [[1.0, 1.0], [2.0, 2.0]])
     np.testing.assert_array_equal(law.parameter("boundary_layer", 3), [0.5])
-    with pytest.raises(ValueError, match='unknown parameter "lambda_"'):
-        law.parameter("lambda_", 3)
+    with pytest.raises(ValueError, match='unknown parameter "lambda"'):
+        law.parameter("lambda", 3)
     with pytest.raises(ValueError, match='unknown parameter "switch"'):
         law.parameter("switch", 3)
     plant = _core.Plant("MarsLander", {

@@ -131,7 +131,7 @@ def test_command_noise_is_a_fraction_of_the_command():
 def test_laws_refuse_bad_gains():
     with pytest.raises(ValueError, match="q = 3 violates q > p"):
         controllers.FastTerminalSMC(alpha=1, beta=1, p=5, q=3, k=1)
-    with pytest.raises(ValueError, match="lambda = 0 violates lambda > 0"):
+    with pytest.raises(ValueError, match="lambda_ = 0 violates lambda_ > 0"):
         controllers.PDSlidingMode(lambda_=0.0, k=1.0)
     with pytest.raises(ValueError, match="boundary_layer = 0 violates boundary_layer > 0"):
         controllers.PDSlidingMode(lambda_=1.0, k=1.0, switch="tanh", boundary_layer=0.0)

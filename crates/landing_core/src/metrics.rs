@@ -296,7 +296,7 @@ impl<const D: usize> CaseMetrics<D> {
         Column::new(
             "settle_time",
             "s",
-            "first control instant from which |e| stays within the settle tolerance until t_final (NaN if it is outside at t_final); seed 000's \"time to track\"",
+            "first control instant from which |e| stays within the settle tolerance until t_final (NaN if it is outside at t_final); the \"time to track\" of the fuzzy fast-terminal asteroid paper",
             Read::Scalar(|m| m.settle_time),
         ),
         Column::new(

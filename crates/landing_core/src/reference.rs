@@ -14,7 +14,7 @@ const VELOCITY: Param = Param::axes("velocity")
 const T_END: Param = Param::scalar("t_end")
     .unit("s")
     .rule("t_end > 0")
-    .doc("end of the cubic; the end point is held afterwards");
+    .doc("end of the cubic; afterwards the end point is held at rest (after = \"hold\") or extended at the end velocity (after = \"extend\")");
 const C0: Param = Param::axes("c0").unit("q").doc("cubic coefficient of t^0");
 const C1: Param = Param::axes("c1")
     .unit("q/s")

@@ -123,8 +123,6 @@ class Table:
     _compiler: ClassVar[Callable[..., Any]]
     #: Whether the kind is one the core declares (a law written in Python is not).
     _in_core: ClassVar[bool] = True
-    #: Fields whose table key is spelt otherwise (a Python keyword cannot be a field name).
-    _renamed: ClassVar[Mapping[str, str]] = MappingProxyType({})
     #: The compiled handle (a ``landing._core`` type), made once by :meth:`_compile`.
     _core: Any
     #: What ``@dataclass`` gives every configuration class (declared for the type checker).
@@ -144,13 +142,12 @@ class Table:
             if not field.init:
                 continue
             value = getattr(self, field.name)
-            key = self._renamed.get(field.name, field.name)
             if value is None or isinstance(value, (bool, str)):
-                out[key] = value
+                out[field.name] = value
             elif isinstance(value, Table):
-                out[key] = value._nested()
+                out[field.name] = value._nested()
             else:
-                out[key] = as_float_array(owner, field.name, value)
+                out[field.name] = as_float_array(owner, field.name, value)
         return out
 
     def _nested(self) -> Any:
@@ -201,7 +198,7 @@ class Table:
         declared = getattr(self, "parameters", {})
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
-            p = declared.get(self._renamed.get(f.name, f.name))
+            p = declared.get(f.name)
             numbers = isinstance(value, (np.ndarray, list, tuple)) and not nested_tables(value)
             if p is not None and p.per_case and numbers:
                 out[f.name] = (p, np.asarray(value, dtype=np.float64))

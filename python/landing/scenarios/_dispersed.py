@@ -75,7 +75,7 @@ def _leaf(owner: Any, attr: str, name: str, axes: int, dim: int) -> Form:
         plant = isinstance(owner, Table) and owner.family == "plant"
         return "rows" if plant and dim == 1 else "columns"
     declared = getattr(owner, "parameters", {})
-    p = declared.get(getattr(owner, "_renamed", {}).get(attr, attr))
+    p = declared.get(attr)
     if p is None:
         raise ParameterError(f"dispersions: {name!r}: {type(owner).__name__} has no parameter {attr!r} "
                              f"(its parameters: {sorted(declared)})")

@@ -77,7 +77,7 @@ def _is_random(disturbance: Any) -> bool:
 
 def _declared(law: controllers.Controller, name: str) -> Optional[Parameter]:
     """What the core declares for the law's field ``name`` (None if the field is not a table key)."""
-    return law.parameters.get(type(law)._renamed.get(name, name))
+    return law.parameters.get(name)
 
 
 def _column_shape(law: controllers.Controller, name: str) -> bool:

@@ -60,11 +60,11 @@ const ALPHA2: Param = Param::axes("alpha2")
 const GAMMA1: Param = Param::axes("gamma1")
     .unit("1")
     .rule("0 < gamma1 < 1")
-    .doc("exponent of the second reaching law (the seed's g1), below 1");
+    .doc("exponent of the second reaching law (the Mars paper's g1), below 1");
 const GAMMA2: Param = Param::axes("gamma2")
     .unit("1")
     .rule("gamma2 > 1")
-    .doc("exponent of the second reaching law (the seed's g2), above 1");
+    .doc("exponent of the second reaching law (the Mars paper's g2), above 1");
 const VARIANT: Param = Param::choice("variant", MssVariant::NAMES)
     .doc("printed: eq. 25 as printed; exact: the exact derivative of s2");
 const S1_FLOOR: Param = Param::scalar("s1_floor")

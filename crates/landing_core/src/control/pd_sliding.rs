@@ -9,10 +9,12 @@ use crate::lanes::{Real, add, mul, sub};
 use crate::math::{BOUNDARY_LAYER, SWITCH, Switch};
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
-const LAMBDA: Param = Param::axes("lambda")
+// Named `lambda_` in tables and in Python alike: `lambda` is a Python keyword, and one name
+// everywhere keeps error messages, `parameters` and TOML files in agreement.
+const LAMBDA: Param = Param::axes("lambda_")
     .unit("1/s")
-    .rule("lambda > 0")
-    .doc("slope of the surface s = e' + lambda e (the Python field lambda_)");
+    .rule("lambda_ > 0")
+    .doc("slope of the surface s = e' + lambda e");
 const K: Param = Param::axes("k")
     .unit("q/s^2")
     .rule("k > 0")

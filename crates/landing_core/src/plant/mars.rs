@@ -487,11 +487,11 @@ const POINTING_LIMIT: Param = Param::scalar("pointing_limit")
 const DRAG_COEFFICIENT: Param = Param::scalar("drag_coefficient")
     .unit("kg/m")
     .rule("drag_coefficient >= 0")
-    .doc("k_d of seed 001 eq. 12");
+    .doc("k_d of the Mars fixed-time guidance paper, eq. 12");
 const DENSITY_DECAY: Param = Param::scalar("density_decay")
     .unit("1/m")
     .rule("density_decay >= 0")
-    .doc("h_d of seed 001 eq. 12");
+    .doc("h_d of the Mars fixed-time guidance paper, eq. 12");
 const G0: Param = Param::scalar("g0")
     .unit("m/s^2")
     .rule("g0 > 0")

@@ -56,7 +56,7 @@ pub const EARTH_RADIUS: f64 = 6_378_137.0;
 
 /// The model's name.
 pub const FIDELITY: Param = Param::choice("fidelity", Fidelity::NAMES)
-    .doc("simplified: the rigid dumbbell of seed 003 eq. 17; flexible: the lumped-mass tether");
+    .doc("simplified: the rigid dumbbell of the tethered-satellite paper, eq. 17; flexible: the lumped-mass tether");
 const MAIN_MASS: Param = Param::scalar("main_mass")
     .unit("kg")
     .rule("main_mass > 0")
