@@ -34,6 +34,10 @@ MODULES = [
     "landing.tune.search",
     "landing.scenarios._scenario",
     "landing.scenarios.files",
+    "landing.theory",
+    "landing.theory.bounds",
+    "landing.theory.checks",
+    "landing.theory._signals",
 ]
 
 def _public(module: ModuleType) -> Iterator[tuple[str, Any]]:

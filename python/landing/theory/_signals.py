@@ -36,7 +36,29 @@ def _time_signal(owner: str, t: Any, signal: Any, tol: Any) -> tuple[np.ndarray,
 
 def entry_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
     """First recorded time at which ``|signal| <= tol``; ``signal`` has time on axis -2
-    (``(..., T, D)``), the result drops it. NaN where never."""
+    (``(..., T, D)``), the result drops it. NaN where never.
+
+    Parameters
+    ----------
+    t : array_like
+        The recorded times (s), (T,).
+    signal : array_like
+        The signal, (..., T, D), in its own unit (m, m/s, rad...).
+    tol : float or array_like
+        The band's half-width in the signal's unit: a scalar or (..., D).
+
+    Returns
+    -------
+    numpy.ndarray
+        The entry times (s), (..., D).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.theory import entry_time
+    >>> entry_time(np.arange(4.0), np.array([[3.0], [1.0], [0.5], [2.0]]), 1.0)
+    array([1.])
+    """
     t, signal, tol = _time_signal("entry_time", t, signal, tol)
     inside = np.abs(signal) <= np.asarray(tol)[..., None, :] if np.ndim(tol) else np.abs(signal) <= tol
     first = np.argmax(inside, axis=-2)
@@ -46,8 +68,30 @@ def entry_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
 
 
 def settle_time(t: np.ndarray, signal: np.ndarray, tol: Any) -> np.ndarray:
-    """First recorded time from which ``|signal| <= tol`` holds to the end (NaN if it does not
-    hold at the end); layout as :func:`entry_time`."""
+    """First recorded time from which ``|signal| <= tol`` holds to the end (NaN if it does not hold
+    at the end); layout as :func:`entry_time`.
+
+    Parameters
+    ----------
+    t : array_like
+        The recorded times (s), (T,).
+    signal : array_like
+        The signal, (..., T, D), in its own unit.
+    tol : float or array_like
+        The band's half-width in the signal's unit: a scalar or (..., D).
+
+    Returns
+    -------
+    numpy.ndarray
+        The settling times (s), (..., D).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.theory import settle_time
+    >>> settle_time(np.arange(4.0), np.array([[3.0], [1.0], [2.0], [0.5]]), 1.0)
+    array([3.])
+    """
     t, signal, tol = _time_signal("settle_time", t, signal, tol)
     inside = np.abs(signal) <= np.asarray(tol)[..., None, :] if np.ndim(tol) else np.abs(signal) <= tol
     tail = np.flip(np.logical_and.accumulate(np.flip(inside, axis=-2), axis=-2), axis=-2)

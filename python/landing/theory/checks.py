@@ -2,14 +2,16 @@
 reports the cases that violate it.
 
 - :func:`check_fixed_time_bound`: the scalar reaching law ``s' = -c1 sig^e1(s) - c2 sig^e2(s)``
-  (seed 001 Lemma 2; eq. 18 with the beta gains, eq. 26 with the alpha gains) from any s(0).
+  (the Mars fixed-time guidance paper's Lemma 2; eq. 18 with the beta gains, eq. 26 with the alpha gains) from any s(0).
 - :func:`check_practical_bound`: the same law with a bounded disturbance (Theorem 1; eq. 38
   to 40 for s2, eq. 31 and 45 for s1).
 - :func:`check_mss`: a recorded run of :class:`~landing.controllers.FixedTimeMSS` against its
   practical neighbourhoods and times (Theorem 4).
-- :func:`check_fntsmc_bound` (the seed-003 law on a double integrator, where its derivation
+- :func:`check_fntsmc_bound` (the tethered-satellite paper's law on a double
+  integrator, where its derivation
   holds exactly) and :func:`check_fntsmc_run` (a recorded tethered-satellite run).
-- :func:`check_terminal_reaching_time`: seed 000's eq. 7 (and eq. 5, its alpha -> 0 limit) for
+- :func:`check_terminal_reaching_time`: the fuzzy fast-terminal asteroid paper's eq. 7
+  (and eq. 5, its alpha -> 0 limit) for
   :class:`~landing.controllers.FastTerminalSMC` started on its surface.
 
 A scalar reaching law is simulated where the library realises it: the exact variant of
@@ -71,7 +73,25 @@ class BoundCheck:
     """A bound against simulation: ``measured <= bound`` for every case and axis.
 
     ``measured`` is NaN where the event never happened within the horizon (a violation).
-    ``extra`` holds what else the check measured (e.g. the largest excursion afterwards).
+
+    Parameters
+    ----------
+    name : str
+        What is checked, with the bound's value.
+    bound : numpy.ndarray
+        The bound per case and axis (s, or the checked quantity's unit).
+    measured : numpy.ndarray
+        What the simulation gave, same shape and unit (NaN: never).
+    extra : dict, optional
+        What else the check measured (e.g. the largest excursion afterwards).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.theory import BoundCheck
+    >>> c = BoundCheck("t <= 2 s", bound=np.array([2.0, 2.0]), measured=np.array([1.0, np.nan]))
+    >>> c.ok, c.violations.tolist()
+    (False, [1])
     """
 
     name: str
@@ -154,11 +174,34 @@ def _horizon(dt: float, seconds: float) -> float:
 def check_fixed_time_bound(
     c1: float, e1: float, c2: float, e2: float, s0: ArrayLike, *, dt: Optional[float] = None, tol: float = 1e-6
 ) -> BoundCheck:
-    """Simulate ``s' = -c1 sig^e1(s) - c2 sig^e2(s)`` from each initial value ``s0`` ((N,),
-    or (N, 3) for three axes at once) and compare the time at which |s| first reaches ``tol``
-    with :func:`fixed_time_bound`. ``dt`` defaults to a control period at which the sampled law
-    is stable from the largest ``|s0|``; ``tol`` is raised to ten times the
-    :func:`chattering_band` of the sampled law if that is larger."""
+    """Simulate ``s' = -c1 sig^e1(s) - c2 sig^e2(s)`` from each initial value ``s0`` ((N,), or
+    (N, 3) for three axes at once) and compare the time at which |s| first reaches ``tol`` with
+    :func:`fixed_time_bound`. ``dt`` defaults to a control period at which the sampled law is
+    stable from the largest ``|s0|``; ``tol`` is raised to ten times the :func:`chattering_band`
+    of the sampled law if that is larger.
+
+    Parameters
+    ----------
+    c1, e1, c2, e2 : float
+        The reaching law's gains and exponents (0 < e1 < 1 < e2).
+    s0 : array_like
+        The initial values of s, (N,) or (N, 3) (m/s: s is simulated as a velocity).
+    dt : float, optional
+        The control period (s).
+    tol : float, default 1e-6
+        The |s| counted as reached (m/s).
+
+    Returns
+    -------
+    BoundCheck
+        ``measured``: the entry times (s) against the bound (s), per case and axis.
+
+    Examples
+    --------
+    >>> from landing.theory import check_fixed_time_bound
+    >>> check_fixed_time_bound(1.0, 0.5, 1.0, 1.5, [1.0, 10.0])
+    BoundCheck(fixed-time bound 4.0602 s for c1=1.0, e1=0.5, c2=1.0, e2=1.5: holds; worst measured/bound = 0.620)
+    """
     owner = "check_fixed_time_bound"
     c1, e1, c2, e2 = (real(n, v, owner=owner) for n, v in (("c1", c1), ("e1", e1), ("c2", c2), ("e2", e2)))
     bound = float(fixed_time_bound(c1, e1, c2, e2))
@@ -190,9 +233,39 @@ def check_practical_bound(
     dt: Optional[float] = None, settle_for: Optional[float] = None,
 ) -> BoundCheck:
     """Simulate ``s' = -c1 sig^e1(s) - c2 sig^e2(s) + d(t)`` with ``d = d_max sin(omega t)`` from
-    each ``s0`` and compare with Theorem 1: |s| enters :func:`practical_radius` within
-    :func:`practical_time_bound` and stays in it (``extra["max_after_entry"]``, checked over
-    ``settle_for`` seconds after the bound, by default the bound itself)."""
+    each ``s0`` and compare with Theorem 1 of the Mars fixed-time guidance paper: |s| enters
+    :func:`practical_radius` within :func:`practical_time_bound` and stays in it
+    (``extra["max_after_entry"]``, checked over ``settle_for`` seconds after the bound, by default
+    the bound itself).
+
+    Parameters
+    ----------
+    c1, e1, c2, e2 : float
+        The reaching law's gains and exponents (0 < e1 < 1 < e2).
+    s0 : array_like
+        The initial values of s, (N,) or (N, 3) (m/s).
+    d_max : float
+        The disturbance's amplitude (m/s^2).
+    theta : float
+        The share of the law kept to dominate it, 0 < theta < 1.
+    omega : float, default 1.0
+        The disturbance's angular frequency (rad/s).
+    dt : float, optional
+        The control period (s).
+    settle_for : float, optional
+        How long after the bound staying inside is checked (s).
+
+    Returns
+    -------
+    BoundCheck
+        ``measured``: the entry times (s; NaN where |s| leaves the neighbourhood again).
+
+    Examples
+    --------
+    >>> from landing.theory import check_practical_bound
+    >>> check_practical_bound(1.0, 0.5, 1.0, 1.5, [1.0, 10.0], d_max=0.1, theta=0.5)
+    BoundCheck(practical bound: |s| <= 0.04 within 8.1204 s (theta=0.5, d_max=0.1): holds; worst measured/bound = 0.293)
+    """
     owner = "check_practical_bound"
     c1, e1, c2, e2, d_max, theta, omega = (
         real(n, v, owner=owner) for n, v in (("c1", c1), ("e1", e1), ("c2", c2), ("e2", e2),
@@ -220,12 +293,34 @@ def check_practical_bound(
 
 
 def check_mss(result: SimulationResult, bounds: MSSBounds) -> dict[str, BoundCheck]:
-    """Check a recorded FixedTimeMSS run against Theorem 4: after ``s2_time`` every |s2_i|
-    stays within ``s2_radius``; after ``settle_time`` every |s1_i| within ``s1_radius``.
+    """Check a recorded FixedTimeMSS run against Theorem 4 of the Mars fixed-time guidance paper:
+    after ``s2_time`` every |s2_i| stays within ``s2_radius``; after ``settle_time`` every |s1_i|
+    within ``s1_radius``. Where the bound time exceeds the horizon, ``extra["checkable"]`` is
+    False and only the end of the run is seen.
 
-    Returns checks "s2" and "s1" whose ``measured`` is the time from which the variable stays
-    in its neighbourhood (NaN if it is outside at the end of the run). Where the bound time
-    exceeds the horizon, ``extra["checkable"]`` is False and only the end of the run is seen.
+    Parameters
+    ----------
+    result : landing.SimulationResult
+        A recorded run of a FixedTimeMSS law (s1 in m, s2 in m/s among its diagnostics).
+    bounds : MSSBounds
+        The bounds to check, e.g. from :func:`mss_bounds`.
+
+    Returns
+    -------
+    dict of str to BoundCheck
+        Checks "s2" and "s1" whose ``measured`` is the time (s) from which the variable stays in
+        its neighbourhood (NaN if it is outside at the end of the run).
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import FixedTimeMSS
+    >>> from landing.theory import check_mss, mss_bounds
+    >>> law = FixedTimeMSS(beta1=1.0, beta2=1.0, q1=0.5, q2=1.5, alpha1=2.0, alpha2=2.0, gamma1=0.5, gamma2=1.5)
+    >>> r = landing.simulate(landing.plants.DoubleIntegrator(), law, [1.0, 2.0, -1.0, 0, 0, 0], t_final=20.0, dt=0.01)
+    >>> checks = check_mss(r, mss_bounds(law, ap_max=0.01))
+    >>> sorted(checks), checks["s2"].bound.shape
+    (['s1', 's2'], (1, 3))
     """
     _instance("check_mss", "result", result, SimulationResult, "a landing.SimulationResult")
     _instance("check_mss", "bounds", bounds, MSSBounds, "a landing.theory.MSSBounds")
@@ -265,17 +360,42 @@ def _axis_law(law: FixedTimeNTSMC, axis: int) -> FixedTimeNTSMC:
 def check_fntsmc_bound(law: FixedTimeNTSMC, pairs: Any, *, axis: int = 0, tol: float = 1e-6,
                        dt: Optional[float] = None) -> dict[str, BoundCheck]:
     """Simulate the FNTSMC with the gains of ``axis`` on a :class:`~landing.plants.DoubleIntegrator`
-    (unit inertia, no drift, no saturation, network and switching term off: where the seed's
-    derivation holds exactly) from initial errors ``pairs`` ((M, 2): e1, e2) and compare with
-    :func:`fntsmc_bounds`:
-
-    - ``"s"``: the first time |s| <= s_tol against ``ts``;
-    - ``"e1"``: the time from which |e1| <= tol against ``total``.
+    (unit inertia, no drift, no saturation, network and switching term off: where the
+    tethered-satellite paper's derivation holds exactly) from initial errors ``pairs`` ((M, 2):
+    e1, e2) and compare with :func:`fntsmc_bounds`: ``"s"``, the first time |s| <= s_tol against
+    ``ts``; ``"e1"``, the time from which |e1| <= tol against ``total``.
 
     The sampled law cannot bring s closer to 0 than its chattering band
-    ``(k3 dt)^(1/(1 - alpha_s))`` (:func:`chattering_band`), nor e1 closer than that band over
-    the inside rate: ``s_tol`` and ``tol`` are raised to ten times those if larger. ``dt``
-    defaults to a period at which the held command is stable from the largest initial s."""
+    ``(k3 dt)^(1/(1 - alpha_s))`` (:func:`chattering_band`), nor e1 closer than that band over the
+    inside rate: ``s_tol`` and ``tol`` are raised to ten times those if larger. ``dt`` defaults to
+    a period at which the held command is stable from the largest initial s.
+
+    Parameters
+    ----------
+    law : landing.controllers.FixedTimeNTSMC
+        The law, its gains shared by every case.
+    pairs : array_like
+        Initial errors (e1 in rad, e2 in rad/s), (M, 2).
+    axis : int, default 0
+        Whose gains are used.
+    tol : float, default 1e-6
+        The |e1| counted as settled (rad).
+    dt : float, optional
+        The control period (s).
+
+    Returns
+    -------
+    dict of str to BoundCheck
+        Checks "s" and "e1", times in s.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.theory import check_fntsmc_bound
+    >>> checks = check_fntsmc_bound(landing.scenarios.tether_law(), [[0.1, 0.0], [0.5, 0.1]], axis=1, tol=1e-3)
+    >>> checks["e1"].ok, checks["s"].ok
+    (True, True)
+    """
     owner = "check_fntsmc_bound"
     _instance(owner, "law", law, FixedTimeNTSMC, "a landing.controllers.FixedTimeNTSMC law")
     e = real_array("pairs", pairs, finite=True, owner=owner)
@@ -322,10 +442,36 @@ def check_fntsmc_bound(law: FixedTimeNTSMC, pairs: Any, *, axis: int = 0, tol: f
 
 
 def check_fntsmc_run(result: SimulationResult, plant: Any, bounds: FNTSMCBounds) -> BoundCheck:
-    """A recorded run of a plant (e.g. the tethered satellite) under the FNTSMC against
-    ``bounds``: per case and axis, the time from which |q_i - 0| stays within ``bounds.tol``
-    (NaN if it is outside at the end) against ``bounds.total``. The reference must be the
-    origin (the seed's q_d = 0)."""
+    """A recorded run of a plant (e.g. the tethered satellite) under the FNTSMC against ``bounds``:
+    per case and axis, the time from which |q_i - 0| stays within ``bounds.tol`` (NaN if it is
+    outside at the end) against ``bounds.total``. The reference must be the origin (the
+    tethered-satellite paper's q_d = 0).
+
+    Parameters
+    ----------
+    result : landing.SimulationResult
+        The recorded run.
+    plant : landing.plants.Plant
+        The plant it ran, whose ``coordinates`` give q (rad).
+    bounds : FNTSMCBounds
+        The bounds, from :func:`fntsmc_bounds` (``tol`` in rad, times in s).
+
+    Returns
+    -------
+    BoundCheck
+        ``measured``: the settling times (s) per case and axis; ``extra["checkable"]`` where the
+        bound lies within the run.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.theory import check_fntsmc_run, fntsmc_bounds
+    >>> sc = landing.scenarios.preset("tether_fntsmc_simplified")
+    >>> r = sc.simulate(t_final=1.0)
+    >>> c = check_fntsmc_run(r, sc.plant, fntsmc_bounds(sc.controller, tol=0.01))
+    >>> c.bound.shape, bool(c.extra["checkable"].any())
+    ((1, 2), False)
+    """
     _instance("check_fntsmc_run", "result", result, SimulationResult, "a landing.SimulationResult")
     _instance("check_fntsmc_run", "plant", plant, Plant, "a landing.plants plant")
     _instance("check_fntsmc_run", "bounds", bounds, FNTSMCBounds, "a landing.theory.FNTSMCBounds")
@@ -345,23 +491,49 @@ def check_fntsmc_run(result: SimulationResult, plant: Any, bounds: FNTSMCBounds)
     )
 
 
-# Seed 000: the fast terminal surface's reaching time (eq. 7).
+# The fuzzy fast-terminal asteroid paper: the fast terminal surface's reaching time (eq. 7).
 
 def check_terminal_reaching_time(law: FastTerminalSMC, e0: ArrayLike, *, tol: float = 1e-3,
                                  dt: Optional[float] = None) -> BoundCheck:
     """Simulate ``law`` (its gains shared by every case; each axis its own) on a
-    :class:`~landing.plants.DoubleIntegrator` (unit inertia, no drift, no saturation) from
-    initial errors ``e0`` ((N,) or (N, 3)) started on the sliding surface,
-    ``e'(0) = -alpha e0 - beta sig^(p/q)(e0)``, and compare the first time |e| <= tol with
-    eq. 7's time to reach 0, :func:`~landing.theory.fast_terminal_reaching_time`.
+    :class:`~landing.plants.DoubleIntegrator` (unit inertia, no drift, no saturation) from initial
+    errors ``e0`` ((N,) or (N, 3)) started on the sliding surface,
+    ``e'(0) = -alpha e0 - beta sig^(p/q)(e0)``, and compare the first time |e| <= tol with the
+    fuzzy fast-terminal asteroid paper's eq. 7 time to reach 0,
+    :func:`~landing.theory.fast_terminal_reaching_time`.
 
-    On the surface the error obeys ``e' = -alpha e - beta sig^(p/q)(e)``, so the time to come
-    down to ``tol`` is eq. 7 at e0 less eq. 7 at tol: that prediction is
-    ``extra["predicted"]``, and ``extra["difference"]`` what the sampled law measures against
-    it (a few control periods when eq. 7 holds). ``tol`` is raised to ten times the law's
-    ``e_floor`` (below which the equivalent control is guarded, not the surface's) if smaller.
-    ``dt`` defaults to a period a hundred times shorter than the fastest time constant of the
-    surface. Eq. 5 is eq. 7's limit as alpha tends to 0: a law with a small alpha checks it."""
+    On the surface the error obeys ``e' = -alpha e - beta sig^(p/q)(e)``, so the time to come down
+    to ``tol`` is eq. 7 at e0 less eq. 7 at tol: that prediction is ``extra["predicted"]``, and
+    ``extra["difference"]`` what the sampled law measures against it (a few control periods when
+    eq. 7 holds). ``tol`` is raised to ten times the law's ``e_floor`` (below which the equivalent
+    control is guarded, not the surface's) if smaller. ``dt`` defaults to a period a hundred times
+    shorter than the fastest time constant of the surface. Eq. 5 is eq. 7's limit as alpha tends
+    to 0: a law with a small alpha checks it.
+
+    Parameters
+    ----------
+    law : landing.controllers.FastTerminalSMC
+        The law, its gains shared by every case.
+    e0 : array_like
+        Non-zero initial errors (m), (N,) or (N, 3).
+    tol : float, default 1e-3
+        The |e| counted as reached (m).
+    dt : float, optional
+        The control period (s).
+
+    Returns
+    -------
+    BoundCheck
+        ``measured``: the entry times (s) against eq. 7's times (s).
+
+    Examples
+    --------
+    >>> from landing.controllers import FastTerminalSMC
+    >>> from landing.theory import check_terminal_reaching_time
+    >>> law = FastTerminalSMC(alpha=1.0, beta=1.0, p=3, q=5, k=1.0)
+    >>> check_terminal_reaching_time(law, [1.0, 2.0])
+    BoundCheck(|e| <= 0.01 within eq. 7's time to reach 0: holds; worst measured/bound = 0.825)
+    """
     owner = "check_terminal_reaching_time"
     _instance(owner, "law", law, FastTerminalSMC, "a landing.controllers.FastTerminalSMC law")
     e = _as_cases(owner, e0).astype(float)
