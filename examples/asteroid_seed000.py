@@ -1,7 +1,7 @@
-"""Seed 000: PD sliding mode, fast terminal SMC and fuzzy-blended FTSMC, each with sign and
-tanh switching, tracking the Table 1 cubic on 433 Eros (two mass points) for 15 s at
-dt = 0.01 s; then the full 8000 s landing. Prints the comparison of
-docs/reproduction-asteroid.md and writes the seed's figures.
+"""The fuzzy fast-terminal asteroid paper: PD sliding mode, fast terminal SMC and fuzzy-blended
+FTSMC, each with sign and tanh switching, tracking the Table 1 cubic on 433 Eros (two mass
+points) for 15 s at dt = 0.01 s; then the full 8000 s landing. Prints the comparison of
+docs/reproduction-asteroid.md and writes the paper's figures.
 
     python examples/asteroid_seed000.py [--out figures/seed000]
 """
@@ -34,7 +34,7 @@ def main() -> None:
     args = ap.parse_args()
 
     runs = {}
-    print(f"{'law':<22} {'tracked in':>11} {'IAE':>10} {'IAE / PD':>9} {'variation':>11} {'HF share':>10}   seed: time, error")
+    print(f"{'law':<22} {'tracked in':>11} {'IAE':>10} {'IAE / PD':>9} {'variation':>11} {'HF share':>10}   paper: time, error")
     for switch in ("sign", "tanh"):
         base = None
         for law in SEED000_LAWS:
@@ -50,7 +50,7 @@ def main() -> None:
           " total variation of the command per second, m/s^3; HF share: energy above 5 Hz)")
 
     # eq. 5 and 7: the time to reach e = 0 once on the surface, for the preset's FTSMC gains
-    # and the 10 m initial offset; the seed prints p and q swapped
+    # and the 10 m initial offset; the paper prints p and q swapped
     g, e0 = SEED000_GAINS, float(SEED000_OFFSET[0])
     alpha, beta, p, q = g["lam"], g["beta"], g["p"], g["q"]
     print(f"\nReaching times on the surface from e0 = {e0:g} m (alpha {alpha:g}, beta {beta:g}, p/q = {p:g}/{q:g}):")

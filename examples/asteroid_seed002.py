@@ -1,7 +1,7 @@
-"""Seed 002: landing on 433 Eros (C20/C22 gravity) along a cubic over 4000 s with the integral
-sliding surface and either the fixed exponential reaching law or the fuzzy variable-rate one,
-under a model uncertainty of up to 1 % of the command. Prints the comparison of
-docs/reproduction-asteroid.md and writes the seed's figures.
+"""The fuzzy variable-rate asteroid paper: landing on 433 Eros (C20/C22 gravity) along a cubic
+over 4000 s with the integral sliding surface and either the fixed exponential reaching law or
+the fuzzy variable-rate one, under a model uncertainty of up to 1 % of the command. Prints the
+comparison of docs/reproduction-asteroid.md and writes the paper's figures.
 
     python examples/asteroid_seed002.py [--out figures/seed002]
 """
@@ -30,7 +30,7 @@ def main() -> None:
         m = res.metrics
         print(f"{NAMES[law]:<22} {m['settle_time']:9.1f} s {m['iae']:9.1f} m s {m['final_position_error']:12.2e} m "
               f"{m['chattering_variation']:9.2e} m/s^3 {m['chattering_hf_share']:9.2e}")
-    print("\n(seed: the probe is on the nominal trajectory by 400 s; the variable-rate law removes the chattering of the"
+    print("\n(the paper: the probe is on the nominal trajectory by 400 s; the variable-rate law removes the chattering of the"
           " exponential one. Tracked: within 1 m from then on.)")
 
     out = Path(args.out)

@@ -1,4 +1,4 @@
-"""The main job: seed 001's 300-case Mars Monte Carlo (part 2).
+"""The main job: the 300-case Mars Monte Carlo (part 2) of the Mars fixed-time guidance paper.
 
 Table II dispersions of position, velocity and mass, the dust storm a_p = 20 sin t on every
 axis, the fixed-time MSS guidance (printed eq. 25) with the preset gains, and the practical
@@ -28,7 +28,7 @@ DOC = "docs/reproduction-mars.md, Part 2"
 
 
 def claims(mc: landing.MonteCarloResult, scenario: landing.Scenario) -> str:
-    """Seed 001's part-2 claims beside this campaign's numbers, each marked reproduced, gap or
+    """The Mars paper's part-2 claims beside this campaign's numbers, each marked reproduced, gap or
     not informative, with where the docs explain it."""
     m, res = mc.metrics, mc.result
     n = len(m["final_error"])
@@ -60,8 +60,8 @@ def claims(mc: landing.MonteCarloResult, scenario: landing.Scenario) -> str:
          f"not informative: its radius, {radius:.0f} m, is {radius / np.max(err):.0f} times the largest error"),
     ]
     widths = [max(len(r[i]) for r in rows) for i in range(3)]
-    head = ("claim", "seed 001", "ours")
-    lines = [f"Seed 001 part 2, claim by claim ({n} cases; the realistic loop below lands softly)",
+    head = ("claim", "paper", "ours")
+    lines = [f"The Mars fixed-time guidance paper's part 2, claim by claim ({n} cases; the realistic loop below lands softly)",
              "  " + "  ".join(h.ljust(w) for h, w in zip(head, widths)) + "  verdict"]
     lines += ["  " + "  ".join(c.ljust(w) for c, w in zip(r[:3], widths)) + "  " + r[3] for r in rows]
     return "\n".join(lines)

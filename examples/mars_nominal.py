@@ -1,7 +1,7 @@
-"""Seed 001, nominal case (Table I): the fixed-time multiple-sliding-surface guidance lands the
-Mars lander. Prints fuel, landing state and peak thrust beside the seed's printed figures, for
-the preset gains (docs/parameters.md) and for the reconstruction from the printed bounds, which
-reproduces the seed's bounds T1 = 74.578 s and T2 = 30.822 s but not its other figures.
+"""The Mars fixed-time guidance paper, nominal case (Table I): the fixed-time
+multiple-sliding-surface guidance lands the Mars lander. Prints fuel, landing state and peak
+thrust beside the paper's printed figures, for the preset gains (docs/parameters.md) and for
+the reconstruction from the printed bounds, which reproduces the paper's bounds T1 = 74.578 s and T2 = 30.822 s but not its other figures.
 
     python examples/mars_nominal.py
 """
@@ -12,8 +12,8 @@ import numpy as np
 
 import landing
 
-SEED_FUEL_KG = 238.2907  # seed 001, Fig. 4
-SEED_PEAK_THRUST_N = 4e4  # seed 001, Fig. 2(c): "less than 4 x 10^4 N"
+SEED_FUEL_KG = 238.2907  # the Mars paper, Fig. 4
+SEED_PEAK_THRUST_N = 4e4  # the Mars paper, Fig. 2(c): "less than 4 x 10^4 N"
 RECONSTRUCTION = dict(beta1=0.8, beta2=0.4, q1=0.95, q2=1.05, alpha1=0.9, alpha2=0.5, gamma1=0.9, gamma2=1.1)
 
 
@@ -22,9 +22,9 @@ def report(title: str, scenario: landing.scenarios.Scenario) -> None:
     m = res.metrics
     print(title)
     print(f"  gains: {scenario.controller}")
-    print(f"  fuel to landing   {m['fuel_to_settle']:10.2f} kg   (seed: {SEED_FUEL_KG} kg; landing = |r| within 1 m)")
+    print(f"  fuel to landing   {m['fuel_to_settle']:10.2f} kg   (paper: {SEED_FUEL_KG} kg; landing = |r| within 1 m)")
     print(f"  landing time      {m['settle_time']:10.2f} s")
-    print(f"  peak thrust       {np.max(m['peak_command_axis']):10.4g} N per axis (seed: below {SEED_PEAK_THRUST_N:.0e} N)")
+    print(f"  peak thrust       {np.max(m['peak_command_axis']):10.4g} N per axis (paper: below {SEED_PEAK_THRUST_N:.0e} N)")
     if np.isfinite(m["touchdown_time"]):
         print(f"  touchdown         t = {m['touchdown_time']:.3f} s, velocity "
               f"{np.array2string(m['touchdown_velocity'], precision=3)} m/s")
@@ -33,7 +33,7 @@ def report(title: str, scenario: landing.scenarios.Scenario) -> None:
     print(f"  state at {scenario.t_final:g} s     r = {np.array2string(res.final_state[:3], precision=3)} m, "
           f"v = {np.array2string(res.final_state[3:6], precision=3)} m/s, m = {res.final_state[6]:.2f} kg")
     b = landing.theory.mss_bounds(scenario.controller)
-    print(f"  bounds            T1 = {b.t1[0]:.4f} s, T2 = {b.t2[0]:.4f} s (seed: 74.5780 s, 30.8217 s)\n")
+    print(f"  bounds            T1 = {b.t1[0]:.4f} s, T2 = {b.t2[0]:.4f} s (paper: 74.5780 s, 30.8217 s)\n")
 
 
 def main() -> None:

@@ -1,10 +1,11 @@
-"""Seed 001's fuel comparison: the offline fuel-optimal landing against the guidance laws.
+"""The Mars fixed-time guidance paper's fuel comparison: the offline fuel-optimal landing against
+the guidance laws.
 
 Solves the fuel-optimal descent of the Mars lander from the Table I state with t_f = 30 s
 (drag, mass depletion, 40 kN per axis, altitude >= 0, at rest at the target), compares its fuel
 with the fixed-time MSS preset and the super-twisting baseline, replays the optimal thrust open
 loop through the simulator without and with a_p = +-sin t on every axis, and writes the
-figures of seed 001 Fig. 3 and 4. docs/reproduction-mars.md explains every number.
+figures of the paper's Fig. 3 and 4. docs/reproduction-mars.md explains every number.
 
     python examples/mars_optimal.py [--nodes 150] [--out figures/mars_optimal]
 """
@@ -20,11 +21,11 @@ import numpy as np
 import landing
 from landing import disturbances, optimal, plants, scenarios
 
-THRUST_LIMIT = 40e3  # N per axis: seed 001 Fig. 2(c)'s bound; the seed prints none for its optimum
+THRUST_LIMIT = 40e3  # N per axis: the Mars paper's bound of Fig. 2(c); it prints none for its optimum
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description="seed 001: the fuel-optimal baseline (Fig. 3, 4)")
+    ap = argparse.ArgumentParser(description="the Mars paper: the fuel-optimal baseline (Fig. 3, 4)")
     ap.add_argument("--nodes", type=int, default=150, help="thrust intervals over 30 s (150: 0.2 s)")
     ap.add_argument("--out", default="figures/mars_optimal", help="folder for the figures")
     args = ap.parse_args()
@@ -37,7 +38,7 @@ def main() -> None:
           f"dt = {opt.dt:g} s, 40 kN per axis: {opt.status} in {opt.iterations} iterations, "
           f"{time.perf_counter() - start:.1f} s")
     fine = opt.states_fine
-    print(f"  fuel {opt.fuel:.2f} kg (seed 001: 212.9067 kg); peak |F_i| {np.abs(opt.thrust).max() / 1e3:.2f} kN, "
+    print(f"  fuel {opt.fuel:.2f} kg (the Mars fixed-time guidance paper: 212.9067 kg); peak |F_i| {np.abs(opt.thrust).max() / 1e3:.2f} kN, "
           f"min altitude {fine[:, 2].min():.2e} m, |r(t_f)| {np.linalg.norm(fine[-1, :3]):.1e} m, "
           f"|v(t_f)| {np.linalg.norm(fine[-1, 3:6]):.1e} m/s, slack gap {opt.slack_gap:.1e} N")
     mag = np.linalg.norm(opt.thrust, axis=1)
@@ -64,9 +65,9 @@ def main() -> None:
         sm = st.metrics
         rows.append((f"super-twisting ({variant})", float(sm["fuel_to_settle"]), float(sm["settle_time"]),
                      float(np.max(sm["peak_command_axis"])), "277.13 kg in 30 s"))
-    print(f"  {'law':<44} {'fuel':>10} {'landing':>9} {'peak |F_i|':>11}   seed 001")
-    for name, fuel, t_land, peak, seed in rows:
-        print(f"  {name:<44} {fuel:8.2f} kg {t_land:7.2f} s {peak / 1e3:8.2f} kN   {seed}")
+    print(f"  {'law':<44} {'fuel':>10} {'landing':>9} {'peak |F_i|':>11}   paper")
+    for name, fuel, t_land, peak, printed in rows:
+        print(f"  {name:<44} {fuel:8.2f} kg {t_land:7.2f} s {peak / 1e3:8.2f} kN   {printed}")
 
     print("\nthe optimal thrust replayed open loop (landing.controllers.Tabulated)")
     rep = opt.replay(record_every=1)
@@ -79,7 +80,7 @@ def main() -> None:
     print(f"  at dt = 1 ms: |r(30 s)| = {np.linalg.norm(rep_ms.states[-1, :3]):.1e} m, "
           f"|v(30 s)| = {np.linalg.norm(rep_ms.states[-1, 3:6]):.1e} m/s")
 
-    print("\nunder a_p = A sin t on every axis (seed 001 Fig. 3(c), (d): A = 1)")
+    print("\nunder a_p = A sin t on every axis (the Mars paper's Fig. 3(c), (d): A = 1)")
     replays = {"optimum, a_p = 0": rep}
     for amp in (1.0, -1.0):
         dist = disturbances.Sinusoid(amplitude=amp, omega=1.0)

@@ -1,8 +1,8 @@
 """A soft landing on Mars in a GNC-realistic loop: the ``mars_realistic`` preset.
 
-The seed-001 lander (Table I state, Table II dispersions) with a real engine (22.1 kN, its Isp,
-thrust, lag and the drag dispersed case by case, throttled
-down to 20 %, within 60 degrees of vertical, a 0.1 s lag and a two-period delay), a noisy
+The lander of the Mars fixed-time guidance paper (Table I state, Table II dispersions) with a
+real engine (22.1 kN, its Isp, thrust, lag and the drag dispersed case by case, throttled down
+to 20 %, within 60 degrees of vertical, a 0.1 s lag and a two-period delay), a noisy
 sensor of position and velocity (white noise and random walk) read through a Kalman filter,
 engine-thrust and gust disturbances, and a guidance reference that ends in a constant-velocity
 descent at 0.5 m/s; each case ends at touchdown. Prints a summary against the requirement

@@ -1,4 +1,5 @@
-"""Every number of docs/reproduction-mars.md: seed 001's printed figures beside ours.
+"""Every number of docs/reproduction-mars.md: the Mars fixed-time guidance paper's printed figures
+beside ours.
 
     python examples/mars_reproduction.py
 """
@@ -15,8 +16,8 @@ from landing import scenarios, theory
 NOMINAL_KEYS = ("settle_time", "fuel_to_settle", "peak_command", "final_position_error", "final_velocity_error")
 
 
-def line(label: str, ours: str, seed: str) -> None:
-    print(f"  {label:<52} {ours:<28} seed: {seed}")
+def line(label: str, ours: str, paper: str) -> None:
+    print(f"  {label:<52} {ours:<28} paper: {paper}" if paper else f"  {label:<52} {ours}")
 
 
 def nominal() -> None:

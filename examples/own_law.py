@@ -1,7 +1,7 @@
 """Your own control law, written in Python (docs/own-law.md).
 
-Two laws on the Mars lander of the seed-001 Monte Carlo (Table II dispersions, the paper's
-disturbance), each run as a 100-case campaign beside the preset's built-in law, and the first
+Two laws on the Mars lander of the Monte Carlo of the Mars fixed-time guidance paper (Table II
+dispersions, the paper's disturbance), each run as a 100-case campaign beside the preset's built-in law, and the first
 tuned:
 
 1. a PD law with model cancellation, ``a = q_ref'' - drift - kp e - kd e'``;

@@ -1,5 +1,6 @@
-"""Seed 003's comparison, FNTSMC against NTSMC on the flexible tethered satellite: every number
-of docs/reproduction-tether.md, and the seed's figures 3 to 7 in figures/tether/.
+"""The tethered-satellite paper's comparison, FNTSMC against NTSMC on the flexible tethered
+satellite: every number of docs/reproduction-tether.md, and the paper's figures 3 to 7 in
+figures/tether/.
 
     python examples/tether_comparison.py [--out figures/tether]
 """
@@ -19,8 +20,8 @@ DEG = np.pi / 180.0
 LAWS = {"FNTSMC": "fntsmc", "NTSMC": "ntsmc"}
 
 
-def line(label: str, ours: str, seed: str = "") -> None:
-    print(f"  {label:<50} {ours:<34} {('seed: ' + seed) if seed else ''}")
+def line(label: str, ours: str, paper: str = "") -> None:
+    print(f"  {label:<50} {ours:<34} {('paper: ' + paper) if paper else ''}")
 
 
 def runs(fidelity: str = "flexible") -> dict[str, landing.SimulationResult]:
@@ -36,7 +37,7 @@ def settle(res: landing.SimulationResult, plant, tol: float, rates: bool = False
 
 def comparison() -> dict[str, landing.SimulationResult]:
     plant = scenarios.tether_plant()
-    print(f"Seed 003 section 4: 1 degree on both angles to 0, 0.1 N thrust ({plant.substeps_for(0.01)} RK4 "
+    print(f"The tethered-satellite paper, section 4: 1 degree on both angles to 0, 0.1 N thrust ({plant.substeps_for(0.01)} RK4 "
           f"substeps per 10 ms), flexible plant with {plant.nodes} tether nodes")
     res = runs()
     f, n = res["FNTSMC"], res["NTSMC"]
@@ -85,7 +86,7 @@ def bounds() -> None:
     law = FixedTimeNTSMC()
     tol = scenarios.TETHER_SETTLE_TOLERANCE
     b = theory.fntsmc_bounds(law, tol)
-    print("\nSeed 003 Theorem 1 with Table 2 (no disturbance; axes phi, theta)")
+    print("\nThe tether paper's Theorem 1 with Table 2 (no disturbance; axes phi, theta)")
     line("T_s (s reaches 0, Lemma 2 on V = s^2/2)", f"{b.ts[0]:.1f}, {b.ts[1]:.2f} s", "eq. 42: needs c_v (not given)")
     line("T_d (|e1| reaches sigma_phi)", f"{b.td[0]:.1f}, {b.td[1]:.2f} s", "eq. 47")
     line("then |e1| within 0.02 deg", f"{b.t_inside[0]:.1f}, {b.t_inside[1]:.2f} s")
@@ -118,7 +119,7 @@ def main() -> None:
     for name, fig in (("angles", plots.tether_angles(ordered, plant)), ("rates", plots.tether_rates(ordered, plant)),
                       ("commands", plots.tether_commands(ordered))):
         fig.savefig(out / f"{name}.png", dpi=120)
-    print(f"\nfigures: {out}/angles.png (seed Fig. 3, 5), rates.png (Fig. 4, 6), commands.png (Fig. 7)")
+    print(f"\nfigures: {out}/angles.png (the paper's Fig. 3, 5), rates.png (Fig. 4, 6), commands.png (Fig. 7)")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
-"""The fixed-time property of seed 003's FNTSMC in Monte Carlo (docs/reproduction-tether.md):
-the worst settle time of each angle over campaigns whose initial angles and rates grow, against
-the computed bound, with the NTSMC baseline beside it. Writes figures/tether/fixed_time.png.
+"""The fixed-time property of the tethered-satellite paper's FNTSMC in Monte Carlo
+(docs/reproduction-tether.md): the worst settle time of each angle over campaigns whose initial
+angles and rates grow, against the computed bound, with the NTSMC baseline beside it. Writes figures/tether/fixed_time.png.
 
     python examples/tether_monte_carlo.py [--cases 40] [--out figures/tether]   (about 3 min)
 """

@@ -1,15 +1,16 @@
-"""Tuning study behind the seed-000 presets (docs/parameters.md, docs/reproduction-asteroid.md).
+"""Tuning study behind the presets of the fuzzy fast-terminal asteroid paper (docs/parameters.md,
+docs/reproduction-asteroid.md).
 
-Seed 000 compares PD sliding mode, fast terminal SMC and fuzzy-blended FTSMC on 433 Eros (two
+The paper compares PD sliding mode, fast terminal SMC and fuzzy-blended FTSMC on 433 Eros (two
 mass points, rotating frame) tracking the Table 1 cubic over 15 s at dt = 0.01 s; it prints no
 gains and no initial tracking error. Choices: the probe starts 10 m off the reference on each
 axis with the reference's velocity; "tracked" means |r - r_ref| within 0.1 m from then on.
 
-Stage A calibrates the baseline to the seed: PD-SMC (sign) gains (lambda, k) on a grid; the
-pair whose tracking time is nearest the seed's 8 s, and among those the smallest peak command.
+Stage A calibrates the baseline to the paper: PD-SMC (sign) gains (lambda, k) on a grid; the
+pair whose tracking time is nearest the paper's 8 s, and among those the smallest peak command.
 Stage B gives FTSMC the same alpha = lambda and k and searches beta and p/q (odd ratios, as the
-seed asks); stage C gives the fuzzy law FTSMC's gains and searches N and M. Both pick the
-smallest integrated absolute error (the seed's Table 2 figure) among gain sets whose peak
+paper asks); stage C gives the fuzzy law FTSMC's gains and searches N and M. Both pick the
+smallest integrated absolute error (the paper's Table 2 figure) among gain sets whose peak
 command stays within 1.25 times the baseline's. Stage D picks the tanh boundary layer: the
 widest (least chattering) whose PD-SMC tracking time stays within 0.05 s of the narrowest's.
 Every stage is one batch with per-case gains.

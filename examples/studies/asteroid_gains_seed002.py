@@ -1,6 +1,7 @@
-"""Tuning study behind the seed-002 presets (docs/parameters.md, docs/reproduction-asteroid.md).
+"""Tuning study behind the presets of the fuzzy variable-rate asteroid paper (docs/parameters.md,
+docs/reproduction-asteroid.md).
 
-Seed 002 lands on 433 Eros (C20/C22 gravity) along a cubic over 4000 s with an integral
+The paper lands on 433 Eros (C20/C22 gravity) along a cubic over 4000 s with an integral
 sliding surface and either a fixed exponential reaching law or a fuzzy variable-rate one,
 under a model uncertainty of up to 1 % of the command; it prints no gains, no control period
 and no initial tracking error. Choices: the probe starts 50 m off the reference on each axis,
@@ -8,7 +9,7 @@ dt = 0.1 s, "tracked" means |r - r_ref| within 1 m from then on.
 
 Stage A (exponential law) searches the sliding dynamics sigma'' + c2 sigma' + c1 sigma = 0,
 critically damped (c1 = w^2, c2 = 2 w), the rate k and the switching gain epsilon; it keeps the
-gain sets that track in 380 to 420 s (the seed: "by 400 s") and picks the most accurate landing
+gain sets that track in 380 to 420 s (the paper: "by 400 s") and picks the most accurate landing
 (smallest |r - r_ref| at 4000 s), the smaller epsilon on ties. Stage B gives the fuzzy law the
 same c1, c2, k and the same switching authority (ku times the largest output of the rule base
 equals epsilon), and searches the input scalings ke, kec; it keeps those as accurate as the

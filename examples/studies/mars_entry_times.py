@@ -1,12 +1,13 @@
-"""When the 300-case Monte Carlo's sliding variables enter their neighbourhoods, against seed 001
-Fig. 9 and 10 (s2 within 26.5257 by 7.89 s, s1 within 23.8472 m by 9.76 s).
+"""When the 300-case Monte Carlo's sliding variables enter their neighbourhoods, against Fig. 9
+and 10 of the Mars fixed-time guidance paper (s2 within 26.5257 by 7.89 s, s1 within
+23.8472 m by 9.76 s).
 
 The campaign of examples/mars_monte_carlo.py (Table II, a_p = 20 sin t, preset gains, seed 1)
 records s1 = r and s2 every 50 ms. The entry time of a band is the first recorded instant from
-which every case's every axis stays inside it to the end of the 60 s run. The bands: the seed's
+which every case's every axis stays inside it to the end of the 60 s run. The bands: the paper's
 printed radii (26.5257 for s2, 23.8472 m for s1), and the radii eq. 39 and 31 give for the
 preset gains (`landing.theory.mss_bounds`, theta1 = 0.2, theta2 = 0.1). Also the first instant
-each case is inside (the median over cases), for the seed's figures read that way; and where
+each case is inside (the median over cases), for the paper's figures read that way; and where
 the cases first touch the ground (the landing-sites figure of examples/mars_monte_carlo.py).
 
     python examples/studies/mars_entry_times.py [--cases 300] [--seed 1]   (about 20 s on 2 cores)
@@ -50,13 +51,13 @@ def main() -> None:
     b = scenario.bounds()
     ours = {"s2": float(np.max(b.s2_radius)), "s1": float(np.max(b.s1_radius))}
     print(f"{args.cases} cases, seed {args.seed}, records every {res.t[1] - res.t[0]:.3g} s")
-    print(f"{'band':<44} {'all cases stay inside from':>27} {'first inside, median / max':>28}   seed 001")
+    print(f"{'band':<44} {'all cases stay inside from':>27} {'first inside, median / max':>28}   paper")
     for name, radius, unit, seed_time in (("s2", SEED_S2, "m/s", SEED_S2_TIME), ("s1", SEED_S1, "m", SEED_S1_TIME),
                                            ("s2", ours["s2"], "m/s", None), ("s1", ours["s1"], "m", None)):
         sig = res.diagnostics[name]
         stay = stays_inside_from(res.t, sig, radius)
         first = first_inside(res.t, sig, radius)
-        label = f"{name} within {radius:.6g} {unit}" + (" (seed's radius)" if seed_time else " (eq. 39/31, preset)")
+        label = f"{name} within {radius:.6g} {unit}" + (" (paper's radius)" if seed_time else " (eq. 39/31, preset)")
         print(f"{label:<44} {stay:25.2f} s {np.median(first):12.2f} / {np.max(first):6.2f} s   "
               + (f"{seed_time} s" if seed_time else "-"))
     td = np.asarray(mc.metrics["touchdown_position"])[:, :2]
@@ -64,7 +65,7 @@ def main() -> None:
     miss = np.abs(td[touched])
     print(f"touchdown sites (first rz = 0 crossing, landing_sites.png): {touched.sum()} of {args.cases} cases; "
           f"max abs(x) {miss[:, 0].max():.2f} m, max abs(y) {miss[:, 1].max():.2f} m, "
-          f"{int(np.sum(np.all(miss <= SEED_S1, axis=1)))} within the seed's {SEED_S1} m on both axes")
+          f"{int(np.sum(np.all(miss <= SEED_S1, axis=1)))} within the paper's {SEED_S1} m on both axes")
 
 
 if __name__ == "__main__":

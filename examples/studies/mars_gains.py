@@ -1,19 +1,20 @@
 """Tuning study behind the Mars fixed-time preset (docs/parameters.md, MARS_FIXED_TIME_GAINS).
 
-The seed (001) prints its bounds T1, T2 but not its gains. This study searches the eight
-shared gains of FixedTimeMSS (printed variant) with the batch engine, thousands of gain sets
-per batch (per-case gains), and picks the set that best meets the seed's claims.
+The Mars fixed-time guidance paper prints its bounds T1, T2 but not its gains. This study
+searches the eight shared gains of FixedTimeMSS (printed variant) with the batch engine,
+thousands of gain sets per batch (per-case gains), and picks the set that best meets the
+paper's claims.
 
 Required of a gain set:
-  R1  nominal peak thrust below 40 kN per axis (seed Fig. 2(c)),
-  R2  precise soft landing: |r| < 0.1 m and |v| < 0.1 m/s at 60 s (seed Fig. 2(a), (b)),
-  R3  fuel to landing (m0 - m at the 1 m settle time) within 2 % of 238.29 kg (seed Fig. 4),
-  R4  under a_p = 20 sin t (seed eq. 47) the nominal case stays within the seed's 23.85 m
-      per axis over the last 20 s of the run (seed Fig. 8, 10),
-  R5  fixed-time bounds within ten times the seed's: T1 <= 745.78 s, T2 <= 308.22 s
-      (eq. 18, 26). The seed's own T1 = 74.578 s and T2 = 30.822 s can be had with R1 and R2
+  R1  nominal peak thrust below 40 kN per axis (the paper's Fig. 2(c)),
+  R2  precise soft landing: |r| < 0.1 m and |v| < 0.1 m/s at 60 s (Fig. 2(a), (b)),
+  R3  fuel to landing (m0 - m at the 1 m settle time) within 2 % of 238.29 kg (Fig. 4),
+  R4  under a_p = 20 sin t (eq. 47) the nominal case stays within the paper's 23.85 m
+      per axis over the last 20 s of the run (Fig. 8, 10),
+  R5  fixed-time bounds within ten times the paper's: T1 <= 745.78 s, T2 <= 308.22 s
+      (eq. 18, 26). The paper's own T1 = 74.578 s and T2 = 30.822 s can be had with R1 and R2
       but not with R3 and R4 (examples/studies/mars_seed_bounds.py, docs/parameters.md).
-Objective: the shortest nominal settle time (|r| within 1 m for good), the seed's
+Objective: the shortest nominal settle time (|r| within 1 m for good), the paper's
 "convergence" (Fig. 2(a)).
 
 Stage 1 draws gain sets at random and stage 2 refines around the best with the cross-entropy

@@ -1,19 +1,23 @@
-"""What seed 001's fuel optimum (212.9067 kg) could have been: which unprinted choice fits it.
+"""What the fuel optimum of the Mars fixed-time guidance paper (212.9067 kg) could have been:
+which unprinted choice fits it.
 
-Seed 001 prints neither the thrust bounds of its GPOPS problem nor whether its engine may shut
+The paper prints neither the thrust bounds of its GPOPS problem nor whether its engine may shut
 down. Our optimum with 40 kN per axis and free throttling spends 178.5 kg (burn, coast, burn),
-4 kg above the drag-free impulsive bound. Two unprinted choices each fit the seed's number, so
+4 kg above the drag-free impulsive bound. Two unprinted choices each fit the paper's number, so
 the paper does not identify which (if either) it made:
 
 1. a minimum throttle `low` (an engine that cannot coast): swept, and the `low` that gives the
-   seed's fuel found. At that floor the optimum burns a constant |F| (the seed's fuel over 30 s
-   is exactly that average thrust), so this fit holds for any fuel above the floor-free
+   paper's fuel found. At that floor the optimum burns a constant |F| (the paper's fuel over
+   30 s is exactly that average thrust), so this fit holds for any fuel above the floor-free
    optimum: it is an identity, not evidence;
-2. a lower specific impulse: the Isp that gives the seed's fuel, free throttling.
+2. a lower specific impulse: the Isp that gives the paper's fuel, free throttling.
 
-And the engine of the seed's reference [1] (Acikmese and Ploen 2007, where the Table I lander
-comes from: |F| between 4.97 and 13.26 kN): the most it can burn in 30 s is below the seed's
-212.9 kg, so that engine cannot be the seed's.
+And the engine of the paper's reference [1] (Acikmese and Ploen 2007, where the Table I lander
+comes from: |F| between 4.97 and 13.26 kN): the most it can burn in 30 s is below the paper's
+212.9 kg, so that engine cannot be the paper's.
+
+(The printed lines still say "the seed's" for the paper: their generated block in
+docs/reproduction-mars.md is a slow one, rewritten only when the study is run again.)
 
     python examples/studies/mars_optimal_throttle.py     (about 4 min on 2 cores)
 """
@@ -27,7 +31,7 @@ from landing import optimal, plants, scenarios
 SEED_FUEL = 212.9067
 
 
-#: The engine of the seed's reference [1], |F| in N (Acikmese and Ploen 2007).
+#: The engine of the paper's reference [1], |F| in N (Acikmese and Ploen 2007).
 REFERENCE_ENGINE = (4.97e3, 13.26e3)
 
 

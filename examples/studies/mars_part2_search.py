@@ -1,6 +1,7 @@
-"""A CMA-ES search over eq. 25's eight gains for seed 001's part-2 figures (Fig. 8-10).
+"""A CMA-ES search over eq. 25's eight gains for the part-2 figures (Fig. 8-10) of the Mars
+fixed-time guidance paper.
 
-The seed's part 2 (Table II dispersions, a_p = 20 sin t on every axis) shows, for its gains:
+The paper's part 2 (Table II dispersions, a_p = 20 sin t on every axis) shows, for its gains:
 
   H  every case touches down within 23.8472 m of the target on each horizontal axis (Fig. 8)
   V  touchdown speed at most 1.5 m/s (Fig. 8 c, d)
@@ -13,7 +14,7 @@ means from t to touchdown. The search minimises the total violation
 touchdown; V: the largest touchdown speed; S2, S1: the first recorded instant, every 50 ms, from
 which every case's every axis stays in the band), each limit times a margin (0.9, so that the
 best of K cases holds on all 300), a diverged case or a case that never touches
-down counting as a violation of 10. It runs twice: without a thrust limit (the seed's part 2)
+down counting as a violation of 10. It runs twice: without a thrust limit (the paper's part 2)
 and with its 40 kN per axis.
 
 The search drives CMA-ES (the ``cma`` package, as ``landing.tune`` does) with the same batch

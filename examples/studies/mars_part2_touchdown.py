@@ -1,7 +1,8 @@
-"""Seed 001's part 2 (Table II, a_p = 20 sin t) read at touchdown, and how alike its cases are.
+"""Part 2 of the Mars fixed-time guidance paper (Table II, a_p = 20 sin t) read at touchdown, and
+how alike its cases are.
 
 The campaign of examples/mars_monte_carlo.py (preset gains, seed 1), each case ending at its
-touchdown (``stop_at="touchdown"``: the first rz = 0 crossing, where the seed's Fig. 8 reads its
+touchdown (``stop_at="touchdown"``: the first rz = 0 crossing, where the paper's Fig. 8 reads its
 landing sites and speeds). Then the same 300 cases run to 60 s without the event, to show how
 the deterministic disturbance draws them together: the spread over the cases (largest over the
 axes of max - min) of the position at several times. The neighbourhood of Theorem 4 is reported
@@ -17,8 +18,8 @@ import numpy as np
 
 import landing
 
-SEED_R = 23.8472  # seed 001's final position error per axis and its Fig. 8 sites
-SEED_V = 1.5  # seed 001's largest touchdown speed (Fig. 8 c, d)
+SEED_R = 23.8472  # the Mars paper's final position error per axis and its Fig. 8 sites
+SEED_V = 1.5  # the Mars paper's largest touchdown speed (Fig. 8 c, d)
 
 
 def verdict(radius: float, time_bound: float, horizon: float, errors: np.ndarray) -> str:
@@ -40,14 +41,15 @@ def main() -> None:
     site = np.abs(m["touchdown_position"][td, :2])
     vel = m["touchdown_velocity"][td]
     speed = m["touchdown_speed"][td]
-    print(f"Part 2 at touchdown (stop_at=\"touchdown\"), {n} cases, seed 1; seed 001 Fig. 8")
+    print(f"Part 2 at touchdown (stop_at=\"touchdown\"), {n} cases, seed 1; Fig. 8 of the Mars fixed-time "
+          "guidance paper")
     print(f"  cases touching down                 {int(td.sum())} of {n}, at {np.min(m['touchdown_time'][td]):.2f} "
           f"to {np.max(m['touchdown_time'][td]):.2f} s")
     print(f"  sites: max abs(x), max abs(y)       {site[:, 0].max():.2f} m, {site[:, 1].max():.2f} m   "
-          f"seed: within {SEED_R} m")
+          f"paper: within {SEED_R} m")
     print(f"  sites within {SEED_R} m on x and y   {int(np.sum(np.all(site <= SEED_R, axis=1)))} of {int(td.sum())}")
     print(f"  touchdown speed min / median / max  {speed.min():.2f} / {np.median(speed):.2f} / {speed.max():.2f} m/s   "
-          f"seed: at most {SEED_V} m/s")
+          f"paper: at most {SEED_V} m/s")
     print(f"  vz at touchdown min / max           {vel[:, 2].min():.2f} / {vel[:, 2].max():.2f} m/s")
     print(f"  abs(vx), abs(vy) at touchdown, max  {np.abs(vel[:, 0]).max():.2f}, {np.abs(vel[:, 1]).max():.2f} m/s")
     print(f"  cases within {SEED_V} m/s               {int(np.sum(speed <= SEED_V))} of {int(td.sum())}")

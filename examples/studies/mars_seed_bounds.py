@@ -1,10 +1,10 @@
-"""Gain sets that meet seed 001's own bounds T1 <= 74.5780 s and T2 <= 30.8217 s and land the
-nominal case under 40 kN (docs/reproduction-mars.md, "Fixed-time bounds").
+"""Gain sets that meet the Mars fixed-time guidance paper's own bounds T1 <= 74.5780 s and
+T2 <= 30.8217 s and land the nominal case under 40 kN (docs/reproduction-mars.md, "Fixed-time bounds").
 
 Eq. 18 and 26 give T1 from (beta1, q1, beta2, q2) and T2 from (alpha1, gamma1, alpha2, gamma2):
 T = 1/(c1 (1 - e1) 2^((e1-1)/2)) + 1/(c2 (e2 - 1) 2^((e2-1)/2)). The search works on the
 exponents, how each bound is shared between its two terms, and T1, T2 as a fraction (0.5 to 1)
-of the seed's, and sets the gains from them: every set it tries meets both bounds by
+of the paper's, and sets the gains from them: every set it tries meets both bounds by
 construction. Each set is one case of a batch (per-case gains) run on the nominal Table I case
 for 60 s at dt = 5 ms (printed eq. 25, as the preset). Stage 1 draws 8000 sets at random; stage
 2 minimises the peak abs(F) of the sets that land precisely (abs(r), abs(v) below 0.1 at 60 s) by
@@ -12,8 +12,9 @@ the cross-entropy method (30 generations of 3000 around the best 100). The sets 
 rounded to four digits (gains up, so the bounds still hold), run again at dt = 1 ms, and
 compared with the shipped preset (and perturbed, to see how fragile they are): fuel to landing, landing time,
 chattering (total variation of the thrust per second after landing), and under the disturbances
-a_p = 20 sin t (seed part 2) and a_p = sin t (seed Fig. 3). Fixed seed: the output is
-reproducible.
+a_p = 20 sin t (the paper's part 2) and a_p = sin t (its Fig. 3). Fixed seed: the output is
+reproducible. (The printed lines still say "seed" for the paper: their generated block in
+docs/reproduction-mars.md is a slow one, rewritten only when the study is run again.)
 
     python examples/studies/mars_seed_bounds.py      (about 1.5 min on 2 cores)
 """
@@ -38,7 +39,7 @@ def gain_for(time_share: np.ndarray, e: np.ndarray) -> np.ndarray:
 
 
 # search coordinates: q1, gamma1, q2, gamma2, the first term's share of T1 and of T2, T1 and T2
-# as fractions of the seed's
+# as fractions of the paper's
 LOW = np.array([0.05, 0.05, 1.02, 1.02, 0.002, 0.002, 0.5, 0.5])
 HIGH = np.array([0.98, 0.98, 3.0, 3.0, 0.998, 0.998, 1.0, 1.0])
 

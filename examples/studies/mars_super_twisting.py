@@ -1,10 +1,10 @@
 """Study behind the super-twisting comparison (docs/parameters.md, docs/reproduction-mars.md).
 
-The seed's baseline (eq. 46, B1 = (1200, 1000, 1000), B2 = (5500, 5000, 5000)) "lands in 30 s
-with 277.1 kg". With the gains as printed (divided by the mass, as eq. 46 writes them):
+The Mars fixed-time guidance paper's baseline (eq. 46, B1 = (1200, 1000, 1000),
+B2 = (5500, 5000, 5000)) "lands in 30 s with 277.1 kg". With the gains as printed (divided by the mass, as eq. 46 writes them):
 
 1. the printed variant is run for 300 s to see when it lands;
-2. the standard variant's slope c (not in the seed) is swept in one batch, per-case c, to
+2. the standard variant's slope c (not in the paper) is swept in one batch, per-case c, to
    find the value that best reproduces 30 s / 277.1 kg: the shortest landing that never
    crosses the ground before settling, then the least fuel.
 
@@ -45,7 +45,7 @@ def main() -> None:
     clean = np.isfinite(m["settle_time"]) & ~(m["touchdown_time"] < m["settle_time"])
     best = np.flatnonzero(clean)[np.argmin(m["settle_time"][clean])]
     print(f"\nshortest landing without crossing the ground first: c = {c[best]:g} "
-          f"({m['settle_time'][best]:.2f} s, {m['fuel_to_settle'][best]:.1f} kg); seed: 30 s, 277.1 kg")
+          f"({m['settle_time'][best]:.2f} s, {m['fuel_to_settle'][best]:.1f} kg); paper: 30 s, 277.1 kg")
 
 
 if __name__ == "__main__":

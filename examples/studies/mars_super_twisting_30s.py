@@ -1,4 +1,5 @@
-"""Can the super-twisting baseline land in the seed's 30 s with its 277.1288 kg (seed 001 Fig. 5)?
+"""Can the super-twisting baseline land in 30 s with 277.1288 kg, as Fig. 5 of the Mars fixed-time
+guidance paper shows?
 
 With the printed B1 = (1200, 1000, 1000), B2 = (5500, 5000, 5000) neither reading of eq. 46
 does (examples/studies/mars_super_twisting.py). This study scales both gains by a common
@@ -46,7 +47,7 @@ def sweep(variant: str, k: np.ndarray, c: np.ndarray) -> None:
     if in30.any():
         i = np.flatnonzero(in30)[np.argmin(np.abs(fuel[in30] - SEED_FUEL))]
         j = np.flatnonzero(in30)[np.argmin(fuel[in30])]
-        print(f"  within 30 s, closest to the seed's {SEED_FUEL} kg: k = {kk[i]:.3g}, c = {cc[i]:.3g}: "
+        print(f"  within 30 s, closest to the paper's {SEED_FUEL} kg: k = {kk[i]:.3g}, c = {cc[i]:.3g}: "
               f"{settle[i]:.2f} s, {fuel[i]:.1f} kg, peak abs(F) {m['peak_command'][i] / 1e3:.1f} kN")
         print(f"  within 30 s, least fuel: k = {kk[j]:.3g}, c = {cc[j]:.3g}: {settle[j]:.2f} s, {fuel[j]:.1f} kg, "
               f"peak abs(F) {m['peak_command'][j] / 1e3:.1f} kN")
@@ -66,7 +67,7 @@ def derivative_reading() -> None:
 
     sol = solve_ivp(f, (0.0, 100.0), [MARS_NOMINAL_STATE[0], MARS_NOMINAL_STATE[3], 0.0], max_step=0.01,
                     dense_output=True)
-    print("eq. 46 as the thrust's derivative, x axis, the seed's B1, B2: r_x = "
+    print("eq. 46 as the thrust's derivative, x axis, the paper's B1, B2: r_x = "
           + ", ".join(f"{sol.sol(t)[0]:.0f} m at {t:g} s" for t in (10.0, 30.0, 60.0, 100.0)))
 
 

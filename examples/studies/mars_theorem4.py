@@ -1,12 +1,13 @@
-"""Seed 001's Theorem 4 numbers checked against one another (its eq. 18, 26, 31, 32, 39, 40, 45).
+"""The Theorem 4 numbers of the Mars fixed-time guidance paper checked against one another (its
+eq. 18, 26, 31, 32, 39, 40, 45).
 
-The seed prints, for the same guidance and the same gains: T1 <= 74.5780 s (eq. 18) and
+The paper prints, for the same guidance and the same gains: T1 <= 74.5780 s (eq. 18) and
 T2 <= 30.8217 s (eq. 26) without disturbance; theta1 = 0.2, theta2 = 0.1; and, under
 a_p = 20 sin t, the s2 neighbourhood 26.5257 reached by 131.5173 s (eq. 39, 40) and the s1
 neighbourhood 23.8472 m reached by 85.8610 s (eq. 31, 45), Fig. 9 and 10 showing them entered
 at 7.89 s and 9.76 s. Eq. 40 is eq. 26 with every term divided by theta1, and eq. 45 is eq. 18
 divided by theta2 (Theorem 1 with k = 1), whatever the gains, so the printed times fix theta1
-and theta2; they are not the printed ones. The radii depend on the gains, which the seed does
+and theta2; they are not the printed ones. The radii depend on the gains, which the paper does
 not print: they are checked with the reconstruction that reproduces T1 and T2 to four
 decimals (examples/mars_reproduction.py, "Fixed-time bounds").
 

@@ -2,7 +2,7 @@
 
 FixedTimeMSS(variant="exact") raises |s1| to q1 - 1 < 0 and the printed SuperTwisting raises
 |s| to -1/2: both are floored at a named guard (s1_floor, s_floor). One batch per law sweeps the
-floor per case on the seed-001 nominal landing and reports what the guard changes.
+floor per case on the nominal landing of the Mars fixed-time guidance paper and reports what the guard changes.
 
     python examples/studies/singularity_guards.py
 """

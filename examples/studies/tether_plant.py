@@ -1,12 +1,12 @@
 """Study behind the flexible tether's parameters (docs/parameters.md, "Tethered satellite").
 
-The seed's finite-element model is not reproducible from its text and it prints no tether
+The tethered-satellite paper's finite-element model is not reproducible from its text and it prints no tether
 properties. The flexible plant's tether comes from flown missions; this study shows
-(1) which node count N the seed comparison needs, and (2) how much the closed-loop figures
+(1) which node count N the paper's comparison needs, and (2) how much the closed-loop figures
 of both laws depend on the tether properties the missions only bracket.
 
-Set-up: the seed comparison (1 degree on both angles, 0.1 N thrust limit, dt = 0.01 s,
-100 s), both laws with the seed's gains (the FNTSMC's network off: gamma = 0, so that the
+Set-up: the paper's comparison (1 degree on both angles, 0.1 N thrust limit, dt = 0.01 s,
+100 s), both laws with the paper's gains (the FNTSMC's network off: gamma = 0, so that the
 plant alone varies). Settle time: |angle| within 2 % of 1 degree from then on.
 
     python examples/studies/tether_plant.py

@@ -1,6 +1,6 @@
 """Study behind the FNTSMC's RBF network (docs/parameters.md, "Tethered satellite").
 
-The seed prints every gain of its law (Table 2) but nothing of the network: no centres,
+The tethered-satellite paper prints every gain of its law (Table 2) but nothing of the network: no centres,
 widths, node count or adaptation gain Gamma. This study picks them with the batch engine.
 
 What the network is for: W^T Phi estimates the unknown terms f of eq. 17 that the switching
@@ -9,7 +9,7 @@ are small, so the study adds an unknown disturbance well above eps_max: a thrust
 (2 % of the limit) and a torque bias of 2 mN m (4 %), each with a 1 mN (m) oscillation at
 0.2 rad/s. The law does not see it.
 
-What was required (of each axis, on the nominal seed case: flexible plant, N = 8, 1 degree on
+What was required (of each axis, on the paper's nominal case: flexible plant, N = 8, 1 degree on
 both angles, 0.1 N, dt = 0.01 s, 100 s), against the same law without the network (gamma = 0):
 - R1: settle time (|angle| within 2 % of 1 degree) at most 2 % longer;
 - R2: chattering (total variation of the command per second) at most 10 % larger;
@@ -21,7 +21,7 @@ both angles, 0.1 N, dt = 0.01 s, 100 s), against the same law without the networ
   axis, at most 10 % later than without the network, with the network's output at the end
   within 10 % of the limit. Without R4 the best disturbance rejection comes with adaptation
   gains that wind up when the tether's tension torque saturates the attitude actuator during
-  a large in-plane swing (the seed's adaptation law has no leakage or projection).
+  a large in-plane swing (the paper's adaptation law has no leakage or projection).
 What was optimised: the RMS angle over the last 50 s under the disturbance, relative to the
 network-free law (the accuracy the network buys).
 What was searched: per axis, gamma log-uniform (phi: 1 to 1e4; theta: 1e-5 to 1), the

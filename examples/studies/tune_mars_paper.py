@@ -1,11 +1,11 @@
-"""Searching for the Mars paper's whole combination with landing.tune.
+"""Searching for the whole combination of the Mars fixed-time guidance paper with landing.tune.
 
-Seed 001 claims, for one gain set it does not print: T1 = 74.5780 s and T2 = 30.8217 s (eq. 18,
+The paper claims, for one gain set it does not print: T1 = 74.5780 s and T2 = 30.8217 s (eq. 18,
 26), a peak thrust below 40 kN, about 238.29 kg of fuel to land, a soft landing, and every case
 of its Monte Carlo campaign (Table II dispersions, a_p = 20 sin t) inside the practical
 neighbourhood of Theorem 4. Here all of them are constraints of one search over two set-ups
 sharing the gains, at dt = 5 ms: "nominal" (the Table I case, no disturbance; the claims of the
-seed's Fig. 2 and 4) and "mc" (K cases of the Table II campaign under a_p = 20 sin t, theta1 =
+paper's Fig. 2 and 4) and "mc" (K cases of the Table II campaign under a_p = 20 sin t, theta1 =
 0.2, theta2 = 0.1; the claim of its Fig. 8-10):
 
   abs(t1 - 74.578) <= 1e-3, abs(t2 - 30.8217) <= 1e-3      the bounds, within 1e-3 s
@@ -21,7 +21,7 @@ the least total violation (each constraint's excess over its right-hand side's m
 printed with the constraints it does not meet. Search 2 is the compromise made explicit: T1 and
 T2 within 1e-3 s, the soft landing and the neighbourhood as constraints, and the least nominal
 peak thrust as the objective, started from search 1's compromise (CMA-ES is a local search: the
-feasible set, T1 and T2 within 1e-3 s, is a thin one); it says how far from 40 kN (and from 238.29 kg) the seed's bounds
+feasible set, T1 and T2 within 1e-3 s, is a thin one); it says how far from 40 kN (and from 238.29 kg) the paper's bounds
 force the law.
 
     python examples/studies/tune_mars_paper.py [--budget 5000] [--cases 8] [--seed 1]

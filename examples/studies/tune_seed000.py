@@ -1,4 +1,5 @@
-"""The seed-000 gains study (examples/studies/asteroid_gains_seed000.py) as landing.tune calls.
+"""The gains study of the fuzzy fast-terminal asteroid paper (examples/studies/asteroid_gains_seed000.py)
+as landing.tune calls.
 
 The same set-up (433 Eros as two mass points, the Table 1 cubic, 10 m off on each axis, 15 s
 at dt = 0.01 s, tracked = within 0.1 m from then on) and the same rules, with continuous
@@ -6,7 +7,7 @@ searches where the hand-written study used grids:
 
   A  PD-SMC (sign), lambda in [0.5, 3], k in [1, 6]:
      minimise max(peak_command) subject to abs(mean(settle_time) - 8) <= 0.25
-     (the hand-written rule: tracking within 0.25 s of the seed's 8 s, then the least peak;
+     (the hand-written rule: tracking within 0.25 s of the paper's 8 s, then the least peak;
      it took the grid's nearest time, 7.97 s, as the centre)
   B  FTSMC with A's alpha = lambda and k, beta in [0.1, 3] (p/q = 1/5 fixed: the search is
      continuous, the odd ratios a list; the hand-written grid chose 1/5):

@@ -1,9 +1,9 @@
-"""Stage B of the seed-002 gains study (examples/studies/asteroid_gains_seed002.py) as a
-landing.tune call.
+"""Stage B of the gains study of the fuzzy variable-rate asteroid paper
+(examples/studies/asteroid_gains_seed002.py) as a landing.tune call.
 
 The fuzzy variable-rate law keeps the shipped c1, c2, k and ku (the same switching authority as
 the exponential law's epsilon) and searches the input scalings ke and kec (log scale, 10 to
-1e6, the hand-written grid's range) under the seed's 1 % command noise, on K = 4 draws of it
+1e6, the hand-written grid's range) under the paper's 1 % command noise, on K = 4 draws of it
 (the same four for every candidate: each candidate runs as its own batch of the four cases,
 since the noise is keyed by the case's index). The rule is the hand-written one:
 
