@@ -206,51 +206,52 @@ def cubic_from_boundary(
     """Coefficients c0..c3 (each a list over axes) of the cubic through the boundary states."""
 
 def variable_rate_system_table(resolution: int) -> _Table:
-    """The seed-002 variable-rate system as a Mamdani table."""
+    """The variable-rate system of the fuzzy variable-rate asteroid paper as a Mamdani table."""
 
 def philox4x64(counter: tuple[int, int, int, int], key: tuple[int, int]) -> list[int]:
     """One Philox4x64-10 block (the generator behind every random draw)."""
 
 def fixed_time_bound(c1: float, e1: float, c2: float, e2: float) -> float:
-    """Seed 001 Lemma 2 (k = 1) for s' = -c1 sig^e1(s) - c2 sig^e2(s)."""
+    """The Mars fixed-time guidance paper's Lemma 2 (k = 1) for s' = -c1 sig^e1(s) - c2 sig^e2(s)."""
 
 def practical_time_bound(c1: float, e1: float, c2: float, e2: float, theta: float) -> float:
-    """Seed 001 Theorem 1 (k = 1): time to reach the practical neighbourhood."""
+    """The Mars paper's Theorem 1 (k = 1): time to reach the practical neighbourhood."""
 
 def practical_radius(c1: float, e1: float, c2: float, e2: float, d_max: float, theta: float) -> float:
-    """Seed 001 eq. 38-39: radius of the practical neighbourhood."""
+    """The Mars paper's eq. 38-39: radius of the practical neighbourhood."""
 
 def mss_bounds(
     beta1: float, q1: float, beta2: float, q2: float,
     alpha1: float, gamma1: float, alpha2: float, gamma2: float,
     ap_max: float, theta1: float, theta2: float,
 ) -> dict[str, float]:
-    """Seed 001 Theorems 2-4 on one axis: t1, t2, s2_radius, s2_time, s1_radius, s1_time,
+    """The Mars paper's Theorems 2-4 on one axis: t1, t2, s2_radius, s2_time, s1_radius, s1_time,
     printed_time, settle_time."""
 
 def min_final_time(r0: float, v0: float, a_max: float, g: float) -> tuple[float, float]:
-    """Seed 001 Remark 1 (sign-consistent): (tf1, tf2) on one axis."""
+    """The Mars paper's Remark 1 (sign-consistent): (tf1, tf2) on one axis."""
 
 def min_time_to_rest(r0: float, v0: float, a_max: float, g: float) -> float:
     """Shortest time to rest at 0 on one axis (time-optimal bang-bang)."""
 
 def terminal_reaching_time(e0: float, alpha: float, beta: float, p: float, q: float) -> float:
-    """Seed 000 eq. 7 (eq. 5 at alpha = 0): time to reach e = 0 on the (fast) terminal surface."""
+    """The fuzzy fast-terminal asteroid paper's eq. 7 (eq. 5 at alpha = 0): time to reach e = 0 on
+    the (fast) terminal surface."""
 
 def terminal_reaching_time_printed(e0: float, alpha: float, beta: float, p: float, q: float) -> float:
-    """Seed 000 eq. 7 (eq. 5 at alpha = 0) as printed: p and q swapped, negative for p < q."""
+    """The fast-terminal asteroid paper's eq. 7 (eq. 5 at alpha = 0) as printed: p and q swapped, negative for p < q."""
 
 def fntsmc_ts_printed(c_v: float, alpha_s: float, beta_s: float) -> float:
-    """Seed 003 eq. 42 as printed, as a function of Lemma 2's constant c_v."""
+    """The tethered-satellite paper's eq. 42 as printed, as a function of Lemma 2's constant c_v."""
 
 def fntsmc_td_printed(k1: float, p1: float, k2: float, p2: float, d: float) -> float:
-    """Seed 003 eq. 47 as printed (not a bound for eq. 21's exponents)."""
+    """The tether paper's eq. 47 as printed (not a bound for eq. 21's exponents)."""
 
 def fntsmc_bounds(
     k1: float, p1: float, k2: float, p2: float, k3: float, alpha_s: float, beta_s: float,
     sigma_phi: float, tol: float, d_max: float, theta: float,
 ) -> dict[str, float]:
-    """Sound fixed-time bounds of the seed-003 FNTSMC on one axis: ts, s_radius, td, e1_radius,
+    """Sound fixed-time bounds of the tether paper's FNTSMC on one axis: ts, s_radius, td, e1_radius,
     inside_rate, t_inside, total."""
 
 def _panic_for_test() -> None:

@@ -1,8 +1,8 @@
 """Scenarios: a plant, a law, a reference, dispersions, a horizon and a step, as data.
 
 A scenario prints as what it is and is overridden with :meth:`Scenario.replace`; the presets
-reproduce the seeds' experiments and ship as TOML files, which :meth:`Scenario.load` (or
-``landing show NAME``) reads. Gains the seeds do not print come from documented studies
+reproduce the papers' experiments and ship as TOML files, which :meth:`Scenario.load` (or
+``landing show NAME``) reads. Gains the papers do not print come from documented studies
 (docs/parameters.md).
 """
 

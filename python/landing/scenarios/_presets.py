@@ -1,7 +1,7 @@
-"""The presets: the seeds' experiments as scenarios, each built by a function and shipped as a
+"""The presets: the papers' experiments as scenarios, each built by a function and shipped as a
 TOML file in ``presets/`` (generated from these functions; a test checks that they agree).
 
-Gains the seeds do not print come from documented studies (docs/parameters.md).
+Gains the papers do not print come from documented studies (docs/parameters.md).
 """
 
 from __future__ import annotations
@@ -72,11 +72,11 @@ __all__ = [
 PRESET_DIR = Path(__file__).parent / "presets"
 
 
-#: Seed 001 Table I initial state [r (m), v (m/s), m (kg)].
+#: The Mars fixed-time guidance paper's Table I initial state [r (m), v (m/s), m (kg)].
 MARS_NOMINAL_STATE = np.array([-2000.0, 1000.0, 1500.0, 100.0, -15.0, -75.0, 1905.0])
 
 #: Fixed-time MSS gains for the Mars lander, from the tuning study in docs/parameters.md
-#: (the seed does not print its gains).
+#: (the paper does not print its gains).
 MARS_FIXED_TIME_GAINS: dict[str, Any] = dict(
     beta1=1.3, q1=0.589, beta2=0.0242, q2=1.18, alpha1=4.89, gamma1=0.319, alpha2=0.0129, gamma2=1.42,
 )
@@ -87,7 +87,7 @@ def _mars_law(**overrides: Any) -> controllers.FixedTimeMSS:
 
 
 def mars_nominal(**overrides: Any) -> Scenario:
-    """Seed 001 part 1: the nominal landing from Table I, no disturbance, no thrust limit."""
+    """The Mars fixed-time guidance paper, part 1: the nominal landing from Table I, no disturbance, no thrust limit."""
     s = Scenario(
         name="mars_nominal",
         description="the Mars fixed-time guidance paper, part 1: nominal landing (Table I)",
@@ -112,9 +112,9 @@ MARS_FAST_GAINS: dict[str, Any] = dict(
 
 
 def mars_fast(**overrides: Any) -> Scenario:
-    """Seed 001 part 1 with the tuned gains (:data:`MARS_FAST_GAINS`): the nominal landing in
-    23.6 s under 40 kN, faster than the seed's own 30 s for its super-twisting baseline, which is
-    the paper's central comparison."""
+    """The Mars fixed-time guidance paper, part 1, with the tuned gains (:data:`MARS_FAST_GAINS`):
+    the nominal landing in 23.6 s under 40 kN, faster than the paper's own 30 s for its
+    super-twisting baseline, which is the paper's central comparison."""
     return mars_nominal(
         name="mars_fast",
         description=("the Mars fixed-time guidance paper, part 1: nominal landing (Table I), gains tuned to land "
@@ -124,12 +124,12 @@ def mars_fast(**overrides: Any) -> Scenario:
 
 
 #: Slope of the standard super-twisting variant's sliding variable on the Mars lander, from
-#: examples/studies/mars_super_twisting.py (the seed's law has none).
+#: examples/studies/mars_super_twisting.py (the paper's law has none).
 MARS_SUPER_TWISTING_C = 0.1
 
 
 def mars_super_twisting(variant: Literal["printed", "standard"] = "printed", **overrides: Any) -> Scenario:
-    """The seed's super-twisting baseline (eq. 46, B1, B2 as printed) on the nominal landing,
+    """The Mars paper's super-twisting baseline (eq. 46, B1, B2 as printed) on the nominal landing,
     over 200 s: with these gains neither variant lands within the fixed-time preset's 60 s."""
     law = controllers.SuperTwisting(variant=variant, c=MARS_SUPER_TWISTING_C)
     return mars_nominal(
@@ -142,7 +142,7 @@ def mars_super_twisting(variant: Literal["printed", "standard"] = "printed", **o
 
 
 def mars_monte_carlo(**overrides: Any) -> Scenario:
-    """Seed 001 part 2: Table II normal dispersions, a_p = 20 sin t on every axis,
+    """The Mars fixed-time guidance paper, part 2: Table II normal dispersions, a_p = 20 sin t on every axis,
     theta1 = 0.2, theta2 = 0.1; run it with ``landing.monte_carlo(scenario, 300)``."""
     sd = np.array([100.0, 100.0, 100.0, 10.0, 10.0, 10.0, 20.0])
     s = Scenario(
@@ -162,19 +162,19 @@ def mars_monte_carlo(**overrides: Any) -> Scenario:
     return s.replace(**overrides)
 
 
-#: Fixed-time MSS gains that meet seed 001's part-2 figures on the 300-case campaign (seed 1) at
-#: touchdown, without a thrust limit: sites within 23.8472 m per horizontal axis, touchdown at
+#: Fixed-time MSS gains that meet the Mars paper's part-2 figures on the 300-case campaign
+#: (seed 1) at touchdown, without a thrust limit: sites within 23.8472 m per horizontal axis, touchdown at
 #: most 1.5 m/s, s2 inside 26.5257 by 7.89 s and s1 inside 23.8472 m by 9.76 s. Found by
 #: examples/studies/mars_part2_search.py (docs/reproduction-mars.md, "Part 2"): 180.9 kN per
 #: axis at its peak, and not robust: on another draw of 300 cases (seed 2) it touches down at up
-#: to 6.25 m/s. With the seed's 40 kN per axis no guidance meets them (the same study's bound).
+#: to 6.25 m/s. With the paper's 40 kN per axis no guidance meets them (the same study's bound).
 MARS_PART2_GAINS: dict[str, float] = dict(beta1=9.999, q1=0.5423, beta2=1.199e-4, q2=1.305, alpha1=44.29,
                                           gamma1=0.2372, alpha2=1.502e-6, gamma2=1.756)
 
 
 def mars_monte_carlo_tuned(**overrides: Any) -> Scenario:
-    """Seed 001 part 2 with :data:`MARS_PART2_GAINS`, each case ending at touchdown: the seed's
-    Fig. 8-10 figures met on the 300 cases of seed 1, with a peak of 181 kN per axis."""
+    """The Mars fixed-time guidance paper, part 2, with :data:`MARS_PART2_GAINS`, each case ending at
+    touchdown: the paper's Fig. 8-10 figures met on the 300 cases of seed 1, with a peak of 181 kN per axis."""
     return mars_monte_carlo(
         name="mars_monte_carlo_tuned",
         description=("the Mars fixed-time guidance paper, part 2 (Table II, a_p = 20 sin t), gains searched for its "
@@ -185,7 +185,7 @@ def mars_monte_carlo_tuned(**overrides: Any) -> Scenario:
 
 
 #: The engine: eight 3.1 kN engines canted 27 degrees, the six of the 1905 kg lander of Acikmese
-#: and Ploen (2007; the seed's reference [1]) raised to eight, 8 * 3100 * cos(27 deg) = 22.10 kN,
+#: and Ploen (2007; the Mars paper's reference [1]) raised to eight, 8 * 3100 * cos(27 deg) = 22.10 kN,
 #: throttled down to 20 % (4.42 kN, below the landed weight on Mars), within 60 degrees of
 #: vertical, with a 0.1 s lag and a two-period (20 ms) delay. Why not their six engines and 30 %:
 #: docs/parameters.md, "mars_realistic" (a 3.6-sigma case of Table II cannot land with six; with
@@ -258,7 +258,7 @@ def mars_realistic(**overrides: Any) -> Scenario:
 
 
 def mars_thrust_limited(**overrides: Any) -> Scenario:
-    """Seed 001 part 3: Table III uniform initial positions and velocities (mass 1905 kg),
+    """The Mars fixed-time guidance paper, part 3: Table III uniform initial positions and velocities (mass 1905 kg),
     50 kN per axis; run it with ``landing.monte_carlo(scenario, 50)``."""
     low = np.array([-1000.0, 0.0, 1000.0, -15.0, -100.0, -75.0, 1905.0])
     high = np.array([200.0, 2000.0, 1500.0, 45.0, 0.0, 0.0, 1905.0])
@@ -277,15 +277,15 @@ def mars_thrust_limited(**overrides: Any) -> Scenario:
     return s.replace(**overrides)
 
 
-# --- Asteroid landing, seed 000 (433 Eros, two mass points) ------------------------------------
+# --- Asteroid landing, the fuzzy fast-terminal asteroid paper (433 Eros, two mass points) -------
 
-#: Where the probe starts relative to the Table 1 reference, m: the seed tracks from an offset
+#: Where the probe starts relative to the Table 1 reference, m: the paper tracks from an offset
 #: it does not print (docs/parameters.md).
 SEED000_OFFSET = np.array([10.0, 10.0, 10.0])
 
 
 def seed000_reference(t_end: float = 8000.0) -> Cubic:
-    """The cubic of seed 000 eq. 8-10 through the Table 1 boundary states."""
+    """The cubic of eq. 8-10 of the fuzzy fast-terminal asteroid paper through the Table 1 boundary states."""
     t_end = real("t_end", t_end, positive=True, owner="seed000_reference")
     return Cubic.from_boundary([3200.0, 1300.0, 9000.0], [-1.2, 0.2, -1.0], [2837.0, 928.1, 5708.0], [0.0, 0.0, 0.0],
                                t_end)
@@ -296,37 +296,38 @@ def seed000_initial_state() -> np.ndarray:
     return np.r_[np.array([3200.0, 1300.0, 9000.0]) + SEED000_OFFSET, -1.2, 0.2, -1.0]
 
 
-# --- Asteroid landing, seed 002 (433 Eros, second-degree harmonics) ----------------------------
+# --- Asteroid landing, the fuzzy variable-rate asteroid paper (433 Eros, second-degree harmonics)
 
-#: Where the probe starts relative to the seed-002 reference, m (the seed does not say).
+#: Where the probe starts relative to the reference of the fuzzy variable-rate asteroid paper, m
+#: (the paper does not say).
 SEED002_OFFSET = np.array([50.0, 50.0, 50.0])
 
 
 def seed002_reference(t_end: float = 4000.0) -> Cubic:
-    """The cubic of seed 002 eq. 5-8 from (550, 500, 8200) m, (-1.7, 0.7, -1.5) m/s to rest at
-    (20, 80, 2000) m."""
+    """The cubic of eq. 5-8 of the fuzzy variable-rate asteroid paper from (550, 500, 8200) m,
+    (-1.7, 0.7, -1.5) m/s to rest at (20, 80, 2000) m."""
     t_end = real("t_end", t_end, positive=True, owner="seed002_reference")
     return Cubic.from_boundary([550.0, 500.0, 8200.0], [-1.7, 0.7, -1.5], [20.0, 80.0, 2000.0], [0.0, 0.0, 0.0], t_end)
 
 
 def seed002_initial_state() -> np.ndarray:
-    """Seed 002 Table 2's initial state plus the documented position offset."""
+    """The variable-rate paper's Table 2 initial state plus the documented position offset."""
     return np.r_[np.array([550.0, 500.0, 8200.0]) + SEED002_OFFSET, -1.7, 0.7, -1.5]
 
 
 def seed002_plant() -> plants.SmallBody:
-    """433 Eros with second-degree harmonics (seed 002 Table 2), omega = 1.65e-4 rad/s."""
+    """433 Eros with second-degree harmonics (the variable-rate paper's Table 2), omega = 1.65e-4 rad/s."""
     return plants.SmallBody(gravity=Harmonic2(), omega=1.65e-4)
 
 
-#: Seed-000 gains, from examples/studies/asteroid_gains_seed000.py: PD-SMC calibrated to the
-#: seed's 8 s, the terminal and fuzzy terms tuned for the least integrated error.
+#: Gains for the fuzzy fast-terminal asteroid paper, from examples/studies/asteroid_gains_seed000.py:
+#: PD-SMC calibrated to the paper's 8 s, the terminal and fuzzy terms tuned for the least integrated error.
 SEED000_GAINS: dict[str, Any] = dict(
     lam=1.0, k=2.5, beta=0.4, p=1.0, q=5.0, n=10.0, m=10.0, boundary_layer=0.3,
 )
 
-#: Seed-002 gains, from examples/studies/asteroid_gains_seed002.py (w = 0.017 rad/s, critically
-#: damped sliding dynamics).
+#: Gains for the fuzzy variable-rate asteroid paper, from examples/studies/asteroid_gains_seed002.py
+#: (w = 0.017 rad/s, critically damped sliding dynamics).
 SEED002_GAINS: dict[str, Any] = dict(
     c1=0.017**2, c2=2 * 0.017, k=0.1, epsilon=1e-3, ke=3.162e4, kec=10.0, ku=2.813e-4,
 )
@@ -348,9 +349,9 @@ def _seed000_law(law: str, switch: str) -> Controller:
 
 
 def seed000_tracking(law: str = "fuzzy_ftsmc", switch: str = "sign", **overrides: Any) -> Scenario:
-    """Seed 000: tracking the Table 1 cubic on 433 Eros (two mass points) for 15 s at
+    """The fuzzy fast-terminal asteroid paper: tracking the Table 1 cubic on 433 Eros (two mass points) for 15 s at
     dt = 0.01 s, from the documented 10 m offset; ``law`` is "pd", "ftsmc" or "fuzzy_ftsmc",
-    ``switch`` "sign" or "tanh" (the seed's two variants)."""
+    ``switch`` "sign" or "tanh" (the paper's two variants)."""
     s = Scenario(
         name=f"seed000_{law}_{switch}",
         description=f"the fuzzy fast-terminal asteroid paper: trajectory tracking, {law} with {switch} switching",
@@ -366,7 +367,7 @@ def seed000_tracking(law: str = "fuzzy_ftsmc", switch: str = "sign", **overrides
 
 
 def seed000_landing(law: str = "fuzzy_ftsmc", switch: str = "tanh", **overrides: Any) -> Scenario:
-    """Seed 000's full landing: the same tracking over the whole 8000 s reference."""
+    """The fuzzy fast-terminal asteroid paper's full landing: the same tracking over the whole 8000 s reference."""
     return seed000_tracking(law, switch, name=f"seed000_landing_{law}_{switch}",
                             description=("the fuzzy fast-terminal asteroid paper: full 8000 s landing, "
                                          f"{law} with {switch} switching"),
@@ -377,9 +378,9 @@ SEED002_LAWS = ("exponential", "fuzzy_variable_rate")
 
 
 def seed002_landing(law: str = "fuzzy_variable_rate", **overrides: Any) -> Scenario:
-    """Seed 002: landing on 433 Eros (C20/C22 gravity) along its cubic over 4000 s at dt = 0.1 s,
-    from the documented 50 m offset, under a model uncertainty of up to 1 % of the command;
-    ``law`` is "exponential" (law 4) or "fuzzy_variable_rate" (law 5)."""
+    """The fuzzy variable-rate asteroid paper: landing on 433 Eros (C20/C22 gravity) along its
+    cubic over 4000 s at dt = 0.1 s, from the documented 50 m offset, under a model uncertainty of
+    up to 1 % of the command; ``law`` is "exponential" (law 4) or "fuzzy_variable_rate" (law 5)."""
     g = SEED002_GAINS
     surface = dict(c1=g["c1"], c2=g["c2"], k=g["k"])
     if law == "exponential":
@@ -404,25 +405,25 @@ def seed002_landing(law: str = "fuzzy_variable_rate", **overrides: Any) -> Scena
     return s.replace(**overrides)
 
 
-#: Seed 003 section 4: the in-plane and attitude angles start at 1 degree, at rest (rad).
+#: The tethered-satellite paper, section 4: the in-plane and attitude angles start at 1 degree, at rest (rad).
 TETHER_INITIAL_ANGLES = (math.radians(1.0), math.radians(1.0))
 
 #: Tether nodes of the flexible plant in the presets (examples/studies/tether_plant.py: N = 8
 #: is within 0.01 s of N = 16 on every settle time and 1.3 % on the chattering).
 TETHER_NODES = 8
 
-#: "Settled": each angle within 2 % of the initial 1 degree from then on (the seed gives no
+#: "Settled": each angle within 2 % of the initial 1 degree from then on (the paper gives no
 #: tolerance; 2 % is the classical settling band).
 TETHER_SETTLE_TOLERANCE = math.radians(0.02)
 
 #: Rate spread per degree of angle spread in the tether Monte Carlo, rad/s (phi_dot, theta_dot):
-#: a fifth and a tenth of the peak rates of the FNTSMC's seed manoeuvre (1.1e-3 and 1.9e-2 rad/s
+#: a fifth and a tenth of the peak rates of the FNTSMC's manoeuvre in the paper (1.1e-3 and 1.9e-2 rad/s
 #: from 1 degree), so that the rates matter without dominating the angles.
 TETHER_RATE_SPREAD = (2e-4, 2e-3)
 
 
 def tether_plant(fidelity: str = "flexible", **overrides: Any) -> plants.TetheredSatellite:
-    """The seed-003 tethered satellite: Table 1 (1000 kg, 10 kg, 100 m, a = 1 m), a 500 km
+    """The tethered satellite of the tethered-satellite paper: Table 1 (1000 kg, 10 kg, 100 m, a = 1 m), a 500 km
     orbit, 0.1 N thrust (0.05 N m torque), a YES2-class tether with TETHER_NODES nodes."""
     kw: dict[str, Any] = dict(fidelity=fidelity, nodes=TETHER_NODES)
     kw.update(overrides)
@@ -430,7 +431,7 @@ def tether_plant(fidelity: str = "flexible", **overrides: Any) -> plants.Tethere
 
 
 def tether_law(law: str = "fntsmc") -> Controller:
-    """The seed's laws with its gains: ``"fntsmc"`` (eq. 19-24, Table 2, the network of
+    """The tether paper's laws with its gains: ``"fntsmc"`` (eq. 19-24, Table 2, the network of
     examples/studies/tether_rbf.py) or ``"ntsmc"`` (the baseline of its eq. 47/48)."""
     if law == "fntsmc":
         return controllers.FixedTimeNTSMC()
@@ -440,8 +441,8 @@ def tether_law(law: str = "fntsmc") -> Controller:
 
 
 def tether_comparison(law: str = "fntsmc", fidelity: str = "flexible", **overrides: Any) -> Scenario:
-    """Seed 003 section 4: 1 degree on both angles, at rest, to 0 under the 0.1 N limit, on the
-    flexible plant; 100 s at dt = 0.01 s (the seed prints no step), every instant recorded."""
+    """The tethered-satellite paper, section 4: 1 degree on both angles, at rest, to 0 under the
+    0.1 N limit, on the flexible plant; 100 s at dt = 0.01 s (the paper prints no step), every instant recorded."""
     controller = tether_law(law)  # checks law first: it names the scenario
     plant = tether_plant(fidelity)
     dt = 0.01
@@ -464,7 +465,7 @@ def tether_comparison(law: str = "fntsmc", fidelity: str = "flexible", **overrid
 def tether_monte_carlo(spread_deg: float = 10.0, law: str = "fntsmc", fidelity: str = "flexible",
                        **overrides: Any) -> Scenario:
     """Initial angles uniform within +-``spread_deg`` degrees and rates within
-    +-``spread_deg`` times TETHER_RATE_SPREAD, the seed comparison otherwise; run it with
+    +-``spread_deg`` times TETHER_RATE_SPREAD, the paper's comparison otherwise; run it with
     ``landing.monte_carlo(scenario, n)`` and check it with ``landing.theory.check_fntsmc_run``.
     The horizon grows with the spread, 40 s per degree rounded up to whole minutes (at least
     100 s): the thrust limit makes large in-plane swings slow."""

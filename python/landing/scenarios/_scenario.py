@@ -313,8 +313,8 @@ class Scenario:
         return self.replace(**changes) if changes else self
 
     def bounds(self) -> Optional[MSSBounds]:
-        """Seed 001's practical fixed-time bounds for this scenario's law and disturbance (None
-        unless the law is FixedTimeMSS and ``theta`` is set)."""
+        """The practical fixed-time bounds of the Mars fixed-time guidance paper for this scenario's law
+        and disturbance (None unless the law is FixedTimeMSS and ``theta`` is set)."""
         from landing.theory.bounds import scenario_bounds  # noqa: PLC0415 - one-line delegation up
 
         return scenario_bounds(self)
