@@ -45,11 +45,42 @@ def _keep(keep: Union[str, Sequence[str]]) -> tuple[str, ...]:
 def campaign_bytes(scenario: Scenario, n: int, record_every: int, *, chunk: int,
                    keep: Sequence[str] = SIGNALS, stored: bool = False) -> int:
     """Bytes a campaign's results take in memory: the kept recorded signals (states, commands,
-    diagnostics) of the ``n`` cases plus their final states and metrics, in the output
-    allocated once, plus one chunk's batch output (every signal) before it is copied in. A
-    campaign written to a store (``stored``) holds no recorded signal (they are in the store,
-    read back on demand): its final states and metrics, and two chunks' batch output (the one
-    written and what the store's writer and reader hold of it). An estimate from above."""
+    diagnostics) of the ``n`` cases plus their final states and metrics, in the output allocated
+    once, plus one chunk's batch output (every signal) before it is copied in. A campaign written
+    to a store (``stored``) holds no recorded signal (they are in the store, read back on demand):
+    its final states and metrics, and two chunks' batch output (the one written and what the
+    store's writer and reader hold of it). An estimate from above.
+
+    Parameters
+    ----------
+    scenario : landing.scenarios.Scenario
+        The campaign's scenario (its ``t_final`` and ``dt`` in s, plant and law).
+    n : int
+        The number of cases.
+    record_every : int
+        The decimation of the recorded signals (0: final states and metrics only).
+    chunk : int
+        Cases per batch.
+    keep : sequence of str, default all
+        The recorded signals kept, among ``"states"``, ``"controls"``, ``"diagnostics"``.
+    stored : bool, default False
+        Whether the campaign is written to a store.
+
+    Returns
+    -------
+    int
+        The estimate, in bytes.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.campaign.api import campaign_bytes
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> full = campaign_bytes(scenario, 100, 50, chunk=100)
+    >>> metrics_only = campaign_bytes(scenario, 100, 0, chunk=100, keep=())
+    >>> metrics_only < full
+    True
+    """
     steps = round(scenario.t_final / scenario.dt)
     if record_every == 0:
         instants = 0
@@ -111,51 +142,79 @@ def monte_carlo(
 ) -> MonteCarloResult:
     """Run ``n`` dispersed cases of ``scenario``.
 
-    Case i's initial state and random disturbances depend only on (seed, i): the result is
-    the same for any ``chunk_size`` (cases per batch) and thread count.
+    Case i's initial state and random disturbances depend only on (seed, i): the result is the
+    same for any ``chunk_size`` (cases per batch) and thread count.
 
-    A parameter of the plant, law, reference or disturbance given per case has one row per
-    case of the campaign (``n`` rows; another number is refused, naming it); each chunk runs
-    its own rows (:meth:`Scenario.cases`), so the result does not depend on the chunking. A
-    dispersed parameter (:meth:`Scenario.disperse`) is drawn for each chunk's cases from a
-    stream keyed by (seed, case, its path), and recorded as the metric column
-    ``param.<path>`` (:meth:`Scenario.simulate_cases`).
+    A parameter of the plant, law, reference or disturbance given per case has one row per case
+    of the campaign (``n`` rows; another number is refused, naming it); each chunk runs its own
+    rows (:meth:`Scenario.cases`), so the result does not depend on the chunking. A dispersed
+    parameter (:meth:`Scenario.disperse`) is drawn for each chunk's cases from a stream keyed by
+    (seed, case, its path), and recorded as the metric column ``param.<path>``
+    (:meth:`Scenario.simulate_cases`).
 
     Parameters
     ----------
-    record_every : decimation of the kept trajectories (default: the scenario's); 0 keeps
-        final states and metrics only.
-    chunk_size : cases per batch (default: all at once, or about 2 % of them with a progress
-        bar).
-    progress : show progress on stderr, a bar in terminals and notebooks and a line every 30 s
-        in logs (default: when the campaign is long, more than 2e7 case-steps).
-    check_bounds : check the run against the scenario's theoretical bounds, if any (needs the
-        diagnostics kept).
-    keep : the recorded signals kept, among ``"states"``, ``"controls"`` and ``"diagnostics"``
-        (default all); the others are dropped chunk by chunk. Metrics and final states are
-        always kept. The output is allocated once and filled chunk by chunk.
-    store : a directory to write the campaign to as each chunk completes (metrics, initial
-        states and draws as Parquet, trajectories as Zarr, a provenance record; see
-        :mod:`landing.campaign.store`), and to resume from: completed chunks are read back, not re-run,
-        and the result is the uninterrupted run's bit for bit. A store of another campaign
-        (scenario, seed, n, chunk_size, record settings) is refused. Without ``chunk_size`` a
-        new store is cut into ``max(1000, n / 50)``-case chunks and a resumed one keeps its own.
-        With a store the recorded signals are not kept in memory: each chunk's are written and
-        dropped, and the result holds the per-case metrics, initial and final states (a few
-        hundred bytes a case) while its states, controls and diagnostics are read from the
-        store on demand (:class:`~landing.campaign.lazy.StoredArray`: a slice of cases stays
-        lazy, any other index or ``np.asarray`` reads; ``mc[i]``, ``mc.bands``, the theory's
-        checks, ``to_xarray`` and the figures read slice by slice). Memory then stays bounded
-        by a few chunks whatever ``n`` (the up-front check counts only that), so a campaign
-        whose trajectories exceed the memory runs. :func:`landing.load` reads it back the same
-        way. Needs ``pip install "landing[io]"``.
-    client : a ``distributed.Client``: run the chunks on its Dask cluster, ``threads`` threads
-        each on a worker (default: all the worker machine's cores), the store (if any) written
-        by this process as chunks arrive. The result is the local run's bit for bit; a lost
-        worker costs only its chunks, which are re-run; Ctrl-C cancels the outstanding chunks
-        and keeps the completed ones in the store. Without ``chunk_size`` (and no store to
-        resume) the chunks are of ``max(1000, n / 50)`` cases. See :mod:`landing.campaign.dask` and
-        docs/cluster.md. Needs ``pip install "landing[dask]"``.
+    scenario : landing.scenarios.Scenario
+        What each case runs (plant, law, dispersions, ``t_final`` and ``dt`` in s).
+    n : int
+        The number of cases.
+    seed : int, default 0
+        The campaign's seed (0 to 2^64 - 1).
+    record_every : int, optional
+        Decimation of the kept trajectories (default: the scenario's); 0 keeps final states and
+        metrics only.
+    chunk_size : int, optional
+        Cases per batch (default: all at once, or about 2 % of them with a progress bar).
+    threads : int, optional
+        Threads of the batch (default: all cores).
+    progress : bool, optional
+        Show progress on stderr, a bar in terminals and notebooks and a line every 30 s in logs
+        (default: when the campaign is long, more than 2e7 case-steps).
+    check_bounds : bool, default True
+        Check the run against the scenario's theoretical bounds, if any (needs the diagnostics
+        kept).
+    keep : str or sequence of str, default all
+        The recorded signals kept, among ``"states"``, ``"controls"`` and ``"diagnostics"``; the
+        others are dropped chunk by chunk. Metrics and final states are always kept. The output is
+        allocated once and filled chunk by chunk.
+    store : str or os.PathLike, optional
+        A directory to write the campaign to as each chunk completes (metrics, initial states and
+        draws as Parquet, trajectories as Zarr, a provenance record; see
+        :mod:`landing.campaign.store`), and to resume from: completed chunks are read back, not
+        re-run, and the result is the uninterrupted run's bit for bit. A store of another campaign
+        (scenario, seed, n, chunk_size, record settings) is refused. Without ``chunk_size`` a new
+        store is cut into ``max(1000, n / 50)``-case chunks and a resumed one keeps its own. With a
+        store the recorded signals are not kept in memory: each chunk's are written and dropped,
+        and the result holds the per-case metrics, initial and final states (a few hundred bytes a
+        case) while its states, controls and diagnostics are read from the store on demand
+        (:class:`~landing.campaign.lazy.StoredArray`: a slice of cases stays lazy, any other index
+        or ``np.asarray`` reads; ``mc[i]``, ``mc.bands``, the theory's checks, ``to_xarray`` and
+        the figures read slice by slice). Memory then stays bounded by a few chunks whatever ``n``
+        (the up-front check counts only that), so a campaign whose trajectories exceed the memory
+        runs. :func:`landing.load` reads it back the same way. Needs ``pip install "landing[io]"``.
+    client : distributed.Client, optional
+        Run the chunks on its Dask cluster, ``threads`` threads each on a worker (default: all the
+        worker machine's cores), the store (if any) written by this process as chunks arrive. The
+        result is the local run's bit for bit; a lost worker costs only its chunks, which are
+        re-run; Ctrl-C cancels the outstanding chunks and keeps the completed ones in the store.
+        Without ``chunk_size`` (and no store to resume) the chunks are of ``max(1000, n / 50)``
+        cases. See :mod:`landing.campaign.dask` and docs/cluster.md. Needs
+        ``pip install "landing[dask]"``.
+
+    Returns
+    -------
+    MonteCarloResult
+        The cases' recorded runs, metrics (m, m/s, s, kg...), statistics and checks.
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> len(mc), mc.states.shape
+    (8, (8, 101, 7))
+    >>> print(f"mean fuel used {mc.summary()['fuel_used']['mean']:.2f} kg")
+    mean fuel used 61.33 kg
     """
     chunk_given = chunk_size is not None
     if not isinstance(scenario, Scenario):
@@ -265,17 +324,39 @@ def load(path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None,
     the result of the run that wrote it.
 
     Every chunk is read and checked against its checksums, one at a time; the result holds the
-    per-case metrics, initial and final states, and reads the recorded signals (states,
-    controls, diagnostics) from the store's Zarr tree on demand, as ``monte_carlo(...,
-    store=path)`` returns them (:mod:`landing.campaign.lazy`): its memory does not grow with
-    the trajectories.
+    per-case metrics, initial and final states, and reads the recorded signals (states, controls,
+    diagnostics) from the store's Zarr tree on demand, as ``monte_carlo(..., store=path)`` returns
+    them (:mod:`landing.campaign.lazy`): its memory does not grow with the trajectories.
 
-    ``scenario`` is the campaign's scenario; it is checked against the stored one. Without it
-    the scenario is rebuilt from the stored text when it is a preset's. A store whose run was
-    interrupted is refused (re-run ``monte_carlo`` with the same ``store`` to complete it),
-    unless ``partial``: then the result holds the completed chunks' cases only, in case order,
-    ``mc.cases`` their indices in the campaign and ``mc.planned`` its size, and its report says
-    so. Needs ``pip install "landing[io]"``.
+    A store whose run was interrupted is refused (re-run ``monte_carlo`` with the same ``store``
+    to complete it), unless ``partial``. Needs ``pip install "landing[io]"``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store's directory.
+    scenario : landing.scenarios.Scenario, optional
+        The campaign's scenario; it is checked against the stored one. Without it the scenario is
+        rebuilt from the stored text when it is a preset's.
+    partial : bool, default False
+        Read an interrupted store: the result then holds the completed chunks' cases only, in
+        case order, ``mc.cases`` their indices in the campaign and ``mc.planned`` its size, and
+        its report says so.
+
+    Returns
+    -------
+    MonteCarloResult
+        The stored campaign, its recorded signals read on demand.
+
+    Examples
+    --------
+    >>> import tempfile, numpy as np, landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> path = tempfile.mkdtemp() + "/campaign"
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=path)
+    >>> back = landing.load(path)
+    >>> len(back), bool(np.array_equal(back.metrics["fuel_used"], mc.metrics["fuel_used"]))
+    (8, True)
     """
     partial = boolean("partial", partial)
     store, scenario, x0, check_bounds = read_campaign_store(path, scenario=scenario, partial=partial)

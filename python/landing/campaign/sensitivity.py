@@ -28,8 +28,26 @@ __all__ = ["RankCorrelations", "SobolIndices", "flat_columns", "rank_correlation
 
 
 def ranks(x: np.ndarray) -> np.ndarray:
-    """Ranks 1..n of the values, ties given their average rank (as Spearman's coefficient
-    takes them)."""
+    """Ranks 1..n of the values, ties given their average rank (as Spearman's coefficient takes
+    them).
+
+    Parameters
+    ----------
+    x : array_like
+        The values, (n,), in any unit.
+
+    Returns
+    -------
+    numpy.ndarray
+        The ranks, (n,) floats.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.campaign.sensitivity import ranks
+    >>> ranks(np.array([3.0, 1.0, 3.0, 2.0]))
+    array([3.5, 1. , 3.5, 2. ])
+    """
     x = np.asarray(x, dtype=float)
     order = np.argsort(x, kind="stable")
     r = np.empty(x.size)
@@ -43,16 +61,61 @@ def ranks(x: np.ndarray) -> np.ndarray:
 
 def flat_columns(columns: Mapping[str, Any], axis_names: Sequence[str]) -> dict[str, np.ndarray]:
     """The real-valued per-case columns, a per-axis one split into ``name_<axis>`` as the store
-    writes them (:func:`landing.results.flat_columns`); the flag and the divergence reason's
-    code are left out."""
+    writes them (:func:`landing.results.flat_columns`); the flag and the divergence reason's code
+    are left out.
+
+    Parameters
+    ----------
+    columns : mapping of str to array_like
+        Per-case columns, (N,) or (N, axes), in their units.
+    axis_names : sequence of str
+        The axes' names (``("x", "y", "z")``).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The float columns, each (N,), units unchanged.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.campaign.sensitivity import flat_columns
+    >>> cols = {"final_error": np.zeros((2, 3)), "fuel_used": np.ones(2), "diverged": np.zeros(2, bool)}
+    >>> sorted(flat_columns(cols, ("x", "y", "z")))
+    ['final_error_x', 'final_error_y', 'final_error_z', 'fuel_used']
+    """
     return {k: v for k, v in result_columns(columns, axis_names).items() if v.dtype.kind == "f"}
 
 
 @dataclass(frozen=True)
 class RankCorrelations:
-    """Rank correlations of each metric (rows, ``outputs``) with each dispersed quantity
-    (columns, ``inputs``): ``spearman`` and ``prcc`` (partial rank correlation), ``n`` the
-    cases each metric's row used."""
+    """Rank correlations of each metric (rows, ``outputs``) with each dispersed quantity (columns,
+    ``inputs``): ``spearman`` and ``prcc`` (partial rank correlation), ``n`` the cases each
+    metric's row used. Made by :func:`rank_correlations` (:meth:`MonteCarloResult.sensitivity`).
+
+    Parameters
+    ----------
+    inputs : tuple of str
+        The dispersed quantities (``x0_<state>``, ``param.<path>``).
+    outputs : tuple of str
+        The metrics.
+    spearman, prcc : numpy.ndarray
+        The correlations, (outputs, inputs), dimensionless, -1 to 1 (NaN: too few cases).
+    n : numpy.ndarray
+        The cases each metric's row used, (outputs,).
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.dispersions import Normal
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario.disperse({"plant.isp": Normal(225.0, 5.0)}), n=40, seed=1)
+    >>> corr = mc.sensitivity(["fuel_used"])
+    >>> corr.prcc.shape, corr.inputs[-1]
+    ((1, 8), 'param.plant.isp')
+    >>> print(corr)
+      fuel_used                x0_vy +0.96, x0_ry +0.78, param.plant.isp -0.72
+    """
 
     inputs: tuple[str, ...]
     outputs: tuple[str, ...]
@@ -61,7 +124,20 @@ class RankCorrelations:
     n: np.ndarray
 
     def drivers(self, metric: str, k: int = 3) -> list[tuple[str, float, float]]:
-        """The ``k`` quantities with the largest |PRCC| for ``metric``: (name, PRCC, Spearman)."""
+        """The ``k`` quantities with the largest |PRCC| for ``metric``: (name, PRCC, Spearman).
+
+        Parameters
+        ----------
+        metric : str
+            One of :attr:`outputs`.
+        k : int, default 3
+            How many.
+
+        Returns
+        -------
+        list of tuple
+            ``(name, prcc, spearman)``, the strongest first.
+        """
         if metric not in self.outputs:
             raise ParameterError(f"metric = {metric!r} is not one of {self.outputs}")
         i = self.outputs.index(metric)
@@ -69,7 +145,13 @@ class RankCorrelations:
         return [(self.inputs[j], float(self.prcc[i, j]), float(self.spearman[i, j])) for j in order]
 
     def to_pandas(self) -> Any:
-        """Both tables as one pandas DataFrame (metric, quantity) x (spearman, prcc)."""
+        """Both tables as one pandas DataFrame (metric, quantity) x (spearman, prcc).
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per (metric, quantity).
+        """
         import pandas as pd  # noqa: PLC0415 - the io extra, on demand
 
         idx = pd.MultiIndex.from_product([self.outputs, self.inputs], names=["metric", "quantity"])
@@ -116,11 +198,38 @@ def dispersed_quantities(result: SimulationResult, x0: np.ndarray) -> dict[str, 
 
 def rank_correlations(result: SimulationResult, x0: np.ndarray,
                       metrics: Optional[Sequence[str]] = None) -> RankCorrelations:
-    """Spearman's and the partial rank correlation of each metric of a campaign's runs
-    ``result`` (default: every numeric metric that varies, per axis split; ``param.*`` columns
-    are inputs, not metrics) with each of its dispersed quantities (its initial states ``x0``
-    and its parameters' draws): what :meth:`MonteCarloResult.sensitivity
-    <landing.MonteCarloResult.sensitivity>` gives."""
+    """Spearman's and the partial rank correlation of each metric of a campaign's runs ``result``
+    (default: every numeric metric that varies, per axis split; ``param.*`` columns are inputs,
+    not metrics) with each of its dispersed quantities (its initial states ``x0`` and its
+    parameters' draws): what :meth:`MonteCarloResult.sensitivity
+    <landing.MonteCarloResult.sensitivity>` gives.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult
+        The campaign's runs (their metrics and draws).
+    x0 : numpy.ndarray
+        The campaign's initial states, (N, state_dim) (m, m/s, kg).
+    metrics : sequence of str, optional
+        The metric columns (per-axis ones split).
+
+    Returns
+    -------
+    RankCorrelations
+        The correlations, dimensionless.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.dispersions import Normal
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario.disperse({"plant.isp": Normal(225.0, 5.0)}), n=40, seed=1)
+    >>> from landing.campaign.sensitivity import rank_correlations
+    >>> corr = rank_correlations(mc.result, mc.x0, ["fuel_used"])
+    >>> name, prcc, spearman = corr.drivers("fuel_used", 1)[0]
+    >>> name, round(prcc, 2)
+    ('x0_vy', 0.96)
+    """
     inputs = dispersed_quantities(result, np.asarray(x0, dtype=float))
     if not inputs:
         raise ParameterError("the campaign disperses nothing: no quantity to correlate the metrics with")
@@ -169,9 +278,31 @@ def _salib_variable(d: Any, j: int) -> tuple[str, list[float]]:
 
 @dataclass(frozen=True)
 class SobolIndices:
-    """First-order (``S1``) and total (``ST``) Sobol indices of ``metric`` for each variable
-    (a dispersed parameter's component), with SALib's confidence half-widths, from ``n``
-    model runs."""
+    """First-order (``S1``) and total (``ST``) Sobol indices of ``metric`` for each variable (a
+    dispersed parameter's component), with SALib's confidence half-widths, from ``n`` model runs.
+    Made by :func:`sobol`.
+
+    Parameters
+    ----------
+    metric : str
+        The metric analysed.
+    names : tuple of str
+        The variables (``path`` or ``path[j]``).
+    S1, S1_conf, ST, ST_conf : numpy.ndarray
+        The indices and their confidence half-widths (dimensionless), one per variable.
+    n : int
+        The model runs.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.campaign import SobolIndices
+    >>> s = SobolIndices("fuel_used", ("plant.isp",), np.array([0.9]), np.array([0.1]), np.array([1.0]),
+    ...                  np.array([0.1]), 48)
+    >>> print(s)
+      Sobol indices of fuel_used (48 runs):  S1 (+-), ST (+-)
+        plant.isp                         0.900 (0.100)   1.000 (0.100)
+    """
 
     metric: str
     names: tuple[str, ...]
@@ -191,11 +322,42 @@ class SobolIndices:
 def sobol(scenario: Scenario, metric: str, n: int = 512, *, seed: int = 0, threads: Optional[int] = None,
           calc_second_order: bool = False) -> SobolIndices:
     """Sobol indices of ``metric`` for the scenario's dispersed parameters
-    (:meth:`Scenario.disperse`), each component one variable of SALib's Saltelli-Sobol design
-    of ``n`` base samples (a power of 2): the design's rows are run as one batch from the nominal
+    (:meth:`Scenario.disperse`), each component one variable of SALib's Saltelli-Sobol design of
+    ``n`` base samples (a power of 2): the design's rows are run as one batch from the nominal
     initial state, each row's parameters given per case, then analysed by SALib. The random
-    disturbances, if any, differ from row to row (their stream is keyed by the row) and add
-    their variance to what no variable explains. Needs ``pip install "landing[sensitivity]"``."""
+    disturbances, if any, differ from row to row (their stream is keyed by the row) and add their
+    variance to what no variable explains. Needs ``pip install "landing[sensitivity]"``.
+
+    Parameters
+    ----------
+    scenario : landing.scenarios.Scenario
+        A scenario with dispersed parameters.
+    metric : str
+        The metric column (per-axis ones split, e.g. ``"final_error_x"``).
+    n : int, default 512
+        The design's base samples (a power of 2).
+    seed : int, default 0
+        The design's and the runs' seed.
+    threads : int, optional
+        Threads of the batch.
+    calc_second_order : bool, default False
+        Whether SALib computes second-order indices too (more runs).
+
+    Returns
+    -------
+    SobolIndices
+        The indices (dimensionless) per variable.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.dispersions import Normal
+    >>> from landing.campaign import sobol
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=2.0)
+    >>> s = sobol(scenario.disperse({"plant.isp": Normal(225.0, 5.0)}), "fuel_used", n=16)
+    >>> s.names, s.n
+    (('plant.isp',), 48)
+    """
     try:
         from SALib.analyze import sobol as analyze  # noqa: PLC0415 - the sensitivity extra, on demand
         from SALib.sample import sobol as sample  # noqa: PLC0415

@@ -58,7 +58,30 @@ def clopper_pearson_lower(successes: int, n: int, confidence: float) -> float:
     """The one-sided Clopper-Pearson lower bound on the success probability at ``confidence``,
     after ``successes`` of ``n``: the P at which seeing at least that many successes has
     probability 1 - confidence (0 for no success). The beta quantile
-    ``beta.ppf(1 - confidence, successes, n - successes + 1)``, found by bisection."""
+    ``beta.ppf(1 - confidence, successes, n - successes + 1)``, found by bisection.
+
+    Parameters
+    ----------
+    successes : int
+        The cases that passed, 0 to n.
+    n : int
+        The cases, >= 1.
+    confidence : float
+        The confidence, 0 < confidence < 1.
+
+    Returns
+    -------
+    float
+        The lower bound on the probability of passing (dimensionless, 0 to 1).
+
+    Examples
+    --------
+    >>> from landing.campaign.verify import clopper_pearson_lower
+    >>> print(f"{clopper_pearson_lower(95, 100, 0.9):.4f}")
+    0.9092
+    >>> print(f"{clopper_pearson_lower(10, 10, 0.9):.4f}")  # 0.1 ** (1 / 10)
+    0.7943
+    """
     n = integer("n", n, minimum=1)
     successes = integer("successes", successes, minimum=0, maximum=n)
     alpha = 1.0 - _probability("confidence", confidence)
@@ -79,9 +102,30 @@ def clopper_pearson_lower(successes: int, n: int, confidence: float) -> float:
 
 
 def samples_needed(p: float, confidence: float, failures: int = 0) -> int:
-    """The fewest cases that can show "met for at least ``p`` with ``confidence``" when
-    ``failures`` of them fail: 852 for p = 0.9973, 90 % and no failure (the closed form
-    ceil(ln(1 - confidence) / ln p) for none)."""
+    """The fewest cases that can show "met for at least ``p`` with ``confidence``" when ``failures``
+    of them fail: 852 for p = 0.9973, 90 % and no failure (the closed form
+    ceil(ln(1 - confidence) / ln p) for none).
+
+    Parameters
+    ----------
+    p : float
+        The share of cases the requirement must hold for, 0 < p < 1.
+    confidence : float
+        The confidence, 0 < confidence < 1.
+    failures : int, default 0
+        The failing cases allowed.
+
+    Returns
+    -------
+    int
+        The number of cases.
+
+    Examples
+    --------
+    >>> from landing.campaign import samples_needed
+    >>> samples_needed(0.9973, 0.9), samples_needed(0.99, 0.9, failures=1)
+    (852, 388)
+    """
     p = _probability("p", p)
     c = _probability("confidence", confidence)
     failures = integer("failures", failures, minimum=0)
@@ -110,12 +154,35 @@ def _order_index(n: int, p: float, confidence: float) -> Optional[int]:
 
 
 def tolerance_bound(values: Any, p: float, confidence: float, side: str = "upper") -> float:
-    """The one-sided distribution-free tolerance bound (Wilks): a value that at least ``p`` of
-    the population lies below (``side="upper"``) or above (``"lower"``) with ``confidence``, the
-    order statistic of the finite ``values`` the binomial gives. NaN values (diverged cases)
-    count against the bound: an upper bound is then that of the cases that did not diverge,
-    which with those cases unbounded is refused. Too few cases for the pair (p, confidence) is
-    refused, saying how many are needed."""
+    """The one-sided distribution-free tolerance bound (Wilks): a value that at least ``p`` of the
+    population lies below (``side="upper"``) or above (``"lower"``) with ``confidence``, the order
+    statistic of the finite ``values`` the binomial gives. A NaN value (a diverged case) is
+    refused, as are too few cases for the pair (p, confidence), saying how many are needed.
+
+    Parameters
+    ----------
+    values : array_like
+        One value per case, in the metric's unit (m, m/s, s, kg...).
+    p : float
+        The share of the population bounded, 0 < p < 1.
+    confidence : float
+        The confidence, 0 < confidence < 1.
+    side : {"upper", "lower"}, default "upper"
+        Which bound.
+
+    Returns
+    -------
+    float
+        The bound, in the values' unit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.campaign.verify import tolerance_bound
+    >>> speeds = np.arange(1.0, 101.0) / 100  # m/s
+    >>> print(f"{tolerance_bound(speeds, p=0.9, confidence=0.9):.2f} m/s")
+    0.95 m/s
+    """
     x = np.asarray(values, dtype=float).reshape(-1)
     p = _probability("p", p)
     c = _probability("confidence", confidence)
@@ -138,8 +205,36 @@ class Verification:
     """A requirement checked on a campaign: ``passed`` of ``n`` cases, the point estimate
     ``passed / n``, the Clopper-Pearson ``lower_bound`` on the probability of passing at
     ``confidence``, and whether that shows the requirement ``met`` for at least ``p`` of cases.
-    ``failed`` lists the failing cases; ``needed`` is how many cases with no failure would show
-    it."""
+    Made by :func:`verify` (:meth:`MonteCarloResult.verify`).
+
+    Parameters
+    ----------
+    requirement : str
+        The requirement's text, in the metrics' units (m, m/s, s, kg).
+    p : float
+        The share of cases it must hold for.
+    confidence : float
+        The confidence of the statement.
+    n : int
+        The cases checked.
+    passed : int
+        The cases that pass.
+    lower_bound : float
+        The Clopper-Pearson lower bound on the probability of passing.
+    needed : int
+        How many cases with no failure would show it.
+    failed : numpy.ndarray
+        The failing cases' indices.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.campaign.verify import verify
+    >>> metrics = {"touchdown_speed": np.array([0.5, 0.8, 1.2, 0.3]), "diverged": np.zeros(4, bool)}
+    >>> v = verify(metrics, "touchdown_speed <= 1", p=0.5, confidence=0.9)
+    >>> v.passed, v.failed, v.met
+    (3, array([2]), False)
+    """
 
     requirement: str
     p: float
@@ -152,10 +247,12 @@ class Verification:
 
     @property
     def estimate(self) -> float:
+        """The share of cases that pass, ``passed / n`` (dimensionless)."""
         return self.passed / self.n
 
     @property
     def met(self) -> bool:
+        """Whether the campaign shows the requirement met: ``lower_bound >= p``."""
         return self.lower_bound >= self.p
 
     def __str__(self) -> str:
@@ -178,8 +275,37 @@ def requirement(text: str, metric_names: Any) -> Expression:
 
 
 def verify(metrics: Any, text: str, p: float = 0.9973, confidence: float = 0.9) -> Verification:
-    """The requirement ``text`` checked on the metric columns ``metrics`` (see
-    :class:`Verification`)."""
+    """The requirement ``text`` checked case by case on the metric columns ``metrics``, and whether
+    it is shown met for at least ``p`` of cases with ``confidence`` (see :class:`Verification`).
+    A case with a NaN metric (diverged, never touched down) fails.
+
+    Parameters
+    ----------
+    metrics : landing.Metrics or mapping of str to numpy.ndarray
+        The per-case metric columns (with ``"diverged"``), in their units (m, m/s, s, kg).
+    text : str
+        The requirement, in the grammar of the tuner's expressions
+        (e.g. ``"touchdown_speed <= 1 and max(abs(touchdown_position)) <= 5"``, m/s and m).
+    p : float, default 0.9973
+        The share of cases it must hold for, 0 < p < 1.
+    confidence : float, default 0.9
+        The confidence, 0 < confidence < 1.
+
+    Returns
+    -------
+    Verification
+        The cases' passes and the statistical statement.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.campaign.verify import verify
+    >>> metrics = {"touchdown_speed": np.array([0.5, 0.8, 1.2, 0.3]), "diverged": np.zeros(4, bool)}
+    >>> print(verify(metrics, "touchdown_speed <= 1", p=0.5, confidence=0.9))
+    requirement 'touchdown_speed <= 1': 3 of 4 cases pass (75 %);
+        at 90 % confidence at least 32.05 % of cases meet it (Clopper-Pearson)
+      not shown: at least 50 % with 90 % confidence (the failing cases: 2)
+    """
     p = _probability("p", p)
     confidence = _probability("confidence", confidence)
     passes = requirement(text, metrics).holds(metrics)
