@@ -37,6 +37,9 @@ MODULES = [
     "landing.campaign",
     "landing.campaign.api",
     "landing.campaign.result",
+    "landing.campaign.store",
+    "landing.campaign.lazy",
+    "landing.campaign.dask",
     "landing.campaign.sensitivity",
     "landing.campaign.verify",
     "landing.theory",
@@ -44,6 +47,17 @@ MODULES = [
     "landing.theory.checks",
     "landing.theory._signals",
 ]
+
+#: What the examples of a module need beyond the package: its optional extras' modules.
+EXTRAS = {
+    "landing.campaign.api": ("zarr", "pyarrow"),  # load: a campaign store (io)
+    "landing.campaign.result": ("xarray",),  # to_xarray (io)
+    "landing.campaign.store": ("zarr", "pyarrow"),
+    "landing.campaign.lazy": ("zarr", "pyarrow", "xarray"),
+    "landing.campaign.dask": ("distributed",),
+    "landing.campaign.sensitivity": ("SALib",),  # sobol
+}
+
 
 def _public(module: ModuleType) -> Iterator[tuple[str, Any]]:
     for name in getattr(module, "__all__", []):
@@ -101,6 +115,8 @@ def test_examples_run(name: str) -> None:
         pytest.importorskip("casadi")  # the optimal extra
     if name.startswith("landing.tune."):
         pytest.importorskip("cma")  # the tune extra
+    for extra in EXTRAS.get(name, ()):
+        pytest.importorskip(extra)
     module = importlib.import_module(name)
     with np.printoptions(precision=4, suppress=True, legacy=False):
         result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)

@@ -118,7 +118,24 @@ RETRIES = 1
 
 
 def require_dask(what: str = "monte_carlo(client=...)") -> Any:
-    """The ``distributed`` module, or an ImportError saying how to install it."""
+    """The ``distributed`` module, or an ImportError saying how to install it.
+
+    Parameters
+    ----------
+    what : str, default "monte_carlo(client=...)"
+        What needs it, for the error's message.
+
+    Returns
+    -------
+    module
+        ``distributed``.
+
+    Examples
+    --------
+    >>> from landing.campaign.dask import require_dask
+    >>> require_dask().__name__
+    'distributed'
+    """
     try:
         return importlib.import_module("distributed")
     except ImportError as e:
@@ -129,7 +146,29 @@ def require_dask(what: str = "monte_carlo(client=...)") -> Any:
 
 
 def connect(address: str) -> Any:
-    """A ``distributed.Client`` connected to the scheduler at ``address`` (``tcp://host:8786``)."""
+    """A ``distributed.Client`` connected to the scheduler at ``address`` (``tcp://host:8786``).
+
+    Parameters
+    ----------
+    address : str
+        The scheduler's address.
+
+    Returns
+    -------
+    distributed.Client
+        The client; ``landing.monte_carlo(..., client=client)`` runs a campaign on its cluster.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from distributed import LocalCluster
+    >>> from landing.campaign.dask import connect
+    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None)
+    >>> client = connect(cluster.scheduler_address)
+    >>> type(client).__name__
+    'Client'
+    >>> client.close(); cluster.close()
+    """
     distributed = require_dask("--scheduler")
     if not isinstance(address, str) or not address:
         raise ParameterError(f"scheduler = {address!r} must be a scheduler address such as tcp://host:8786")
@@ -202,8 +241,48 @@ def run_chunk(
     threads: Optional[int],
     keep: tuple[str, ...],
 ) -> SimulationResult:
-    """One chunk, on a worker: cases ``start .. start + len(x0)`` of the campaign's ``n``, with
-    the signals not kept dropped (the task the client submits)."""
+    """One chunk, on a worker: cases ``start .. start + len(x0)`` of the campaign's ``n``, with the
+    signals not kept dropped (the task the client submits).
+
+    Parameters
+    ----------
+    payload : tuple of (str, object)
+        The scenario as :func:`scenario_payload` gives it (its TOML text, or pickled).
+    version : str
+        The client's package version; another than the worker's is refused.
+    x0 : numpy.ndarray
+        The chunk's initial states, (cases, state_dim) (m, m/s, kg).
+    start : int
+        The chunk's first case.
+    n : int
+        The campaign's cases.
+    seed : int
+        The campaign's seed.
+    record_every : int
+        The decimation.
+    threads : int or None
+        The worker's threads.
+    keep : tuple of str
+        The recorded signals kept.
+
+    Returns
+    -------
+    landing.SimulationResult
+        The chunk's runs, bit for bit those of the local campaign.
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> from landing.campaign.dask import run_chunk, scenario_payload
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> x0 = scenario.initial_states(8, seed=1)
+    >>> part = run_chunk(scenario_payload(scenario), landing._core.__version__, x0[4:], 4, 8, 1, 50, 1, ("states",))
+    >>> part.states.shape, part.controls is None
+    ((4, 101, 7), True)
+    >>> local = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> bool(np.array_equal(part.metrics["fuel_used"], local.metrics["fuel_used"][4:]))
+    True
+    """
     if version != __version__:
         raise RuntimeError(
             f"this worker runs landing {__version__}, the client {version}: install the same version "
@@ -275,8 +354,54 @@ def run_campaign(
     check_bounds: bool,
     bar: Optional[ProgressBar] = None,
 ) -> MonteCarloResult:
-    """The campaign's chunks on the cluster behind ``client``, assembled as the local run's
-    (see the module's docstring)."""
+    """The campaign's chunks on the cluster behind ``client``, assembled as the local run's (see the
+    module's docstring). What ``landing.monte_carlo(..., client=client)`` runs.
+
+    Parameters
+    ----------
+    client : distributed.Client
+        The cluster's client.
+    scenario : landing.scenarios.Scenario
+        The campaign's scenario.
+    n, seed : int
+        The campaign's cases and seed.
+    x0 : numpy.ndarray
+        The campaign's initial states, (n, state_dim) (m, m/s, kg).
+    chunk_size : int
+        Cases per chunk (one task each).
+    keep : tuple of str
+        The recorded signals kept.
+    record_every : int
+        The decimation.
+    threads : int or None
+        Threads per task on a worker.
+    store : CampaignStore or None
+        The store the chunks are written to (by this process), and resumed from.
+    check_bounds : bool
+        Whether the result is checked against the scenario's bounds.
+    bar : ProgressBar, optional
+        A progress bar, advanced chunk by chunk.
+
+    Returns
+    -------
+    MonteCarloResult
+        The campaign, bit for bit the local run's.
+
+    Examples
+    --------
+    >>> import landing
+    >>> from distributed import LocalCluster
+    >>> from landing.campaign.dask import connect
+    >>> cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None)
+    >>> client = connect(cluster.scheduler_address)
+    >>> import numpy as np
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> on_cluster = landing.monte_carlo(scenario, n=8, seed=1, client=client, chunk_size=4)
+    >>> local = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> bool(np.array_equal(on_cluster.metrics["fuel_used"], local.metrics["fuel_used"]))
+    True
+    >>> client.close(); cluster.close()
+    """
     distributed = check_client(client)
     payload = scenario_payload(scenario)
     out = Assembly(n, keep, store)

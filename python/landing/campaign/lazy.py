@@ -75,8 +75,30 @@ class _ZarrSource:
 class StoredArray:
     """A read-only array of a campaign store's Zarr tree (case first), read on demand: see
     :mod:`landing.campaign.lazy`. ``shape``, ``dtype``, ``ndim``, ``len()``, iteration over the
-    cases, numpy indexing and ``np.asarray`` work as on the array it stands for, and give the
-    same bits."""
+    cases, numpy indexing and ``np.asarray`` work as on the array it stands for, and give the same
+    bits. Made by the store (:meth:`StoredArray.open`); the values are in the signal's units (m,
+    m/s, kg for the states, N for the commands).
+
+    Parameters
+    ----------
+    source : _ZarrSource
+        The Zarr array it reads.
+    select : tuple, optional
+        The view's selection per axis (default: the whole array).
+
+    Examples
+    --------
+    >>> import tempfile, numpy as np, landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=tempfile.mkdtemp() + "/campaign", chunk_size=4)
+    >>> states = mc.states
+    >>> type(states).__name__, states.shape
+    ('StoredArray', (8, 101, 7))
+    >>> type(states[2:4]).__name__, type(states[2]).__name__  # cases: a lazy view; a case: read
+    ('StoredArray', 'ndarray')
+    >>> bool(np.array_equal(np.asarray(states)[2], states[2]))
+    True
+    """
 
     __slots__ = ("_source", "_select")
 
@@ -88,26 +110,49 @@ class StoredArray:
     @staticmethod
     def open(root: Union[str, Path], name: str, shape: tuple[int, ...], rows_per_chunk: int,
              dtype: Any = np.float64) -> StoredArray:
-        """The array ``name`` of the Zarr tree at ``root``, of ``shape``, chunked along its first
-        axis by ``rows_per_chunk``."""
+        """The array ``name`` of the Zarr tree at ``root``, of ``shape``, chunked along its first axis by
+        ``rows_per_chunk``.
+
+        Parameters
+        ----------
+        root : str or pathlib.Path
+            The Zarr tree's directory.
+        name : str
+            The array's name in it.
+        shape : tuple of int
+            Its shape.
+        rows_per_chunk : int
+            Cases per Zarr chunk.
+        dtype : numpy.dtype, default float64
+            Its dtype.
+
+        Returns
+        -------
+        StoredArray
+            The whole array, nothing read yet.
+        """
         return StoredArray(_ZarrSource(Path(root), name, tuple(shape), np.dtype(dtype), rows_per_chunk))
 
     # -- what it stands for --
 
     @property
     def shape(self) -> tuple[int, ...]:
+        """The view's shape."""
         return tuple(s.size for s in self._select if isinstance(s, np.ndarray))
 
     @property
     def ndim(self) -> int:
+        """The view's number of axes."""
         return len(self.shape)
 
     @property
     def dtype(self) -> np.dtype:
+        """The array's dtype."""
         return self._source.dtype
 
     @property
     def size(self) -> int:
+        """The view's number of elements."""
         return int(np.prod(self.shape, dtype=np.int64))
 
     @property
@@ -188,7 +233,13 @@ class StoredArray:
         return StoredArray(self._source, tuple(out))
 
     def read(self) -> np.ndarray:
-        """What this (view) selects, read into a numpy array."""
+        """What this (view) selects, read into a numpy array.
+
+        Returns
+        -------
+        numpy.ndarray
+            The values, of :attr:`shape`.
+        """
         cases, rest = self._select[0], self._select[1:]
         rows = np.atleast_1d(np.asarray(cases, dtype=np.intp))
         tail = tuple(s.size for s in rest if isinstance(s, np.ndarray))
@@ -228,11 +279,27 @@ def _outer(block: np.ndarray, select: tuple[_Selector, ...]) -> np.ndarray:
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class StoredResult(SimulationResult):
-    """A :class:`~landing.results.SimulationResult` whose recorded signals are
-    :class:`StoredArray` views of a campaign store (``landing.load``, ``monte_carlo(...,
-    store=...)``); its slices and cases are results of the same kind, and ``result[i]`` reads
-    case i. Its metrics know the initial states (for ``to_pandas``) as a lazy view of the
-    states' first instant, read when asked."""
+    """A :class:`~landing.results.SimulationResult` whose recorded signals are :class:`StoredArray`
+    views of a campaign store (``landing.load``, ``monte_carlo(..., store=...)``); its slices and
+    cases are results of the same kind, and ``result[i]`` reads case i. Its metrics know the
+    initial states (for ``to_pandas``) as a lazy view of the states' first instant, read when
+    asked.
+
+    Parameters
+    ----------
+    *args, **kwargs
+        The fields of :class:`~landing.results.SimulationResult`, its signals StoredArrays.
+
+    Examples
+    --------
+    >>> import tempfile, numpy as np, landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=tempfile.mkdtemp() + "/campaign", chunk_size=4)
+    >>> type(mc.result).__name__, type(mc.result.states).__name__
+    ('StoredResult', 'StoredArray')
+    >>> mc.result[0].states.shape  # case 0, read
+    (101, 7)
+    """
 
     def __post_init__(self) -> None:
         states = self.states
@@ -245,14 +312,40 @@ class StoredResult(SimulationResult):
         object.__setattr__(self, "metrics", plain.metrics._with_context(**context))
 
     def to_xarray(self) -> xarray.Dataset:
-        """As :meth:`SimulationResult.to_xarray`, the recorded signals lazily indexed Zarr
-        variables (read when their values are asked for)."""
+        """As :meth:`SimulationResult.to_xarray`, the recorded signals lazily indexed Zarr variables
+        (read when their values are asked for).
+
+        Returns
+        -------
+        xarray.Dataset
+            The result's data, time in s and each variable's units in its attributes.
+        """
         return stored_dataset(self)
 
 
 def in_memory(result: SimulationResult) -> SimulationResult:
     """``result`` with its recorded signals read into numpy arrays (a result already in memory is
-    returned as it is)."""
+    returned as it is).
+
+    Parameters
+    ----------
+    result : landing.SimulationResult
+        A result, stored or not.
+
+    Returns
+    -------
+    landing.SimulationResult
+        The result, its signals numpy arrays.
+
+    Examples
+    --------
+    >>> import tempfile, numpy as np, landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=tempfile.mkdtemp() + "/campaign", chunk_size=4)
+    >>> from landing.campaign.lazy import in_memory
+    >>> type(in_memory(mc.result).states).__name__
+    'ndarray'
+    """
     lazy = [result.states, result.controls, *result.diagnostics.values()]
     if not any(isinstance(a, StoredArray) for a in lazy):
         return result
@@ -266,9 +359,37 @@ def in_memory(result: SimulationResult) -> SimulationResult:
 
 def stored_dataset(result: SimulationResult, *, x0: Optional[np.ndarray] = None, seed: Optional[int] = None,
                    attrs: Optional[dict[str, Any]] = None) -> xarray.Dataset:
-    """:func:`landing.results.result_dataset` of a result whose signals may be stored: those are
-    the Zarr tree's variables (``xarray.open_zarr``, lazily indexed, no dask), selected to the
-    result's cases; the rest as ``result_dataset`` makes it, in the same order."""
+    """:func:`landing.results.result_dataset` of a result whose signals may be stored: those are the
+    Zarr tree's variables (``xarray.open_zarr``, lazily indexed, no dask), selected to the
+    result's cases; the rest as ``result_dataset`` makes it, in the same order. Needs
+    ``pip install "landing[io]"``.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult
+        The result, stored or not.
+    x0 : numpy.ndarray, optional
+        The initial states, (N, state_dim) (m, m/s, kg).
+    seed : int, optional
+        The campaign's seed, kept in the attributes.
+    attrs : dict, optional
+        More attributes of the Dataset.
+
+    Returns
+    -------
+    xarray.Dataset
+        The result's data, time in s and each variable's units in its attributes.
+
+    Examples
+    --------
+    >>> import tempfile, numpy as np, landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=tempfile.mkdtemp() + "/campaign", chunk_size=4)
+    >>> from landing.campaign.lazy import stored_dataset
+    >>> ds = stored_dataset(mc.result)
+    >>> ds.sizes["case"], ds.sizes["time"], list(ds.data_vars)[:2]
+    (8, 101, ['states', 'controls'])
+    """
     signals: dict[str, Any] = {"states": result.states, "controls": result.controls, **result.diagnostics}
     stored = {k: v for k, v in signals.items() if isinstance(v, StoredArray)}
     if not stored:

@@ -209,7 +209,41 @@ def machine() -> dict[str, Any]:
 
 @dataclass(frozen=True)
 class CampaignKey:
-    """What a store's chunks depend on: a resumed run must match every field."""
+    """What a store's chunks depend on: a resumed run must match every field. Made by
+    :meth:`CampaignKey.of`.
+
+    Parameters
+    ----------
+    version : str
+        The package version that wrote the store.
+    scenario : str
+        The scenario as text (its TOML).
+    seed : int
+        The campaign's seed.
+    n : int
+        The number of cases.
+    chunk_size : int
+        Cases per chunk.
+    record_every : int
+        The recorded signals' decimation (0: none recorded).
+    keep : tuple of str
+        The recorded signals kept.
+    x0_sha256 : str
+        The SHA-256 of the initial states (m, m/s, kg as float64 bytes).
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.campaign.store import CampaignKey
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> x0 = scenario.initial_states(8, seed=1)
+    >>> key = CampaignKey.of(scenario, seed=1, n=8, chunk_size=4, record_every=50, keep=("states",), x0=x0)
+    >>> key.n, key.chunk_size, key.keep
+    (8, 4, ('states',))
+    >>> CampaignKey.of(scenario, seed=2, n=8, chunk_size=4, record_every=50, keep=("states",),
+    ...                x0=x0).differences(key)
+    ['seed: 1 in the store, 2 here']
+    """
 
     version: str
     scenario: str
@@ -223,6 +257,24 @@ class CampaignKey:
     @staticmethod
     def of(scenario: Scenario, *, seed: int, n: int, chunk_size: int, record_every: int,
            keep: Sequence[str], x0: np.ndarray) -> CampaignKey:
+        """The key of a campaign.
+
+        Parameters
+        ----------
+        scenario : landing.scenarios.Scenario
+            The campaign's scenario.
+        seed, n, chunk_size, record_every : int
+            The campaign's seed, cases, cases per chunk and decimation.
+        keep : sequence of str
+            The recorded signals kept.
+        x0 : numpy.ndarray
+            The campaign's initial states, (n, state_dim).
+
+        Returns
+        -------
+        CampaignKey
+            The key, with this package's version.
+        """
         return CampaignKey(
             version=__version__, scenario=_scenario_text(scenario), seed=int(seed), n=int(n),
             chunk_size=int(chunk_size), record_every=int(record_every), keep=tuple(keep),
@@ -230,16 +282,46 @@ class CampaignKey:
         )
 
     def to_json(self) -> dict[str, Any]:
+        """The key as the provenance record stores it.
+
+        Returns
+        -------
+        dict
+            Its fields, ``keep`` as a list.
+        """
         d = dataclasses.asdict(self)
         d["keep"] = list(self.keep)
         return d
 
     @staticmethod
     def from_json(d: Mapping[str, Any]) -> CampaignKey:
+        """A key read back from the provenance record (the inverse of :meth:`to_json`).
+
+        Parameters
+        ----------
+        d : mapping
+            The record's fields.
+
+        Returns
+        -------
+        CampaignKey
+            The key.
+        """
         return CampaignKey(**{**d, "keep": tuple(d["keep"])})
 
     def differences(self, stored: CampaignKey) -> list[str]:
-        """What differs, as "field: stored value there, this value here"."""
+        """What differs, as "field: stored value there, this value here".
+
+        Parameters
+        ----------
+        stored : CampaignKey
+            The store's key.
+
+        Returns
+        -------
+        list of str
+            One line per field that differs (empty when the keys agree).
+        """
         out = []
         for f in dataclasses.fields(self):
             mine, theirs = getattr(self, f.name), getattr(stored, f.name)
@@ -416,7 +498,37 @@ def _zarr_create(group: Any, name: str, shape: tuple[int, ...], chunks: tuple[in
 
 @dataclass
 class CampaignStore:
-    """A campaign's directory, open for writing and resuming (see the module's docstring)."""
+    """A campaign's directory, open for writing and resuming (see the module's docstring). Opened by
+    :func:`open_campaign_store` (to write) and :func:`read_campaign_store` (to read).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The store's directory.
+    key : CampaignKey
+        The campaign it holds.
+    completed : dict of int to dict
+        The completed chunks by index, as the manifest records them (start, stop, checksums).
+    layout : dict
+        The layout of the metric columns and of the Zarr tree.
+    lock : WriterLock, optional
+        Held from :meth:`open` to :meth:`close` (by the process writing the store).
+    checked : set of tuple
+        The (folder, chunk) Parquet parts already checked in this session (each is read once).
+
+    Examples
+    --------
+    >>> import tempfile, landing
+    >>> from landing.campaign.store import read_campaign_store
+    >>> path = tempfile.mkdtemp() + "/campaign"
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=path, chunk_size=4)
+    >>> store, scenario, x0, check_bounds = read_campaign_store(path)
+    >>> store.n_chunks, store.completed_cases, x0.shape
+    (2, 8, (8, 7))
+    >>> store.read_chunk(1).metrics["fuel_used"].shape
+    (4,)
+    """
 
     path: Path
     key: CampaignKey
@@ -432,10 +544,31 @@ class CampaignStore:
     @staticmethod
     def open(path: Union[str, os.PathLike], key: CampaignKey, *, threads: Optional[int], check_bounds: bool,
              record_every: int, one_case: Callable[[], SimulationResult]) -> CampaignStore:
-        """Open (resume) the campaign at ``path`` or create it; a store written by another
-        campaign is refused with what differs. A new store's Zarr tree is created here, once,
-        with the shapes of ``one_case()`` (one case of the campaign run: the time grid, the
-        names, the diagnostics and the metric columns as the core gives them)."""
+        """Open (resume) the campaign at ``path`` or create it; a store written by another campaign is
+        refused with what differs. A new store's Zarr tree is created here, once, with the shapes of
+        ``one_case()`` (one case of the campaign run: the time grid, the names, the diagnostics and
+        the metric columns as the core gives them).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The store's directory (new, empty, or this campaign's store).
+        key : CampaignKey
+            The campaign.
+        threads : int or None
+            The threads the run uses (recorded in the provenance).
+        check_bounds : bool
+            Whether the run checks the theory's bounds (recorded).
+        record_every : int
+            The decimation (recorded).
+        one_case : callable
+            Runs case 0 as the campaign does.
+
+        Returns
+        -------
+        CampaignStore
+            The store, its writer lock held until :meth:`close`.
+        """
         require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
         path = Path(path)
         prov_path = path / PROVENANCE
@@ -519,6 +652,7 @@ class CampaignStore:
 
     @property
     def n_chunks(self) -> int:
+        """The number of chunks the campaign is cut into."""
         return -(-self.key.n // self.key.chunk_size)
 
     @property
@@ -527,19 +661,48 @@ class CampaignStore:
         return int(sum(c["stop"] - c["start"] for c in self.completed.values()))
 
     def is_complete(self, index: int) -> bool:
+        """Whether chunk ``index`` is complete.
+
+        Parameters
+        ----------
+        index : int
+            The chunk.
+
+        Returns
+        -------
+        bool
+            True when the manifest names it complete.
+        """
         return index in self.completed
 
     def forget(self, index: int) -> None:
-        """Chunk ``index`` no longer complete (found damaged): the manifest stops naming it, so
-        that it is run and written again."""
+        """Chunk ``index`` no longer complete (found damaged): the manifest stops naming it, so that it
+        is run and written again.
+
+        Parameters
+        ----------
+        index : int
+            The chunk.
+        """
         self.completed.pop(index, None)
         self.checked = {k for k in self.checked if k[1] != index}
         self._write_manifest()
 
     def resume_chunk(self, index: int) -> Optional[SimulationResult]:
-        """What a resumed campaign takes from the store for chunk ``index``: the chunk, or None
-        when it must run (not complete, or damaged: then forgotten, with a StoreWarning naming
-        the damage, and run and written again)."""
+        """What a resumed campaign takes from the store for chunk ``index``: the chunk, or None when it
+        must run (not complete, or damaged: then forgotten, with a StoreWarning naming the damage, and
+        run and written again).
+
+        Parameters
+        ----------
+        index : int
+            The chunk.
+
+        Returns
+        -------
+        landing.SimulationResult or None
+            The chunk's cases, or None.
+        """
         if not self.is_complete(index):
             return None
         try:
@@ -674,10 +837,24 @@ class CampaignStore:
 
     def write_chunk(self, index: int, start: int, stop: int, part: SimulationResult, x0: np.ndarray,
                     draws: Optional[np.ndarray]) -> None:
-        """Write chunk ``index`` (cases start..stop): Parquet files and the Zarr region, made
-        durable, then the manifest naming it complete. A failure of the file system (a full
-        disk, a permission) is a StoreError naming the file and the remedy; the chunk is then
-        not complete, and a resume writes it again."""
+        """Write chunk ``index`` (cases start..stop): Parquet files and the Zarr region, made durable,
+        then the manifest naming it complete. A failure of the file system (a full disk, a
+        permission) is a StoreError naming the file and the remedy; the chunk is then not complete,
+        and a resume writes it again.
+
+        Parameters
+        ----------
+        index : int
+            The chunk.
+        start, stop : int
+            Its cases, ``start`` to ``stop - 1``.
+        part : landing.SimulationResult
+            The chunk's runs.
+        x0 : numpy.ndarray
+            Its initial states, (stop - start, state_dim).
+        draws : numpy.ndarray or None
+            Its dispersion draws, if any.
+        """
         try:
             self._write_chunk(index, start, stop, part, x0, draws)
         except OSError as exc:
@@ -739,8 +916,14 @@ class CampaignStore:
             raise
 
     def check_layout(self, scenario: Scenario) -> None:
-        """The trajectories' layout against the provenance: the kept signals are the arrays
-        present, and the time grid is the scenario's instants at ``record_every``."""
+        """The trajectories' layout against the provenance: the kept signals are the arrays present, and
+        the time grid is the scenario's instants at ``record_every``.
+
+        Parameters
+        ----------
+        scenario : landing.scenarios.Scenario
+            The campaign's scenario.
+        """
         if not self.layout or not self.completed:
             return
         present = set(self.layout["arrays"]) - {"final_state"} - set(self.layout["diagnostics"])
@@ -761,9 +944,17 @@ class CampaignStore:
                              f"dt = {scenario.dt:g} s): the record or the data was changed")
 
     def check_a_case(self, scenario: Scenario, x0: np.ndarray) -> None:
-        """The first completed case run again from the provenance's scenario and seed: its
-        final state must be the stored one (a scenario text edited after the run,
-        in a way the initial states do not show, is found here). One case: milliseconds."""
+        """The first completed case run again from the provenance's scenario and seed: its final state
+        must be the stored one (a scenario text edited after the run, in a way the initial states do
+        not show, is found here). One case: milliseconds.
+
+        Parameters
+        ----------
+        scenario : landing.scenarios.Scenario
+            The campaign's scenario.
+        x0 : numpy.ndarray
+            The campaign's initial states, (n, state_dim).
+        """
         if not self.completed:
             return
         c = self.completed[min(self.completed)]
@@ -802,7 +993,18 @@ class CampaignStore:
         return table
 
     def read_metrics(self, index: int) -> dict[str, np.ndarray]:
-        """Chunk ``index``'s metric columns, put back together (dtypes as written), checked."""
+        """Chunk ``index``'s metric columns, put back together (dtypes as written), checked.
+
+        Parameters
+        ----------
+        index : int
+            A completed chunk.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            The metric columns, in their units.
+        """
         table = self._table(index, METRICS_DIR, "metrics")
         out = {}
         for name, dtype, parts in self.layout["metrics"]:
@@ -813,7 +1015,18 @@ class CampaignStore:
         return out
 
     def read_chunk(self, index: int) -> SimulationResult:
-        """A completed chunk as the batch result it was (what was not kept is None/empty)."""
+        """A completed chunk as the batch result it was (what was not kept is None/empty).
+
+        Parameters
+        ----------
+        index : int
+            A completed chunk.
+
+        Returns
+        -------
+        landing.SimulationResult
+            The chunk's cases.
+        """
         c = self.completed[index]
         start, stop = c["start"], c["stop"]
         if (str(INITIAL_DIR), index) not in self.checked:  # its initial states too: damage anywhere is named
@@ -845,8 +1058,21 @@ class CampaignStore:
 
     def signals(self, result: SimulationResult, rows: Optional[np.ndarray] = None) -> StoredResult:
         """``result`` (the campaign's final states and metrics, its cases ``rows`` of the campaign,
-        default all) with the recorded signals this store keeps as :class:`StoredArray` views of
-        its Zarr tree: read on demand (:mod:`landing.campaign.lazy`), never held here."""
+        default all) with the recorded signals this store keeps as :class:`StoredArray` views of its
+        Zarr tree: read on demand (:mod:`landing.campaign.lazy`), never held here.
+
+        Parameters
+        ----------
+        result : landing.SimulationResult
+            The campaign's final states and metrics.
+        rows : numpy.ndarray, optional
+            The campaign's cases it holds (default all).
+
+        Returns
+        -------
+        landing.campaign.lazy.StoredResult
+            The result with lazy signals.
+        """
         group = self._zarr_group("r")
         root = self.path / TRAJECTORIES
         arrays: dict[str, np.ndarray] = {}
@@ -871,7 +1097,13 @@ class CampaignStore:
         )
 
     def read_initial(self) -> np.ndarray:
-        """The initial states of every completed chunk, (n, n_state), in case order."""
+        """The initial states of every completed chunk, in case order.
+
+        Returns
+        -------
+        numpy.ndarray
+            (n, n_state) (m, m/s, kg); NaN rows for the chunks not completed.
+        """
         names = [f"x0_{s}" for s in self.layout["state_names"]]
         x0 = np.full((self.key.n, len(names)), np.nan)
         for index, c in self.completed.items():
@@ -882,23 +1114,84 @@ class CampaignStore:
 
 
 def default_chunk_size(n: int) -> int:
-    """Cases per chunk of a stored or cluster campaign when none is given: max(1000, n / 50)
-    (at most n); at a few ms of scheduling per chunk that keeps the overhead small for any
-    scenario longer than a few steps (BENCHMARKS.md measures it)."""
+    """Cases per chunk of a stored or cluster campaign when none is given: max(1000, n / 50) (at
+    most n); at a few ms of scheduling per chunk that keeps the overhead small for any scenario
+    longer than a few steps (BENCHMARKS.md measures it).
+
+    Parameters
+    ----------
+    n : int
+        The campaign's cases.
+
+    Returns
+    -------
+    int
+        Cases per chunk.
+
+    Examples
+    --------
+    >>> from landing.campaign.store import default_chunk_size
+    >>> default_chunk_size(500), default_chunk_size(10_000), default_chunk_size(200_000)
+    (500, 1000, 4000)
+    """
     return min(n, max(1000, -(-n // 50)))
 
 
 def store_path(path: Any) -> Path:
-    """``monte_carlo``'s ``store`` argument as a path (a ParameterTypeError for anything else)."""
+    """``monte_carlo``'s ``store`` argument as a path (a ParameterTypeError for anything else).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store's directory.
+
+    Returns
+    -------
+    pathlib.Path
+        The path.
+
+    Examples
+    --------
+    >>> from landing.campaign.store import store_path
+    >>> store_path("runs/mars").name
+    'mars'
+    """
     if not isinstance(path, (str, os.PathLike)):
         raise ParameterTypeError(f"store must be a directory path (str or os.PathLike), got {path!r}")
     return Path(path)
 
 
 def store_chunk_size(path: Union[str, os.PathLike], n: int, chunk_size: Optional[int]) -> int:
-    """The cases per chunk of the campaign stored at ``path``: ``chunk_size`` when given, else
-    the store's own when it exists (a resumed campaign keeps its chunking), else
-    :func:`default_chunk_size`."""
+    """The cases per chunk of the campaign stored at ``path``: ``chunk_size`` when given, else the
+    store's own when it exists (a resumed campaign keeps its chunking), else
+    :func:`default_chunk_size`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store's directory (it need not exist).
+    n : int
+        The campaign's cases.
+    chunk_size : int or None
+        The chunk size asked for.
+
+    Returns
+    -------
+    int
+        Cases per chunk.
+
+    Examples
+    --------
+    >>> import tempfile, landing
+    >>> from landing.campaign.store import read_campaign_store
+    >>> path = tempfile.mkdtemp() + "/campaign"
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=path, chunk_size=4)
+    >>> store, scenario, x0, check_bounds = read_campaign_store(path)
+    >>> from landing.campaign.store import store_chunk_size
+    >>> store_chunk_size(path, 8, None), store_chunk_size(path + "-new", 100_000, None)
+    (4, 2000)
+    """
     if chunk_size is not None:
         return chunk_size
     path = store_path(path)
@@ -922,7 +1215,46 @@ def open_campaign_store(
 ) -> CampaignStore:
     """The store of ``monte_carlo(..., store=path)``: created, or resumed when it holds this
     campaign. Without a chunk size a resumed store keeps its own and a new one takes
-    ``max(1000, n / 50)`` cases per chunk (at most n)."""
+    ``max(1000, n / 50)`` cases per chunk (at most n). Needs ``pip install "landing[io]"``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store's directory.
+    scenario : landing.scenarios.Scenario
+        The campaign's scenario.
+    seed, n : int
+        The campaign's seed and cases.
+    x0 : numpy.ndarray
+        The campaign's initial states, (n, state_dim).
+    keep : sequence of str
+        The recorded signals kept.
+    record_every : int
+        The decimation.
+    chunk_size : int or None
+        Cases per chunk.
+    threads : int or None
+        The run's threads (recorded).
+    check_bounds : bool
+        Whether the run checks the theory's bounds (recorded).
+
+    Returns
+    -------
+    CampaignStore
+        The store, its writer lock held: :meth:`CampaignStore.close` releases it.
+
+    Examples
+    --------
+    >>> import tempfile, landing
+    >>> from landing.campaign.store import open_campaign_store
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> x0 = scenario.initial_states(8, seed=1)
+    >>> store = open_campaign_store(tempfile.mkdtemp() + "/c", scenario, seed=1, n=8, x0=x0, keep=("states",),
+    ...                             record_every=50, chunk_size=4, threads=None, check_bounds=True)
+    >>> store.n_chunks, store.completed_cases
+    (2, 0)
+    >>> store.close()
+    """
     require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="monte_carlo(store=...)")
     path = store_path(path)
     chunk_size = store_chunk_size(path, n, chunk_size)
@@ -963,12 +1295,39 @@ def _column(table: Any, name: str, dtype: str) -> np.ndarray:
 def read_campaign_store(
     path: Union[str, os.PathLike], *, scenario: Optional[Scenario] = None, partial: bool = False
 ) -> tuple[CampaignStore, Scenario, np.ndarray, bool]:
-    """The campaign stored at ``path``, open for reading: its store, its scenario (the one
-    given, checked against the stored text, or rebuilt from that text), its initial states
-    (checked against the provenance record; with ``partial``, the completed chunks' rows
-    against the scenario's draws, the others NaN) and whether its run checked the bounds. An
-    interrupted campaign is refused unless ``partial``. What :func:`landing.load` assembles the
-    result from."""
+    """The campaign stored at ``path``, open for reading: its store, its scenario (the one given,
+    checked against the stored text, or rebuilt from that text), its initial states (checked
+    against the provenance record; with ``partial``, the completed chunks' rows against the
+    scenario's draws, the others NaN) and whether its run checked the bounds. An interrupted
+    campaign is refused unless ``partial``. What :func:`landing.load` assembles the result from.
+    Needs ``pip install "landing[io]"``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The store's directory.
+    scenario : landing.scenarios.Scenario, optional
+        The campaign's scenario, checked against the stored one.
+    partial : bool, default False
+        Whether an interrupted campaign is read.
+
+    Returns
+    -------
+    tuple
+        ``(store, scenario, x0, check_bounds)``: the :class:`CampaignStore`, the scenario, the
+        initial states (n, state_dim) and whether the run checked the bounds.
+
+    Examples
+    --------
+    >>> import tempfile, landing
+    >>> from landing.campaign.store import read_campaign_store
+    >>> path = tempfile.mkdtemp() + "/campaign"
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1, store=path, chunk_size=4)
+    >>> store, scenario, x0, check_bounds = read_campaign_store(path)
+    >>> store.n_chunks, scenario.name, x0.shape, check_bounds
+    (2, 'mars_monte_carlo', (8, 7), True)
+    """
     require_io("pyarrow", "pyarrow.parquet", "zarr", "xarray", "pandas", what="landing.load")
     path = Path(path)
     prov_path = path / PROVENANCE
