@@ -26,6 +26,7 @@ MODULES = [
     "landing.sensors",
     "landing.fuzzy",
     "landing.simulation",
+    "landing.results",
     "landing.errors",
     "landing.optimal",
     "landing.tune",
@@ -50,6 +51,7 @@ MODULES = [
 
 #: What the examples of a module need beyond the package: its optional extras' modules.
 EXTRAS = {
+    "landing.results": ("pandas", "xarray"),  # to_pandas, to_xarray (io)
     "landing.campaign.api": ("zarr", "pyarrow"),  # load: a campaign store (io)
     "landing.campaign.result": ("xarray",),  # to_xarray (io)
     "landing.campaign.store": ("zarr", "pyarrow"),

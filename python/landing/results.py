@@ -50,13 +50,53 @@ DIVERGENCE_REASONS: tuple[str, ...] = tuple(_core.DIVERGENCE_REASONS)
 
 
 def diverged_cases(metrics: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """The indices of the diverged cases, by reason name (only the reasons that occur)."""
+    """The indices of the diverged cases, by reason name (only the reasons that occur).
+
+    Parameters
+    ----------
+    metrics : mapping of str to numpy.ndarray
+        Per-case metrics with ``diverged_reason`` (codes indexing :data:`DIVERGENCE_REASONS`).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``{reason: case indices}``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> metrics = {"diverged": np.array([False, True, True]), "diverged_reason": np.array([0, 3, 3])}
+    >>> from landing.results import diverged_cases
+    >>> diverged_cases(metrics)
+    {'non_finite_state': array([1, 2])}
+    """
     codes = np.atleast_1d(metrics["diverged_reason"])
     return {DIVERGENCE_REASONS[c]: np.flatnonzero(codes == c) for c in np.unique(codes) if c != 0}
 
 
 def describe_diverged(metrics: Mapping[str, np.ndarray], shown: int = 10) -> str:
-    """"k of n cases diverged (reason: cases ...; ...)", or "0 of n"."""
+    """"k of n cases diverged (reason: cases ...; ...)", or "0 of n".
+
+    Parameters
+    ----------
+    metrics : mapping of str to numpy.ndarray
+        Per-case metrics with ``diverged`` and ``diverged_reason``.
+    shown : int, default 10
+        The most cases listed per reason.
+
+    Returns
+    -------
+    str
+        The description.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> metrics = {"diverged": np.array([False, True, True]), "diverged_reason": np.array([0, 3, 3])}
+    >>> from landing.results import describe_diverged
+    >>> describe_diverged(metrics)
+    '2 of 3 cases diverged (non_finite_state: 2 (cases 1, 2))'
+    """
     n = np.atleast_1d(metrics["diverged"]).size
     groups = diverged_cases(metrics)
     k = sum(v.size for v in groups.values())
@@ -100,10 +140,32 @@ def _common_unit(names: Sequence[str]) -> str:
 
 
 def metric_units(state_names: Sequence[str], control_names: Sequence[str], axes: int) -> dict[str, str]:
-    """The unit of each metric for a plant with these components: the core's declaration with
-    the generalized coordinate's unit (the first ``axes`` states') and the command's put in. A
-    metric whose unit is mixed on this plant (the tethered satellite's thrust and torque) or
-    none (a flag, a code) has none."""
+    """The unit of each metric for a plant with these components: the core's declaration with the
+    generalized coordinate's unit (the first ``axes`` states') and the command's put in. A metric
+    whose unit is mixed on this plant (the tethered satellite's thrust and torque) or none (a
+    flag, a code) has none.
+
+    Parameters
+    ----------
+    state_names : sequence of str
+        The plant's state components (``"rx"``... for the Mars lander).
+    control_names : sequence of str
+        Its command components (``"Fx"``...).
+    axes : int
+        Its number of axes.
+
+    Returns
+    -------
+    dict of str to str
+        ``{metric: unit}`` (m, m/s, s, kg, N...), the metrics with a unit only.
+
+    Examples
+    --------
+    >>> from landing.results import metric_units
+    >>> units = metric_units(("rx", "ry", "rz", "vx", "vy", "vz", "m"), ("Fx", "Fy", "Fz"), 3)
+    >>> units["final_error"], units["fuel_used"], units["peak_command"], units["settle_time"]
+    ('m', 'kg', 'N', 's')
+    """
     q = _common_unit(state_names[:axes])
     u = _common_unit(control_names)
     out: dict[str, str] = {}
@@ -120,7 +182,29 @@ def metric_units(state_names: Sequence[str], control_names: Sequence[str], axes:
 def flat_metric_units(state_names: Sequence[str], control_names: Sequence[str],
                       axes: Sequence[str]) -> dict[str, str]:
     """:func:`metric_units` by the column names of :func:`flat_columns` (``name_<axis>`` for the
-    per-axis metrics)."""
+    per-axis metrics).
+
+    Parameters
+    ----------
+    state_names : sequence of str
+        The plant's state components.
+    control_names : sequence of str
+        Its command components.
+    axes : sequence of str
+        The axes' names (``("x", "y", "z")``).
+
+    Returns
+    -------
+    dict of str to str
+        ``{column: unit}``.
+
+    Examples
+    --------
+    >>> from landing.results import flat_metric_units
+    >>> units = flat_metric_units(("rx", "ry", "rz", "vx", "vy", "vz", "m"), ("Fx", "Fy", "Fz"), ("x", "y", "z"))
+    >>> units["final_error_z"], units["touchdown_speed"]
+    ('m', 'm/s')
+    """
     units = metric_units(state_names, control_names, len(axes))
     per_axis = {str(m["name"]) for m in METRICS if m["per_axis"]}
     out: dict[str, str] = {}
@@ -137,8 +221,27 @@ def flat_metric_units(state_names: Sequence[str], control_names: Sequence[str],
 
 
 def require_io(*names: str, what: str = "this") -> Any:
-    """Import the named optional packages (one module, or a tuple of them), or raise an
-    ImportError saying how to install them."""
+    """Import the named optional packages (one module, or a tuple of them), or raise an ImportError
+    saying how to install them.
+
+    Parameters
+    ----------
+    *names : str
+        The modules (``"pandas"``, ``"pyarrow.parquet"``...).
+    what : str, default "this"
+        What needs them, for the error's message.
+
+    Returns
+    -------
+    module or tuple of modules
+        The module for one name, else a tuple of them in order.
+
+    Examples
+    --------
+    >>> from landing.results import require_io
+    >>> require_io("pandas", what="to_pandas").__name__
+    'pandas'
+    """
     modules = []
     for name in names:
         try:
@@ -156,7 +259,27 @@ def require_io(*names: str, what: str = "this") -> Any:
 
 def axis_names(metrics: Mapping[str, np.ndarray], state_names: Sequence[str]) -> tuple[str, ...]:
     """x, y, z for three axes; the first state names (the generalized coordinates, e.g. phi and
-    theta) otherwise."""
+    theta) otherwise.
+
+    Parameters
+    ----------
+    metrics : mapping of str to numpy.ndarray
+        Per-case metrics (their ``final_error`` gives the number of axes).
+    state_names : sequence of str
+        The plant's state components.
+
+    Returns
+    -------
+    tuple of str
+        The axes' names (empty without ``final_error``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.results import axis_names
+    >>> axis_names({"final_error": np.zeros((4, 2))}, ("phi", "theta", "phi_dot", "theta_dot"))
+    ('phi', 'theta')
+    """
     if "final_error" not in metrics:
         return ()
     d = int(np.shape(metrics["final_error"])[-1]) if np.ndim(metrics["final_error"]) else 0
@@ -172,8 +295,28 @@ def _single_case(columns: Mapping[str, np.ndarray]) -> bool:
 
 
 def flat_columns(columns: Mapping[str, np.ndarray], axes: Sequence[str] = ()) -> dict[str, np.ndarray]:
-    """Per-case columns, the per-axis ones split into ``name_<axis>`` (one row for a single
-    case's scalar metrics)."""
+    """Per-case columns, the per-axis ones split into ``name_<axis>`` (one row for a single case's
+    scalar metrics).
+
+    Parameters
+    ----------
+    columns : mapping of str to numpy.ndarray
+        Per-case columns, (N,) or (N, D), in their units.
+    axes : sequence of str, default ()
+        The axes' names (``_0``, ``_1``... without them).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The columns, each (N,), units unchanged.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.results import flat_columns
+    >>> sorted(flat_columns({"final_error": np.zeros((2, 3)), "diverged": np.zeros(2, bool)}, ("x", "y", "z")))
+    ['diverged', 'final_error_x', 'final_error_y', 'final_error_z']
+    """
     single = _single_case(columns)
     flat: dict[str, np.ndarray] = {}
     for k, v in columns.items():
@@ -283,16 +426,46 @@ class Metrics(Mapping[str, np.ndarray]):
         return sorted(set(super().__dir__()) | set(self._columns))
 
     def diverged_cases(self) -> dict[str, np.ndarray]:
-        """The indices of the diverged cases, by reason name (only the reasons that occur)."""
+        """The indices of the diverged cases, by reason name (only the reasons that occur).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``{reason: case indices}``.
+        """
         return diverged_cases(self._columns)
 
     def row(self, case: int) -> dict[str, Any]:
-        """The metrics of one case."""
+        """The metrics of one case.
+
+        Parameters
+        ----------
+        case : int
+            The case.
+
+        Returns
+        -------
+        dict
+            ``{column: value}``, in each metric's unit.
+        """
         return {k: v[case] for k, v in self._columns.items()}
 
     def cases(self, start: Any, stop: Optional[int] = None) -> Metrics:
         """Some of the cases: ``m.cases(a, b)`` is cases a .. b - 1 (views of these columns),
-        ``m.cases(index)`` those of an integer index array or a boolean mask (copies)."""
+        ``m.cases(index)`` those of an integer index array or a boolean mask (copies).
+
+        Parameters
+        ----------
+        start : int or array_like
+            The first case, or an index array or mask.
+        stop : int, optional
+            One past the last case.
+
+        Returns
+        -------
+        Metrics
+            Those cases' columns.
+        """
         key = _case_key(start, stop)
         return self._map(lambda a: a[key])
 
@@ -311,11 +484,41 @@ class Metrics(Mapping[str, np.ndarray]):
     ) -> pandas.DataFrame:
         """A pandas DataFrame, one row per case (index ``case``; a single case gives one row).
 
-        Per-axis columns are split with the axis names, ``final_error_x`` ... (``_0``, ``_1``
-        ... when the axes have no names). The arguments default to what the result that made
-        these metrics knows (a :class:`SimulationResult` or a Monte Carlo campaign fills them):
-        ``seed`` adds a ``seed`` column, ``x0`` (N, n_state) the initial states as
-        ``x0_<state name>`` columns. Needs pandas (``pip install "landing[io]"``).
+        Per-axis columns are split with the axis names, ``final_error_x`` ... (``_0``, ``_1`` ... when
+        the axes have no names). The arguments default to what the result that made these metrics
+        knows (a :class:`SimulationResult` or a Monte Carlo campaign fills them). Needs pandas
+        (``pip install "landing[io]"``).
+
+        Parameters
+        ----------
+        axis_names : sequence of str, optional
+            The axes' names.
+        x0 : numpy.ndarray, optional
+            The initial states, (N, n_state), added as ``x0_<state name>`` columns (m, m/s, kg...).
+        state_names : sequence of str, optional
+            The states' names.
+        seed : int, optional
+            Adds a ``seed`` column.
+        first_case : int, default 0
+            The index of the first row.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per case, in the metrics' units.
+
+        Examples
+        --------
+        >>> import numpy as np, landing
+        >>> from landing.controllers import PDSlidingMode
+        >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+        >>> x0 = np.zeros((4, 6))
+        >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+        >>> res = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+        ...                              record_every=10)
+        >>> df = res.metrics.to_pandas()
+        >>> df.shape[0], list(df.columns[:2]), df.index.name
+        (4, ['x0_x', 'x0_y'], 'case')
         """
         pd = require_io("pandas", what="Metrics.to_pandas")
         ctx = self.__dict__.get("_context", {})
@@ -378,6 +581,26 @@ def _metrics_doc() -> str:
         ":meth:`Metrics.diverged_cases` groups the diverged cases by reason.",
         "",
         "Columns are also attributes: ``res.metrics.fuel_used``.",
+        "",
+        "Parameters",
+        "----------",
+        "columns : mapping of str to numpy.ndarray",
+        "    The columns by name, one row per case (a single case's: scalars and (D,) rows).",
+        "",
+        "Examples",
+        "--------",
+        ">>> import numpy as np, landing",
+        ">>> from landing.controllers import PDSlidingMode",
+        ">>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch=\"sat\", boundary_layer=0.1)",
+        ">>> x0 = np.zeros((4, 6))",
+        ">>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]",
+        ">>> m = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01).metrics",
+        ">>> m[\"final_error\"].shape, m.final_position_error.shape",
+        "((4, 3), (4,))",
+        ">>> print(f\"{m.row(3)['final_position_error']:.3f} m\")",
+        "5.497 m",
+        ">>> m.diverged_cases()",
+        "{}",
     ]
     return "\n".join(lines)
 
@@ -387,24 +610,51 @@ Metrics.__doc__ = _metrics_doc()
 
 @dataclass(frozen=True, eq=False)
 class SimulationResult:
-    """What a batch produced.
-
-    Attributes
-    ----------
-    t : (T,) recorded control instants, s (empty with ``record_every=0``).
-    states : (N, T, n_state) states at the recorded instants.
-    controls : (N, T, n_control) the command applied over ``[t_k, t_k + dt)``, after
-        saturation (thrust in N for the Mars lander). The last entry is the command computed
-        at t_final, which would be held next.
-    final_state : (N, n_state) state at t_final.
-    diagnostics : name -> (N, T, D) internal signals of the law (sliding variables, ...), or
-        (N, T) for scalar ones (blending coefficients); for a plant with a sensor, also
-        ``estimated_position`` and ``estimated_velocity`` (N, T, D), what the law read.
-    metrics : per-case table, see :class:`Metrics`.
+    """What a batch produced. Made by :func:`landing.simulate` and :func:`landing.simulate_batch`.
 
     ``result[i]`` is case i alone, with the case axis dropped. A Monte Carlo campaign run with
     ``keep=`` leaves out what it did not keep: ``states`` or ``controls`` are then None and
     ``diagnostics`` is empty.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        (T,) recorded control instants, s (empty with ``record_every=0``).
+    states : numpy.ndarray or None
+        (N, T, n_state) states at the recorded instants (m, m/s, kg for the Mars lander; rad and
+        rad/s for the tethered satellite).
+    controls : numpy.ndarray or None
+        (N, T, n_control) the command applied over ``[t_k, t_k + dt)``, after saturation (thrust
+        in N for the Mars lander). The last entry is the command computed at t_final, which would
+        be held next.
+    final_state : numpy.ndarray
+        (N, n_state) state at t_final.
+    diagnostics : dict of str to numpy.ndarray
+        Name -> (N, T, D) internal signals of the law (sliding variables, ...), or (N, T) for
+        scalar ones (blending coefficients); for a plant with a sensor, also
+        ``estimated_position`` and ``estimated_velocity`` (N, T, D), what the law read.
+    metrics : Metrics
+        Per-case table, see :class:`Metrics`.
+    state_names, control_names : tuple of str
+        The components' names.
+    kernel : str, default ""
+        The instruction-set level the batch ran at (the same bits at every level).
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+    >>> x0 = np.zeros((4, 6))
+    >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+    >>> res = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+    ...                              record_every=10)
+    >>> res.t.shape, res.states.shape, res.state_names
+    ((101,), (4, 101, 6), ('x', 'y', 'z', 'vx', 'vy', 'vz'))
+    >>> res[3].final_state.shape, res.axis_names
+    ((6,), ('x', 'y', 'z'))
+    >>> print(" ".join(f"{e:.3f}" for e in res.metrics["final_position_error"]), "m")
+    0.000 0.001 0.500 5.497 m
     """
 
     t: np.ndarray
@@ -427,6 +677,7 @@ class SimulationResult:
 
     @property
     def n_cases(self) -> int:
+        """The number of cases (1 for a single case)."""
         return int(self.final_state.shape[0]) if self.final_state.ndim == 2 else 1
 
     def __repr__(self) -> str:
@@ -461,15 +712,34 @@ class SimulationResult:
         return axis_names(self.metrics, self.state_names)
 
     def to_xarray(self) -> xarray.Dataset:
-        """An xarray Dataset: ``states`` (case, time, state), ``controls`` (case, time,
-        control), each diagnostic (case, time[, axis]), ``final_state`` (case, state) and every
-        metric (case[, axis]), with the time (s), component and axis names as coordinates and
-        units where known (a single case has no ``case`` dimension). Needs xarray
-        (``pip install "landing[io]"``)."""
+        """An xarray Dataset: ``states`` (case, time, state), ``controls`` (case, time, control), each
+        diagnostic (case, time[, axis]), ``final_state`` (case, state) and every metric (case[,
+        axis]), with the time (s), component and axis names as coordinates and units where known (a
+        single case has no ``case`` dimension). Needs xarray (``pip install "landing[io]"``).
+
+        Returns
+        -------
+        xarray.Dataset
+            The result's data, units in each variable's attributes.
+
+        Examples
+        --------
+        >>> import numpy as np, landing
+        >>> from landing.controllers import PDSlidingMode
+        >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+        >>> x0 = np.zeros((4, 6))
+        >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+        >>> res = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+        ...                              record_every=10)
+        >>> ds = res.to_xarray()
+        >>> ds.sizes["case"], ds.sizes["time"], ds["time"].attrs["units"], ds["settle_time"].attrs["units"]
+        (4, 101, 's', 's')
+        """
         return result_dataset(self)
 
     @property
     def diverged(self) -> np.ndarray:
+        """Per case, whether it diverged (``metrics["diverged"]``)."""
         return self.metrics["diverged"]
 
     def __len__(self) -> int:
@@ -480,16 +750,52 @@ class SimulationResult:
         return self._map(lambda a: a[case])
 
     def cases(self, start: Any, stop: Optional[int] = None) -> SimulationResult:
-        """Some of the cases, the case axis kept: ``res.cases(a, b)`` is cases a .. b - 1 (views
-        of this result's arrays, as a slice is), ``res.cases(index)`` those of an integer index
-        array or a boolean mask (copies)."""
+        """Some of the cases, the case axis kept: ``res.cases(a, b)`` is cases a .. b - 1 (views of this
+        result's arrays, as a slice is), ``res.cases(index)`` those of an integer index array or a
+        boolean mask (copies).
+
+        Parameters
+        ----------
+        start : int or array_like
+            The first case, or an index array or mask.
+        stop : int, optional
+            One past the last case.
+
+        Returns
+        -------
+        SimulationResult
+            Those cases.
+
+        Examples
+        --------
+        >>> import numpy as np, landing
+        >>> from landing.controllers import PDSlidingMode
+        >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+        >>> x0 = np.zeros((4, 6))
+        >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+        >>> res = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+        ...                              record_every=10)
+        >>> res.cases(1, 3).n_cases, res.cases(np.array([0, 3])).states.shape
+        (2, (2, 101, 6))
+        """
         self._require_batch()
         key = _case_key(start, stop)
         return self._map(lambda a: a[key])
 
     def with_metrics(self, columns: Mapping[str, np.ndarray]) -> SimulationResult:
-        """This result with more per-case metric columns (one row per case each): a campaign's
-        draws of its dispersed parameters, ``param.<path>``."""
+        """This result with more per-case metric columns (one row per case each): a campaign's draws of
+        its dispersed parameters, ``param.<path>``.
+
+        Parameters
+        ----------
+        columns : mapping of str to numpy.ndarray
+            The columns, each with one row per case.
+
+        Returns
+        -------
+        SimulationResult
+            The result with them.
+        """
         for name, v in columns.items():
             if np.shape(v)[:1] != (self.n_cases,):
                 raise ParameterError(f"metric column {name!r} has shape {np.shape(v)}; it takes one row per case "
@@ -497,8 +803,19 @@ class SimulationResult:
         return dataclasses.replace(self, metrics=Metrics({**self.metrics, **columns}))
 
     def keeping(self, signals: Sequence[str]) -> SimulationResult:
-        """This result with only the recorded signals named in ``signals`` (of :data:`SIGNALS`);
-        the final states and the metrics are always kept."""
+        """This result with only the recorded signals named in ``signals`` (of :data:`SIGNALS`); the final
+        states and the metrics are always kept.
+
+        Parameters
+        ----------
+        signals : sequence of str
+            Among ``"states"``, ``"controls"``, ``"diagnostics"``.
+
+        Returns
+        -------
+        SimulationResult
+            The result without the others.
+        """
         return dataclasses.replace(
             self,
             states=self.states if "states" in signals else None,
@@ -508,16 +825,52 @@ class SimulationResult:
 
     @classmethod
     def empty(cls, n: int, like: SimulationResult) -> SimulationResult:
-        """``n`` cases of uninitialised arrays shaped and typed like those of the batch ``like``,
-        with its times, names, kernel and signals (what ``like`` lacks is absent here too):
-        an output allocated once, which :meth:`put` fills."""
+        """``n`` cases of uninitialised arrays shaped and typed like those of the batch ``like``, with its
+        times, names, kernel and signals (what ``like`` lacks is absent here too): an output allocated
+        once, which :meth:`put` fills.
+
+        Parameters
+        ----------
+        n : int
+            The number of cases.
+        like : SimulationResult
+            A batch to take shapes, types, times and names from.
+
+        Returns
+        -------
+        SimulationResult
+            The output, its values uninitialised.
+        """
         like._require_batch()
         n = integer("n", n, minimum=0)
         return like._map(lambda a: np.empty((n,) + a.shape[1:], dtype=a.dtype))
 
     def put(self, start: int, part: SimulationResult) -> None:
-        """Copies the cases of the batch ``part`` into cases ``start .. start + len(part)`` of
-        this one, every signal this result holds (``part`` may hold more)."""
+        """Copies the cases of the batch ``part`` into cases ``start .. start + len(part)`` of this one,
+        every signal this result holds (``part`` may hold more).
+
+        Parameters
+        ----------
+        start : int
+            The first case written.
+        part : SimulationResult
+            The batch copied in.
+
+        Examples
+        --------
+        >>> import numpy as np, landing
+        >>> from landing.controllers import PDSlidingMode
+        >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+        >>> x0 = np.zeros((4, 6))
+        >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+        >>> res = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+        ...                              record_every=10)
+        >>> out = landing.SimulationResult.empty(8, like=res)
+        >>> out.put(0, res)
+        >>> out.put(4, res)
+        >>> bool(np.array_equal(out.states[4:], res.states))
+        True
+        """
         part._require_batch()
         start = integer("start", start, minimum=0)
         into = self.cases(start, start + part.n_cases)
@@ -537,9 +890,32 @@ class SimulationResult:
 
     @classmethod
     def concat(cls, parts: Sequence[SimulationResult]) -> SimulationResult:
-        """The cases of the batches ``parts`` one after the other (say, the chunks of one
-        campaign). They must share their recorded times, component names and signals; the
-        kernel named is the first part's (every level gives the same bits)."""
+        """The cases of the batches ``parts`` one after the other (say, the chunks of one campaign). They
+        must share their recorded times, component names and signals; the kernel named is the first
+        part's (every level gives the same bits).
+
+        Parameters
+        ----------
+        parts : sequence of SimulationResult
+            The batches.
+
+        Returns
+        -------
+        SimulationResult
+            Their cases, in order.
+
+        Examples
+        --------
+        >>> import numpy as np, landing
+        >>> from landing.controllers import PDSlidingMode
+        >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+        >>> x0 = np.zeros((4, 6))
+        >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+        >>> res = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+        ...                              record_every=10)
+        >>> landing.SimulationResult.concat([res, res.cases(0, 2)]).n_cases
+        6
+        """
         parts = list(parts)
         if not parts or not all(isinstance(p, SimulationResult) for p in parts):
             raise ParameterTypeError("concat takes a non-empty sequence of SimulationResult batches")
@@ -578,7 +954,30 @@ class SimulationResult:
         )
 
     def state(self, name: str) -> np.ndarray:
-        """One state component by name, e.g. ``res.state("rz")``: (N, T) or (T,)."""
+        """One state component by name, e.g. ``res.state("rz")``.
+
+        Parameters
+        ----------
+        name : str
+            The component's name (one of :attr:`state_names`).
+
+        Returns
+        -------
+        numpy.ndarray
+            (N, T), or (T,) for a single case, in the component's unit (m, m/s, kg, rad...).
+
+        Examples
+        --------
+        >>> import numpy as np, landing
+        >>> from landing.controllers import PDSlidingMode
+        >>> law = PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1)
+        >>> x0 = np.zeros((4, 6))
+        >>> x0[:, 0] = [1.0, 2.0, 5.0, 10.0]
+        >>> res = landing.simulate_batch(landing.plants.DoubleIntegrator(), law, x0, t_final=10.0, dt=0.01,
+        ...                              record_every=10)
+        >>> res.state("x").shape, float(res.state("x")[3, 0])
+        ((4, 101), 10.0)
+        """
         if self.states is None:
             raise ParameterError(f"state {name!r}: the states were not kept (keep=...)")
         return self.states[..., self.state_names.index(name)]
