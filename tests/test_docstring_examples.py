@@ -47,6 +47,14 @@ MODULES = [
     "landing.theory.bounds",
     "landing.theory.checks",
     "landing.theory._signals",
+    "landing.plots",
+    "landing.plots._common",
+    "landing.plots.comparison",
+    "landing.plots.mars",
+    "landing.plots.sensitivity",
+    "landing.plots.standard",
+    "landing.plots.tether",
+    "landing.plots.tuning",
 ]
 
 #: What the examples of a module need beyond the package: its optional extras' modules.
@@ -58,6 +66,9 @@ EXTRAS = {
     "landing.campaign.lazy": ("zarr", "pyarrow", "xarray"),
     "landing.campaign.dask": ("distributed",),
     "landing.campaign.sensitivity": ("SALib",),  # sobol
+    **{f"landing.plots.{m}": ("matplotlib",) for m in ("_common", "comparison", "mars", "sensitivity", "standard",
+                                                       "tether")},
+    "landing.plots.tuning": ("matplotlib", "cma"),
 }
 
 

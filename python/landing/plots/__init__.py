@@ -3,8 +3,10 @@
 They accept a :class:`~landing.SimulationResult` (one case or a batch) or a
 :class:`~landing.MonteCarloResult`; a campaign's theoretical bounds, if any, are drawn.
 ``save_all`` writes the standard set for a campaign. The families: :mod:`~landing.plots.mars`
-(seed 001), :mod:`~landing.plots.comparison` (single-case comparisons, seeds 000 and 002),
-:mod:`~landing.plots.tether` (seed 003), :mod:`~landing.plots.tuning` (``landing.tune``).
+(the Mars fixed-time guidance paper), :mod:`~landing.plots.comparison` (single-case
+comparisons: the fuzzy fast-terminal asteroid paper and the fuzzy variable-rate asteroid
+paper), :mod:`~landing.plots.tether` (the tethered-satellite paper), :mod:`~landing.plots.tuning`
+(``landing.tune``).
 matplotlib is imported when the first figure is drawn.
 
 The conventions every figure function keeps: given ``ax=`` (one panel) or ``axes=`` (a sequence

@@ -146,7 +146,33 @@ def need_records(res: SimulationResult) -> None:
 
 
 def save_figures(figures: Mapping[str, Figure], folder: Union[str, Path], dpi: int = 120) -> list[Path]:
-    """Writes figures (name -> Figure) as ``folder/name.png`` and closes them."""
+    """Writes figures (name -> Figure) as ``folder/name.png`` and closes them.
+
+    Parameters
+    ----------
+    figures : mapping of str to matplotlib.figure.Figure
+        The figures by name.
+    folder : str or pathlib.Path
+        The folder (made if missing).
+    dpi : int, default 120
+        The images' resolution (dots per inch).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+
+    Examples
+    --------
+    >>> import tempfile, matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> paths = landing.plots.save_figures({"mass": landing.plots.mass(mc)}, tempfile.mkdtemp())
+    >>> [p.name for p in paths]
+    ['mass.png']
+    """
     plt = import_extra("matplotlib.pyplot", "pip install matplotlib")
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)

@@ -1,6 +1,6 @@
-"""Comparisons of single-case runs, one line per labelled run (the asteroid papers' figures,
-seeds 000 and 002): tracking errors, commands, a law's diagnostics, the fuzzy blend and the
-trajectory against its reference."""
+"""Comparisons of single-case runs, one line per labelled run (the figures of the fuzzy
+fast-terminal asteroid paper and the fuzzy variable-rate asteroid paper): tracking errors,
+commands, a law's diagnostics, the fuzzy blend and the trajectory against its reference."""
 
 from __future__ import annotations
 
@@ -60,10 +60,37 @@ def _draw(ax: Axes, label: str, t: np.ndarray, data: np.ndarray, highlight: int,
 
 def tracking_errors(results: Labelled, reference: Optional[Reference] = None, velocity: bool = False, *,
                     highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Position (or velocity) tracking error per axis against time, one line per labelled run
-    (seed 000 Fig. 11, seed 002 Fig. 7). ``reference``: the target tracked (default the
-    origin). A batch's cases thin, the nominal (case ``highlight``) bold. ``axes``: one Axes
-    per axis of the plant to draw into."""
+    """Position (m) or velocity (m/s) tracking error per axis against time, s, one line per labelled
+    run (the fuzzy fast-terminal asteroid paper's Fig. 11, the fuzzy variable-rate asteroid
+    paper's Fig. 7). A batch's cases thin, the nominal (case ``highlight``) bold.
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or dict of str to landing.SimulationResult
+        Single-case runs by label (one line each), or a lone run or batch (its first 300 cases).
+    reference : landing.reference.Reference, optional
+        The target tracked (default the origin).
+    velocity : bool, default False
+        Whether the velocity error is drawn instead of the position error.
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        One Axes per axis of the plant to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("seed000_fuzzy_ftsmc_tanh").replace(t_final=2.0)
+    >>> run = scenario.simulate()
+    >>> fig = landing.plots.tracking_errors({"fuzzy FTSMC": run}, scenario.reference)
+    >>> type(fig).__name__, len(fig.axes)
+    ('Figure', 3)
+    """
     runs = _runs(results)
     first = next(iter(runs.values()))
     n = recorded(first, "controls").shape[-1]
@@ -88,11 +115,39 @@ def tracking_errors(results: Labelled, reference: Optional[Reference] = None, ve
 
 def commands(results: Labelled, ylabel: Optional[str] = None, *, plant: Optional[Plant] = None,
              highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Applied command per axis against time, one line per labelled run (seed 000 Fig. 5, 10;
-    seed 002 Fig. 9, 10). ``ylabel``: the command and its unit, e.g. "u (m/s^2)" (by default
-    that of ``plant``'s command when known). The acceleration limits of a small body's or a
-    double integrator's ``plant`` are drawn. A batch's cases thin, the nominal (case
-    ``highlight``) bold. ``axes``: one Axes per command to draw into."""
+    """Applied command per axis against time, s, one line per labelled run (the fuzzy fast-terminal
+    asteroid paper's Fig. 5, 10; the fuzzy variable-rate asteroid paper's Fig. 9, 10). The
+    acceleration limits (m/s^2) of a small body's or a double integrator's ``plant`` are drawn. A
+    batch's cases thin, the nominal (case ``highlight``) bold.
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or dict of str to landing.SimulationResult
+        Single-case runs by label (one line each), or a lone run or batch (its first 300 cases).
+    ylabel : str, optional
+        The command and its unit, e.g. "u (m/s^2)" (by default that of ``plant``'s command when
+        known).
+    plant : landing.plants.Plant, optional
+        The plant whose command limits are drawn.
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        One Axes per command to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("seed000_fuzzy_ftsmc_tanh").replace(t_final=2.0)
+    >>> run = scenario.simulate()
+    >>> fig = landing.plots.commands({"fuzzy FTSMC": run}, plant=scenario.plant)
+    >>> len(fig.axes)
+    3
+    """
     runs = _runs(results)
     n = recorded(next(iter(runs.values())), "controls").shape[-1]
     fig, panels = several_axes(axes, n, (1, n), figsize=(12, 3.8), layout="constrained")
@@ -126,9 +181,37 @@ def commands(results: Labelled, ylabel: Optional[str] = None, *, plant: Optional
 
 def diagnostic(results: Labelled, name: str = "s", unit: str = "", *, highlight: int = 0,
                axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """A law's recorded signal (a sliding variable, the fuzzy term...) per axis against time,
-    one line per labelled run that has it (seed 000 Fig. 6, seed 002 Fig. 8); ``unit`` its unit
-    for the axis label (none: the law's own units). ``axes``: one Axes per component."""
+    """A law's recorded signal (a sliding variable, the fuzzy term...) per axis against time, s, one
+    line per labelled run that has it (the fuzzy fast-terminal asteroid paper's Fig. 6, the fuzzy
+    variable-rate asteroid paper's Fig. 8).
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or dict of str to landing.SimulationResult
+        Single-case runs by label (one line each), or a lone run or batch (its first 300 cases).
+    name : str, default "s"
+        The diagnostic's name.
+    unit : str, default ""
+        Its unit for the axis label (none: the law's own units, e.g. m/s for a sliding variable
+        on velocity).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        One Axes per component to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("seed000_fuzzy_ftsmc_tanh").replace(t_final=2.0)
+    >>> run = scenario.simulate()
+    >>> len(landing.plots.diagnostic({"fuzzy FTSMC": run}, "s", "m/s").axes)
+    3
+    """
     runs = {k: v for k, v in _runs(results).items() if name in v.diagnostics}
     if not runs:
         raise ParameterError(f"no run recorded the diagnostic {name!r}")
@@ -150,8 +233,31 @@ def diagnostic(results: Labelled, name: str = "s", unit: str = "", *, highlight:
 
 
 def blend_coefficients(result: SimulationResult, *, highlight: int = 0, ax: Optional[Axes] = None) -> Figure:
-    """The fuzzy blend a(D), b(D) of FuzzyFastTerminalSMC against time (seed 000 Fig. 7).
-    ``ax``: an Axes to draw into."""
+    """The fuzzy blend a(D), b(D) (dimensionless) of FuzzyFastTerminalSMC against time, s (the fuzzy
+    fast-terminal asteroid paper's Fig. 7).
+
+    Parameters
+    ----------
+    result : landing.SimulationResult
+        A run of FuzzyFastTerminalSMC (its diagnostics ``a`` and ``b``).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    ax : matplotlib.axes.Axes, optional
+        An Axes to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("seed000_fuzzy_ftsmc_tanh").replace(t_final=2.0)
+    >>> run = scenario.simulate()
+    >>> len(landing.plots.blend_coefficients(run).axes)
+    1
+    """
     need_records(result)
     fig, ax = single_axes(ax, figsize=(6, 4), layout="constrained")
     missing = [name for name in ("a", "b") if name not in result.diagnostics]
@@ -172,8 +278,33 @@ def blend_coefficients(result: SimulationResult, *, highlight: int = 0, ax: Opti
 
 def trajectory_with_reference(results: Labelled, reference: Optional[Reference] = None, *, highlight: int = 0,
                               ax: Optional[Any] = None) -> Figure:
-    """3D trajectories of labelled runs with the reference they track (seed 000 Fig. 12, seed 002
-    Fig. 6). ``ax``: a 3D Axes to draw into."""
+    """3D trajectories, m, of labelled runs with the reference they track (the fuzzy fast-terminal
+    asteroid paper's Fig. 12, the fuzzy variable-rate asteroid paper's Fig. 6).
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or dict of str to landing.SimulationResult
+        Single-case runs by label (one line each), or a lone run or batch (its first 300 cases).
+    reference : landing.reference.Reference, optional
+        The reference drawn.
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D, optional
+        A 3D Axes to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("seed000_fuzzy_ftsmc_tanh").replace(t_final=2.0)
+    >>> run = scenario.simulate()
+    >>> len(landing.plots.trajectory_with_reference({"fuzzy FTSMC": run}, scenario.reference).axes)
+    1
+    """
     runs = _runs(results)
     if ax is None:
         fig = new_figure(figsize=(7, 6))

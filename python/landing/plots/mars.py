@@ -1,6 +1,6 @@
-"""The Mars lander's figures (seed 001): trajectories, touchdown sites, final velocities,
-sliding variables against their bounds, thrust, positions and mass; and the fuel-optimal
-comparison's position, thrust and mass."""
+"""The Mars lander's figures (the Mars fixed-time guidance paper's): trajectories, touchdown
+sites, final velocities, sliding variables against their bounds, thrust, positions and mass; and
+the fuel-optimal comparison's position, thrust and mass."""
 
 from __future__ import annotations
 
@@ -50,8 +50,34 @@ __all__ = [
 
 
 def trajectories_3d(result: Result, max_cases: int = 300, *, highlight: int = 0, ax: Optional[Any] = None) -> Figure:
-    """3D trajectories (seed 001 Fig. 7(a)): the cases thin, the nominal (case ``highlight``)
-    bold, the target marked and the ground (z = 0) outlined. ``ax``: a 3D Axes to draw into."""
+    """3D trajectories, m (the Mars fixed-time guidance paper's Fig. 7(a)): the cases thin, the
+    nominal (case ``highlight``) bold, the target marked and the ground (z = 0) outlined.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    max_cases : int, default 300
+        The most cases drawn (the first ones).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    ax : mpl_toolkits.mplot3d.axes3d.Axes3D, optional
+        A 3D Axes to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.trajectories_3d(mc)
+    >>> type(fig).__name__, len(fig.axes)
+    ('Figure', 1)
+    """
     res, _ = result_and_bounds(result)
     need_records(res)
     s = batched(recorded(res, "states"), 3)[:max_cases]
@@ -91,9 +117,33 @@ def _radius_box(ax: Axes, r: Optional[float]) -> None:
 
 
 def dispersion_ellipse(points: np.ndarray, k: float, samples: int = 181) -> np.ndarray:
-    """The k-sigma ellipse of 2-D ``points`` (n, 2): the curve at Mahalanobis distance k from
-    their mean under their sample covariance, (samples, 2). For a 2-D normal it holds
-    1 - exp(-k^2 / 2) of the cases (39.3, 86.5 and 98.9 % at k = 1, 2, 3)."""
+    """The k-sigma ellipse of 2-D ``points`` (n, 2): the curve at Mahalanobis distance k from their
+    mean under their sample covariance, (samples, 2). For a 2-D normal it holds 1 - exp(-k^2 / 2)
+    of the cases (39.3, 86.5 and 98.9 % at k = 1, 2, 3).
+
+    Parameters
+    ----------
+    points : numpy.ndarray
+        (n, 2) points (m for touchdown sites).
+    k : float
+        The Mahalanobis distance.
+    samples : int, default 181
+        The points of the curve.
+
+    Returns
+    -------
+    numpy.ndarray
+        (samples, 2), in the points' unit.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from landing.plots.mars import dispersion_ellipse
+    >>> points = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 2.0], [0.0, -2.0]])
+    >>> e = dispersion_ellipse(points, 1.0, samples=5)
+    >>> e.shape, bool(np.allclose(np.abs(e).max(axis=0), np.sqrt(np.diag(np.cov(points, rowvar=False)))))
+    ((5, 2), True)
+    """
     mean = points.mean(axis=0)
     w, v = np.linalg.eigh(np.cov(points, rowvar=False))
     a = np.linspace(0.0, 2.0 * np.pi, samples)
@@ -103,13 +153,39 @@ def dispersion_ellipse(points: np.ndarray, k: float, samples: int = 181) -> np.n
 
 def landing_sites(result: Result, requirement_radius: Optional[float] = None, *, highlight: int = 0,
                   axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Touchdown sites: where each case first crosses rz = 0 from above (the ``touchdown_position``
-    metric, interpolated within the integrator step), on the XOY plane, with their 1, 2 and 3
-    sigma dispersion ellipses (of the sites' 2-D covariance), the requirement's circle about the
-    target when ``requirement_radius`` is given, and the theoretical s1 neighbourhood when the
-    result carries bounds; and the touchdown speeds (seed 001 Fig. 8(a), (c) read at touchdown).
-    Cases that never touch the ground are counted in the title; the nominal's site (case
-    ``highlight``) is marked. ``axes``: two Axes to draw into (sites, speeds)."""
+    """Touchdown sites, m: where each case first crosses rz = 0 from above (the
+    ``touchdown_position`` metric, interpolated within the integrator step), on the XOY plane,
+    with their 1, 2 and 3 sigma dispersion ellipses (of the sites' 2-D covariance), the
+    requirement's circle about the target when ``requirement_radius`` is given, and the
+    theoretical s1 neighbourhood when the result carries bounds; and the touchdown speeds, m/s
+    (the Mars fixed-time guidance paper's Fig. 8(a), (c) read at touchdown). Cases that never
+    touch the ground are counted in the title; the nominal's site (case ``highlight``) is marked.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    requirement_radius : float, optional
+        The touchdown requirement's radius about the target (m).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 2 Axes to draw into (sites, speeds); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.landing_sites(mc, requirement_radius=50.0)
+    >>> len(fig.axes)
+    2
+    """
     res, bounds = result_and_bounds(result)
     m = res.metrics
     r = np.atleast_2d(np.asarray(m["touchdown_position"], dtype=float))[:, :3]
@@ -169,11 +245,34 @@ def landing_sites(result: Result, requirement_radius: Optional[float] = None, *,
 
 
 def final_velocities(result: Result, *, highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Velocities at touchdown (the ``touchdown_velocity`` metric, at the first rz = 0 crossing)
-    on the XOZ and XOY planes (seed 001 Fig. 8(c), (d)); the final states' velocities only for
-    the cases that never touch down (a case that hovers at its target until t_final would show
-    one dot at zero). The nominal (case ``highlight``) is marked. ``axes``: two Axes to draw
-    into (XOZ, XOY)."""
+    """Velocities at touchdown, m/s (the ``touchdown_velocity`` metric, at the first rz = 0
+    crossing) on the XOZ and XOY planes (the Mars fixed-time guidance paper's Fig. 8(c), (d));
+    the final states' velocities only for the cases that never touch down (a case that hovers at
+    its target until t_final would show one dot at zero). The nominal (case ``highlight``) is
+    marked.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 2 Axes to draw into (XOZ, XOY); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> len(landing.plots.final_velocities(mc).axes)
+    2
+    """
     res, _ = result_and_bounds(result)
     v_end = batched(res.final_state, 2)[:, 3:6]
     v_td = np.atleast_2d(np.asarray(res.metrics["touchdown_velocity"], dtype=float))[:, :3]
@@ -203,10 +302,37 @@ def final_velocities(result: Result, *, highlight: int = 0, axes: Optional[Seque
 
 def sliding_variables(result: Result, bounds: Optional[MSSBounds] = None, max_cases: int = 300, *,
                       highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """s1 and s2 per axis against time (seed 001 Fig. 9, 10), with the theoretical
-    neighbourhoods (dashed) and the times from which they hold (dotted), when known; a bound
-    off the plot or beyond the run is said in the panel's title. The cases thin, the nominal
-    (case ``highlight``) bold. ``axes``: six Axes to draw into (s1 x, y, z; s2 x, y, z)."""
+    """s1 (m) and s2 (m/s) per axis against time, s (the Mars fixed-time guidance paper's Fig. 9,
+    10), with the theoretical neighbourhoods (dashed) and the times from which they hold
+    (dotted), when known; a bound off the plot or beyond the run is said in the panel's title.
+    The cases thin, the nominal (case ``highlight``) bold.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    bounds : landing.theory.MSSBounds, optional
+        The bounds drawn (default: the campaign's).
+    max_cases : int, default 300
+        The most cases drawn (the first ones).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 6 Axes to draw into (s1 x, y, z; s2 x, y, z); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> len(landing.plots.sliding_variables(mc).axes)
+    6
+    """
     res, b = result_and_bounds(result)
     need_records(res)
     b = bounds if bounds is not None else b
@@ -261,10 +387,38 @@ def _per_axis(result: Result, signal: Callable[[SimulationResult], np.ndarray], 
 
 def thrust(result: Result, max_cases: int = 300, *, plant: Optional[MarsLander] = None, highlight: int = 0,
            axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Applied thrust per axis against time, kN (seed 001 Fig. 2(c), 12), with the lander's
-    per-axis limit and its thrust magnitude limit (which bounds every component) when it has
-    them: of ``plant``, else of the campaign's scenario. The cases thin, the nominal (case
-    ``highlight``) bold. ``axes``: three Axes to draw into (x, y, z)."""
+    """Applied thrust per axis against time, kN (the Mars fixed-time guidance paper's Fig. 2(c),
+    12), with the lander's per-axis limit and its thrust magnitude limit (which bounds every
+    component) when it has them: of ``plant``, else of the campaign's scenario. The cases thin,
+    the nominal (case ``highlight``) bold.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    max_cases : int, default 300
+        The most cases drawn (the first ones).
+    plant : landing.plants.MarsLander, optional
+        The lander whose thrust limits (N, drawn in kN) are drawn.
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 3 Axes to draw into (x, y, z); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.thrust(mc)
+    >>> len(fig.axes), fig.axes[0].get_ylabel()
+    (3, 'thrust (kN)')
+    """
     fig, panels = _per_axis(result, lambda r: recorded(r, "controls"), "thrust (kN)", "Thrust", max_cases,
                             highlight, axes, scale=1e-3)
     per_axis, magnitude = mars_limits(result, plant)
@@ -276,8 +430,18 @@ def thrust(result: Result, max_cases: int = 300, *, plant: Optional[MarsLander] 
 
 
 def draw_thrust_limits(ax: Axes, per_axis: Optional[float], magnitude: Optional[float]) -> None:
-    """The per-axis thrust limit (dashed red) and the thrust magnitude limit (dash-dotted), in
-    kN, at + and -, where finite."""
+    """The per-axis thrust limit (dashed red) and the thrust magnitude limit (dash-dotted), in kN, at
+    + and -, where finite.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel.
+    per_axis : float or None
+        The per-axis limit (N).
+    magnitude : float or None
+        The magnitude limit (N).
+    """
     for value, style, label in ((per_axis, "--", "axis limit"), (magnitude, "-.", "|F| limit")):
         if value is not None and np.isfinite(value):
             for sgn in (1, -1):
@@ -287,9 +451,34 @@ def draw_thrust_limits(ax: Axes, per_axis: Optional[float], magnitude: Optional[
 
 def positions(result: Result, max_cases: int = 300, *, highlight: int = 0,
               axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Position per axis against time (seed 001 Fig. 2(a), 11), the ground (rz = 0) drawn on
-    the altitude. The cases thin, the nominal (case ``highlight``) bold. ``axes``: three Axes to
-    draw into (x, y, z)."""
+    """Position per axis against time, m (the Mars fixed-time guidance paper's Fig. 2(a), 11), the
+    ground (rz = 0) drawn on the altitude. The cases thin, the nominal (case ``highlight``) bold.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    max_cases : int, default 300
+        The most cases drawn (the first ones).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 3 Axes to draw into (x, y, z); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.positions(mc)
+    >>> len(fig.axes), fig.axes[2].get_ylabel()
+    (3, 'position (m)')
+    """
     fig, panels = _per_axis(result, lambda r: batched(recorded(r, "states"), 3)[:, :, :3], "position (m)",
                             "Position", max_cases, highlight, axes)
     panels[2].axhline(0.0, color="tab:brown", lw=1.2, label="ground (rz = 0)")
@@ -298,8 +487,34 @@ def positions(result: Result, max_cases: int = 300, *, highlight: int = 0,
 
 
 def mass(result: Result, max_cases: int = 300, *, highlight: int = 0, ax: Optional[Axes] = None) -> Figure:
-    """Lander mass against time (seed 001 Fig. 4): the cases thin, the nominal (case
-    ``highlight``) bold. ``ax``: an Axes to draw into."""
+    """Lander mass against time, kg (the Mars fixed-time guidance paper's Fig. 4): the cases thin,
+    the nominal (case ``highlight``) bold.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    max_cases : int, default 300
+        The most cases drawn (the first ones).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    ax : matplotlib.axes.Axes, optional
+        An Axes to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.mass(mc)
+    >>> len(fig.axes), fig.axes[0].get_ylabel()
+    (1, 'mass (kg)')
+    """
     res, _ = result_and_bounds(result)
     need_records(res)
     m = batched(recorded(res, "states"), 3)[:max_cases, :, res.state_names.index("m")]
@@ -315,11 +530,37 @@ def mass(result: Result, max_cases: int = 300, *, highlight: int = 0, ax: Option
 
 def position_and_thrust(results: Labelled, ground: bool = True, *, plant: Optional[MarsLander] = None,
                         axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """One row per labelled single-case run: position per axis (left) and thrust per axis, kN
-    (right) against time (seed 001 Fig. 3: the optimum flown open loop without and with the
-    disturbance). The altitude's first crossing of zero is marked, the ground (rz = 0) drawn
-    when ``ground``, and the thrust limits of ``plant`` when given. ``axes``: two Axes per run
-    to draw into (position, thrust, row by row)."""
+    """One row per labelled single-case run: position per axis, m (left) and thrust per axis, kN
+    (right) against time (the Mars fixed-time guidance paper's Fig. 3: the optimum flown open loop
+    without and with the disturbance). The altitude's first crossing of zero is marked, the ground
+    (rz = 0) drawn when ``ground``, and the thrust limits of ``plant`` when given.
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or dict of str to landing.SimulationResult
+        Single-case runs by label (one run: no label).
+    ground : bool, default True
+        Whether the ground is drawn.
+    plant : landing.plants.MarsLander, optional
+        The lander whose thrust limits are drawn.
+    axes : sequence of matplotlib.axes.Axes, optional
+        Two Axes per run to draw into (position, thrust, row by row); by default a Figure of its
+        own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.position_and_thrust({"case 0": mc[0], "case 1": mc[1]})
+    >>> len(fig.axes)
+    4
+    """
     runs = labelled(results)
     fig, panels = several_axes(axes, 2 * len(runs), (len(runs), 2), figsize=(12, 3.3 * len(runs)),
                                layout="constrained")
@@ -350,9 +591,33 @@ def position_and_thrust(results: Labelled, ground: bool = True, *, plant: Option
 
 
 def masses(results: Labelled, read_at: Optional[Mapping[str, float]] = None, *, ax: Optional[Axes] = None) -> Figure:
-    """Mass against time for labelled single-case runs (seed 001 Fig. 4), each labelled with
-    the fuel spent by ``read_at[label]`` (a time, e.g. the landing time; the end of the run if
-    not given). ``ax``: an Axes to draw into."""
+    """Mass against time, kg, for labelled single-case runs (the Mars fixed-time guidance paper's
+    Fig. 4), each labelled with the fuel spent (kg) by ``read_at[label]`` (a time, e.g. the
+    landing time; the end of the run if not given).
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or dict of str to landing.SimulationResult
+        Single-case runs by label.
+    read_at : mapping of str to float, optional
+        The time (s) each run's fuel is read at, by label.
+    ax : matplotlib.axes.Axes, optional
+        An Axes to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.masses({"case 0": mc[0], "case 1": mc[1]}, read_at={"case 0": 4.0})
+    >>> len(fig.axes)
+    1
+    """
     runs = labelled(results)
     fig, ax = single_axes(ax, figsize=(7, 4.5), layout="constrained")
     for label, res in runs.items():

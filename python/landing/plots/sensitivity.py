@@ -20,11 +20,35 @@ __all__ = ["tornado"]
 
 def tornado(result: Union[MonteCarloResult, RankCorrelations], metric: str, *, k: int = 10,
             ax: Optional[Axes] = None) -> Figure:
-    """The ``k`` dispersed quantities with the largest partial rank correlation (PRCC) with
-    ``metric``, largest on top, as horizontal bars (Spearman's coefficient marked on each):
-    which dispersion drives the metric, and in which direction. Takes a campaign (its
-    :meth:`~landing.MonteCarloResult.sensitivity`) or the correlations; draws into ``ax`` if
-    given and returns its Figure."""
+    """The ``k`` dispersed quantities with the largest partial rank correlation (PRCC, dimensionless)
+    with ``metric``, largest on top, as horizontal bars (Spearman's coefficient marked on each):
+    which dispersion drives the metric, and in which direction.
+
+    Parameters
+    ----------
+    result : landing.MonteCarloResult or landing.campaign.RankCorrelations
+        A campaign (its :meth:`~landing.MonteCarloResult.sensitivity`) or the correlations.
+    metric : str
+        The metric (per-axis ones split, e.g. ``"final_error_x"``).
+    k : int, default 10
+        The most quantities drawn.
+    ax : matplotlib.axes.Axes, optional
+        An Axes to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> fig = landing.plots.tornado(mc, "fuel_used", k=3)
+    >>> len(fig.axes), fig.axes[0].get_title()
+    (1, 'What drives fuel_used')
+    """
     corr = result.sensitivity([metric]) if isinstance(result, MonteCarloResult) else result
     top = corr.drivers(metric, k)[::-1]  # largest last: on top of the barh
     fig, ax = single_axes(ax, figsize=(7, 0.45 * len(top) + 1.5), layout="constrained")

@@ -28,7 +28,33 @@ __all__ = ["save_all", "standard_figures"]
 
 
 def save_all(result: Result, folder: Union[str, Path], dpi: int = 120) -> list[Path]:
-    """Write the standard figures of a Mars campaign as PNG files into ``folder``."""
+    """Write the standard figures of a Mars campaign (:func:`standard_figures`) as PNG files into
+    ``folder``, and close them.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    folder : str or pathlib.Path
+        The folder (made if missing).
+    dpi : int, default 120
+        The images' resolution (dots per inch).
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, ``folder/<name>.png``.
+
+    Examples
+    --------
+    >>> import tempfile, matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> [p.name for p in landing.plots.save_all(mc, tempfile.mkdtemp())][:3]
+    ['trajectories_3d.png', 'landing_sites.png', 'final_velocities.png']
+    """
     return save_figures(standard_figures(result), folder, dpi=dpi)
 
 
@@ -38,7 +64,30 @@ def standard_figures(result: Result, plant: Optional[Plant] = None,
     ``landing mc`` and ``landing report`` write): the Mars figures of :func:`save_all` for the
     lander, tracking errors and commands for the small body and the double integrator, angles,
     rates and commands for the tethered satellite. Nothing for a run that recorded nothing; none
-    of a Mars campaign's figures drawn from a signal it did not keep."""
+    of a Mars campaign's figures drawn from a signal it did not keep.
+
+    Parameters
+    ----------
+    result : landing.SimulationResult or landing.MonteCarloResult
+        A run, a batch or a campaign (a campaign's bounds and thrust limits are drawn).
+    plant : landing.plants.Plant, optional
+        The plant the result is of (default: the Mars lander).
+    reference : landing.reference.Reference, optional
+        The reference tracked (for the small body's and the double integrator's figures).
+
+    Returns
+    -------
+    dict of str to matplotlib.figure.Figure
+        The figures by name.
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("mars_monte_carlo").replace(t_final=5.0)
+    >>> mc = landing.monte_carlo(scenario, n=8, seed=1)
+    >>> sorted(landing.plots.standard_figures(mc))
+    ['final_velocities', 'landing_sites', 'mass', 'positions', 'sliding_variables', 'thrust', 'trajectories_3d']
+    """
     res, _ = result_and_bounds(result)
     if res.t.size == 0:
         return {}

@@ -1,5 +1,6 @@
-"""The tethered satellite's figures (seed 003, figures 3 to 7): angles, rates and commands
-against time, and the worst settle time against the initial spread with the fixed-time bound."""
+"""The tethered satellite's figures (the tethered-satellite paper's Fig. 3 to 7): angles,
+rates and commands against time, and the worst settle time against the initial spread with the
+fixed-time bound."""
 
 from __future__ import annotations
 
@@ -79,9 +80,36 @@ def _legends(panels: list[Axes]) -> None:
 
 def tether_angles(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50, *,
                   highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """In-plane and attitude angles against time, degrees (seed 003 Fig. 3 and 5). ``results``
-    is a result or a mapping label -> result (e.g. {"FNTSMC": ..., "NTSMC": ...}); a batch's
-    cases thin with case ``highlight`` bold. ``axes``: two Axes to draw into (phi, theta)."""
+    """In-plane and attitude angles against time, deg and s (the tethered-satellite paper's Fig. 3
+    and 5). A batch's cases thin with case ``highlight`` bold.
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or mapping of str to landing.SimulationResult
+        A run or batch, or several by label (e.g. ``{"FNTSMC": ..., "NTSMC": ...}``).
+    plant : landing.plants.TetheredSatellite, optional
+        The plant the runs are of (the flexible model's angles are computed from its state).
+    max_cases : int, default 50
+        The most cases of a batch drawn (the first ones).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 2 Axes to draw into (phi, theta); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("tether_fntsmc_simplified").replace(t_final=5.0)
+    >>> run = scenario.simulate()
+    >>> fig = landing.plots.tether_angles(run, scenario.plant)
+    >>> len(fig.axes), fig.axes[0].get_ylabel()
+    (2, 'phi (deg)')
+    """
     fig, panels = _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[0], ("phi (deg)", "theta (deg)"),
                                ("In-plane angle", "Attitude angle"), plant, 180.0 / np.pi, max_cases, highlight,
                                axes)
@@ -91,8 +119,35 @@ def tether_angles(results: Runs, plant: Optional[TetheredSatellite] = None, max_
 
 def tether_rates(results: Runs, plant: Optional[TetheredSatellite] = None, max_cases: int = 50, *,
                  highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """In-plane and attitude angular rates against time, deg/s (seed 003 Fig. 4 and 6).
-    ``axes``: two Axes to draw into (phi', theta')."""
+    """In-plane and attitude angular rates against time, deg/s and s (the tethered-satellite paper's
+    Fig. 4 and 6).
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or mapping of str to landing.SimulationResult
+        A run or batch, or several by label (e.g. ``{"FNTSMC": ..., "NTSMC": ...}``).
+    plant : landing.plants.TetheredSatellite, optional
+        The plant the runs are of (the flexible model's angles are computed from its state).
+    max_cases : int, default 50
+        The most cases of a batch drawn (the first ones).
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 2 Axes to draw into (phi', theta'); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("tether_fntsmc_simplified").replace(t_final=5.0)
+    >>> run = scenario.simulate()
+    >>> len(landing.plots.tether_rates(run, scenario.plant).axes)
+    2
+    """
     fig, panels = _tether_pair(results, lambda r, p: _tether_coordinates(r, p)[1],
                                ("phi' (deg/s)", "theta' (deg/s)"), ("In-plane angular rate", "Attitude angular rate"),
                                plant, 180.0 / np.pi, max_cases, highlight, axes)
@@ -102,9 +157,35 @@ def tether_rates(results: Runs, plant: Optional[TetheredSatellite] = None, max_c
 
 def tether_commands(results: Runs, max_cases: int = 50, *, plant: Optional[TetheredSatellite] = None,
                     highlight: int = 0, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Applied thrust (N) and torque (N m) against time (seed 003 Fig. 7 (a), (b)), with the
-    plant's thrust and torque limits when ``plant`` is given. ``axes``: two Axes to draw into
-    (thrust, torque)."""
+    """Applied thrust (N) and torque (N m) against time, s (the tethered-satellite paper's Fig. 7
+    (a), (b)), with the plant's thrust and torque limits when ``plant`` is given.
+
+    Parameters
+    ----------
+    results : landing.SimulationResult or mapping of str to landing.SimulationResult
+        A run or batch, or several by label (e.g. ``{"FNTSMC": ..., "NTSMC": ...}``).
+    max_cases : int, default 50
+        The most cases of a batch drawn (the first ones).
+    plant : landing.plants.TetheredSatellite, optional
+        The plant whose limits are drawn.
+    highlight : int, default 0
+        The case drawn bold (the nominal).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 2 Axes to draw into (thrust, torque); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> scenario = landing.scenarios.preset("tether_fntsmc_simplified").replace(t_final=5.0)
+    >>> run = scenario.simulate()
+    >>> len(landing.plots.tether_commands(run, plant=scenario.plant).axes)
+    2
+    """
     fig, panels = _tether_pair(results, lambda r, p: batched(recorded(r, "controls"), 3),
                                ("thrust (N)", "torque (N m)"),
                                ("(a) Thrust of the sub-satellite", "(b) Torque of the sub-satellite"), None, 1.0,
@@ -121,7 +202,18 @@ def tether_commands(results: Runs, max_cases: int = 50, *, plant: Optional[Tethe
 
 def tether_limits(plant: TetheredSatellite) -> tuple[Optional[float], Optional[float]]:
     """The tethered satellite's thrust limit (N) and torque limit (N m; by default
-    ``thrust_limit * side / 2``), None where it has none."""
+    ``thrust_limit * side / 2``), None where it has none.
+
+    Parameters
+    ----------
+    plant : landing.plants.TetheredSatellite
+        The plant.
+
+    Returns
+    -------
+    tuple of (float or None, float or None)
+        ``(thrust limit in N, torque limit in N m)``.
+    """
     thrust = None if plant.thrust_limit is None else float(np.max(np.asarray(plant.thrust_limit, dtype=float)))
     if plant.torque_limit is not None:
         torque: Optional[float] = float(np.max(np.asarray(plant.torque_limit, dtype=float)))
@@ -134,10 +226,30 @@ def tether_limits(plant: TetheredSatellite) -> tuple[Optional[float], Optional[f
 
 def tether_fixed_time(worst: Mapping[str, Mapping[float, np.ndarray]],
                       bound: Union[FNTSMCBounds, ArrayLike], *, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """Worst settle time of each angle against the initial-error spread of a campaign, per law,
-    with the fixed-time bound (dashed): ``worst[law][spread_deg]`` is a (2,) array (phi, theta);
-    ``bound`` the (2,) bound of :func:`landing.theory.fntsmc_bounds` (``.total``). ``axes``: two
-    Axes to draw into (phi, theta)."""
+    """Worst settle time of each angle, s, against the initial-error spread of a campaign, deg, per
+    law, with the fixed-time bound (dashed).
+
+    Parameters
+    ----------
+    worst : mapping of str to mapping of float to numpy.ndarray
+        ``worst[law][spread_deg]``: the (2,) worst settle times (phi, theta), s.
+    bound : landing.theory.FNTSMCBounds or array_like
+        The (2,) bound (s) of :func:`landing.theory.fntsmc_bounds` (its ``.total``).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 2 Axes to draw into (phi, theta); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import numpy as np, landing
+    >>> worst = {"FNTSMC": {1.0: np.array([20.0, 10.0]), 5.0: np.array([25.0, 12.0])}}
+    >>> len(landing.plots.tether_fixed_time(worst, bound=[60.0, 30.0]).axes)
+    2
+    """
     fig, panels = several_axes(axes, 2, (1, 2), figsize=(11, 4), layout="constrained")
     total = np.ravel(bound.total if isinstance(bound, FNTSMCBounds) else bound)
     for j, ((name, sym), ax) in enumerate(zip(_TETHER_AXES, panels)):

@@ -18,9 +18,36 @@ __all__ = ["tuning_convergence", "tuning_front"]
 
 
 def tuning_convergence(result: TuneResult, *, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """A :class:`landing.tune.TuneResult`'s search: every evaluation's first objective against
-    its generation (feasible filled, infeasible hollow) and the best feasible so far (line);
-    below, the share of each generation that is feasible. ``axes``: two Axes to draw into."""
+    """A :class:`landing.tune.TuneResult`'s search: every evaluation's first objective (in its own
+    unit) against its generation (feasible filled, infeasible hollow) and the best feasible so far
+    (line); below, the share of each generation that is feasible.
+
+    Parameters
+    ----------
+    result : landing.tune.TuneResult
+        The tuning.
+    axes : sequence of matplotlib.axes.Axes, optional
+        Exactly 2 Axes to draw into (objective, feasible share); by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> from landing.tune import tune
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> r = tune(s, {"lambda_": (0.2, 2.0), "k": (0.1, 2.0, "log")}, "mean(iae)",
+    ...          ["max(peak_command) <= 5"], budget=12, seed=1, progress=False)
+    >>> len(landing.plots.tuning_convergence(r).axes)
+    2
+    """
     fig, (ax, ax2) = several_axes(axes, 2, (2, 1), figsize=(8, 6), layout="constrained")
     if axes is None:
         ax2.sharex(ax)
@@ -49,10 +76,40 @@ def tuning_convergence(result: TuneResult, *, axes: Optional[Sequence[Axes]] = N
 
 
 def tuning_front(result: TuneResult, objectives: tuple[int, int] = (0, 1), *, ax: Optional[Axes] = None) -> Figure:
-    """The Pareto front of a several-objective tuning (the front of the feasible evaluations):
-    every evaluation in objective space, the front highlighted. With one objective, the first
-    objective against the total constraint violation (0: feasible), the best marked. ``ax``: an
-    Axes to draw into."""
+    """The Pareto front of a several-objective tuning (the front of the feasible evaluations): every
+    evaluation in objective space (each objective in its own unit), the front highlighted. With one
+    objective, the first objective against the total constraint violation (0: feasible), the best
+    marked.
+
+    Parameters
+    ----------
+    result : landing.tune.TuneResult
+        The tuning.
+    objectives : tuple of (int, int), default (0, 1)
+        The two objectives drawn (indices), with several.
+    ax : matplotlib.axes.Axes, optional
+        An Axes to draw into; by default a Figure of its own.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure drawn (that of ``ax`` or ``axes`` when given).
+
+    Examples
+    --------
+    >>> import landing
+    >>> from landing.controllers import PDSlidingMode
+    >>> from landing.scenarios import Scenario
+    >>> from landing.tune import tune
+    >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
+    ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
+    ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
+    >>> r = tune(s, {"lambda_": (0.2, 2.0), "k": (0.1, 2.0, "log")}, "mean(iae)",
+    ...          ["max(peak_command) <= 5"], budget=12, seed=1, progress=False)
+    >>> fig = landing.plots.tuning_front(r)
+    >>> len(fig.axes), fig.axes[0].get_ylabel()
+    (1, 'total constraint violation')
+    """
     fig, ax = single_axes(ax, figsize=(7, 5), layout="constrained")
     v = result.objective_values
     f = result.feasible

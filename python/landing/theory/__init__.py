@@ -6,18 +6,20 @@ arrays in :mod:`landing.theory.bounds`; every bound comes with a check in
 that violates it:
 
 - :func:`check_fixed_time_bound`: the scalar reaching law ``s' = -c1 sig^e1(s) - c2 sig^e2(s)``
-  (the Mars fixed-time guidance paper's Lemma 2; eq. 18 with the beta gains, eq. 26 with the alpha gains) from any s(0).
+  (the Mars fixed-time guidance paper's Lemma 2; eq. 18 with the beta gains, eq. 26 with the
+  alpha gains) from any s(0).
 - :func:`check_practical_bound`: the same law with a bounded disturbance (Theorem 1; eq. 38
   to 40 for s2, eq. 31 and 45 for s1).
 - :func:`check_mss`: a recorded run of :class:`~landing.controllers.FixedTimeMSS` against its
   practical neighbourhoods and times (Theorem 4).
 - :func:`min_final_time`: the Mars paper's Remark 1.
-- :func:`fntsmc_bounds` (the tethered-satellite paper's Theorem 1, made sound) with :func:`check_fntsmc_bound` (the
-  law on a double integrator, where its derivation holds exactly) and
+- :func:`fntsmc_bounds` (the tethered-satellite paper's Theorem 1, made sound) with
+  :func:`check_fntsmc_bound` (the law on a double integrator, where its derivation holds exactly) and
   :func:`check_fntsmc_run` (a recorded tethered-satellite run); the printed eq. 42 and 47 are
   :func:`fntsmc_ts_printed` and :func:`fntsmc_td_printed`.
-- :func:`terminal_reaching_time` and :func:`fast_terminal_reaching_time` (the fuzzy fast-terminal
-  asteroid paper's eq. 5 and 7, with p and q as the surfaces have them; the printed forms swap them:
+- :func:`terminal_reaching_time` and :func:`fast_terminal_reaching_time` (the fuzzy
+  fast-terminal asteroid paper's eq. 5 and 7, with p and q as the surfaces have them; the
+  printed forms swap them:
   :func:`terminal_reaching_time_printed`, :func:`fast_terminal_reaching_time_printed`), with
   :func:`check_terminal_reaching_time` (the fast terminal law on a double integrator, started
   on its surface).

@@ -2,14 +2,15 @@
 reports the cases that violate it.
 
 - :func:`check_fixed_time_bound`: the scalar reaching law ``s' = -c1 sig^e1(s) - c2 sig^e2(s)``
-  (the Mars fixed-time guidance paper's Lemma 2; eq. 18 with the beta gains, eq. 26 with the alpha gains) from any s(0).
+  (the Mars fixed-time guidance paper's Lemma 2; eq. 18 with the beta gains, eq. 26 with the
+  alpha gains) from any s(0).
 - :func:`check_practical_bound`: the same law with a bounded disturbance (Theorem 1; eq. 38
   to 40 for s2, eq. 31 and 45 for s1).
 - :func:`check_mss`: a recorded run of :class:`~landing.controllers.FixedTimeMSS` against its
   practical neighbourhoods and times (Theorem 4).
-- :func:`check_fntsmc_bound` (the tethered-satellite paper's law on a double
-  integrator, where its derivation
-  holds exactly) and :func:`check_fntsmc_run` (a recorded tethered-satellite run).
+- :func:`check_fntsmc_bound` (the tethered-satellite paper's law on a double integrator, where
+  its derivation holds exactly) and :func:`check_fntsmc_run` (a recorded tethered-satellite
+  run).
 - :func:`check_terminal_reaching_time`: the fuzzy fast-terminal asteroid paper's eq. 7
   (and eq. 5, its alpha -> 0 limit) for
   :class:`~landing.controllers.FastTerminalSMC` started on its surface.
