@@ -430,8 +430,8 @@ def thrust(result: Result, max_cases: int = 300, *, plant: Optional[MarsLander] 
 
 
 def draw_thrust_limits(ax: Axes, per_axis: Optional[float], magnitude: Optional[float]) -> None:
-    """The per-axis thrust limit (dashed red) and the thrust magnitude limit (dash-dotted), in kN, at
-    + and -, where finite.
+    """The per-axis thrust limit (dashed red) and the thrust magnitude limit (dash-dotted), in kN,
+    drawn at plus and minus each, where finite.
 
     Parameters
     ----------
