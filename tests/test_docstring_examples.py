@@ -29,10 +29,10 @@ MODULES = [
     "landing.results",
     "landing.errors",
     "landing.optimal",
-    "landing.tune",
-    "landing.tune.pareto",
-    "landing.tune.result",
-    "landing.tune.search",
+    "landing.tuning",
+    "landing.tuning.pareto",
+    "landing.tuning.result",
+    "landing.tuning.search",
     "landing.scenarios._scenario",
     "landing.scenarios.files",
     "landing.campaign",
@@ -126,7 +126,7 @@ def test_sections(qualname: str, obj: Any) -> None:
 def test_examples_run(name: str) -> None:
     if name == "landing.optimal":
         pytest.importorskip("casadi")  # the optimal extra
-    if name.startswith("landing.tune."):
+    if name.startswith("landing.tuning."):
         pytest.importorskip("cma")  # the tune extra
     for extra in EXTRAS.get(name, ()):
         pytest.importorskip(extra)

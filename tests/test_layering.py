@@ -27,7 +27,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("landing.scenarios",),
     ("landing.theory",),
     ("landing.campaign",),
-    ("landing.tune",),
+    ("landing.tuning",),
     ("landing.plots",),
     ("landing.cli", "landing.__main__"),
     ("landing",),  # the package's __init__, which imports the public names of every layer

@@ -42,7 +42,7 @@ from landing.errors import (
 )
 from landing.results import DIVERGENCE_REASONS, Metrics, SimulationResult
 from landing.simulation import MAX_COMMAND, RunOptions, kernel_levels, simulate, simulate_batch
-from landing.tune import TuneResult, tune
+from landing.tuning import TuneResult, tune
 
 __all__ = [
     "__version__",

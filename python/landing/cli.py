@@ -31,7 +31,7 @@ from landing.errors import LandingError, SimulationError, StoreError
 from landing.results import SimulationResult
 from landing.scenarios import PRESETS, FileError, Scenario, preset
 from landing.scenarios.files import read_toml, scenario_from_dict
-from landing.tune import tune
+from landing.tuning import tune
 
 EXIT_OK = 0
 EXIT_FAILURE = 1

@@ -1,4 +1,4 @@
-"""landing.tune: a known optimum found, constraints honoured, determinism, the grammar."""
+"""landing.tune (the package landing.tuning): a known optimum found, constraints honoured, determinism, the grammar."""
 
 from __future__ import annotations
 
@@ -301,3 +301,16 @@ def test_write_csv_without_pyarrow(constrained, tmp_path, monkeypatch):
     assert rows.shape == (constrained.n_evaluations, 8)
     header = csv.read_text().splitlines()[0].split(",")
     np.testing.assert_array_equal(rows[:, header.index("lambda_")], constrained.x[:, 0])
+
+
+def test_the_function_and_the_package_are_both_reachable() -> None:
+    # `landing.tune` is the search function; its package is `landing.tuning`, whose modules import
+    # by their dotted names (they could not while the package shared the function's name).
+    import importlib
+
+    import landing.tuning.pareto as pareto
+
+    assert callable(landing.tune) and landing.tune is landing.tuning.tune
+    assert landing.tuning.pareto_front is pareto.pareto_front
+    assert importlib.import_module("landing.tuning.search").tune is landing.tune
+    assert landing.TuneResult is landing.tuning.TuneResult

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Optional
 import numpy as np
 
 from landing.plots._common import say_why, several_axes, single_axes
-from landing.tune import TuneResult
+from landing.tuning import TuneResult
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
@@ -18,13 +18,13 @@ __all__ = ["tuning_convergence", "tuning_front"]
 
 
 def tuning_convergence(result: TuneResult, *, axes: Optional[Sequence[Axes]] = None) -> Figure:
-    """A :class:`landing.tune.TuneResult`'s search: every evaluation's first objective (in its own
+    """A :class:`landing.tuning.TuneResult`'s search: every evaluation's first objective (in its own
     unit) against its generation (feasible filled, infeasible hollow) and the best feasible so far
     (line); below, the share of each generation that is feasible.
 
     Parameters
     ----------
-    result : landing.tune.TuneResult
+    result : landing.tuning.TuneResult
         The tuning.
     axes : sequence of matplotlib.axes.Axes, optional
         Exactly 2 Axes to draw into (objective, feasible share); by default a Figure of its own.
@@ -39,7 +39,7 @@ def tuning_convergence(result: TuneResult, *, axes: Optional[Sequence[Axes]] = N
     >>> import landing
     >>> from landing.controllers import PDSlidingMode
     >>> from landing.scenarios import Scenario
-    >>> from landing.tune import tune
+    >>> from landing.tuning import tune
     >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
     ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
     ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
@@ -83,7 +83,7 @@ def tuning_front(result: TuneResult, objectives: tuple[int, int] = (0, 1), *, ax
 
     Parameters
     ----------
-    result : landing.tune.TuneResult
+    result : landing.tuning.TuneResult
         The tuning.
     objectives : tuple of (int, int), default (0, 1)
         The two objectives drawn (indices), with several.
@@ -100,7 +100,7 @@ def tuning_front(result: TuneResult, objectives: tuple[int, int] = (0, 1), *, ax
     >>> import landing
     >>> from landing.controllers import PDSlidingMode
     >>> from landing.scenarios import Scenario
-    >>> from landing.tune import tune
+    >>> from landing.tuning import tune
     >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
     ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
     ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)

@@ -19,7 +19,7 @@ __all__ = ["GainSpec", "TuneResult"]
 class GainSpec:
     """One searched gain: its law parameter name, bounds and scale (``"linear"`` or ``"log"``).
 
-    :func:`~landing.tune.tune` makes them from its ``gains`` argument; the search runs in the
+    :func:`~landing.tuning.tune` makes them from its ``gains`` argument; the search runs in the
     unit coordinate u in [0, 1], mapped linearly, or linearly in log10, onto the bounds.
 
     Parameters
@@ -85,7 +85,7 @@ class GainSpec:
 class TuneResult:
     """What :func:`tune` found, with every evaluation.
 
-    Made by :func:`~landing.tune.tune`; its fields:
+    Made by :func:`~landing.tuning.tune`; its fields:
 
     Parameters
     ----------
@@ -133,7 +133,7 @@ class TuneResult:
     >>> import landing
     >>> from landing.controllers import PDSlidingMode
     >>> from landing.scenarios import Scenario
-    >>> from landing.tune import tune
+    >>> from landing.tuning import tune
     >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
     ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
     ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)

@@ -113,7 +113,7 @@ def ranks(obj: np.ndarray, violation: np.ndarray, feasible: np.ndarray) -> np.nd
 def best_and_front(objectives: np.ndarray, violation: np.ndarray,
                    feasible: np.ndarray) -> tuple[int, np.ndarray]:
     """The best evaluation and the Pareto front of the feasible ones (see
-    :class:`~landing.tune.TuneResult`): for one objective the feasible one with the least
+    :class:`~landing.tuning.TuneResult`): for one objective the feasible one with the least
     objective (else the least violation), the front that one alone; for several the front's
     member with the least first objective (else the least violation).
 

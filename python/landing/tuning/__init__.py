@@ -45,8 +45,8 @@ front of all feasible evaluations, not the output of a dedicated multi-objective
 """
 
 from landing._internal.expression import BOUND_NAMES, Expression
-from landing.tune.pareto import pareto_front
-from landing.tune.result import GainSpec, TuneResult
-from landing.tune.search import tune
+from landing.tuning.pareto import pareto_front
+from landing.tuning.result import GainSpec, TuneResult
+from landing.tuning.search import tune
 
 __all__ = ["Expression", "GainSpec", "TuneResult", "tune", "pareto_front", "BOUND_NAMES"]

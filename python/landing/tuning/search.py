@@ -23,8 +23,8 @@ from landing.errors import DivergenceWarning, ParameterError
 from landing.results import Metrics, SimulationResult
 from landing.scenarios import Scenario
 from landing.simulation import RunOptions, simulate_batch
-from landing.tune.pareto import best_and_front, ranks
-from landing.tune.result import GainSpec, TuneResult
+from landing.tuning.pareto import best_and_front, ranks
+from landing.tuning.result import GainSpec, TuneResult
 
 #: An objective or constraint: an expression of the grammar (``landing._internal.expression``),
 #: or a callable ``f(metrics, bounds) -> float``.
@@ -215,7 +215,7 @@ def tune(
     >>> import landing
     >>> from landing.controllers import PDSlidingMode
     >>> from landing.scenarios import Scenario
-    >>> from landing.tune import tune
+    >>> from landing.tuning import tune
     >>> s = Scenario("pd", landing.plants.DoubleIntegrator(),
     ...              PDSlidingMode(lambda_=1.0, k=0.5, switch="sat", boundary_layer=0.1),
     ...              x0=[10.0, 0, 5, 0, 0, 0], t_final=10.0, dt=0.05)
