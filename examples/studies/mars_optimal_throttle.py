@@ -16,9 +16,6 @@ And the engine of the paper's reference [1] (Acikmese and Ploen 2007, where the 
 comes from: |F| between 4.97 and 13.26 kN): the most it can burn in 30 s is below the paper's
 212.9 kg, so that engine cannot be the paper's.
 
-(The printed lines still say "the seed's" for the paper: their generated block in
-docs/reproduction-mars.md is a slow one, rewritten only when the study is run again.)
-
     python examples/studies/mars_optimal_throttle.py     (about 4 min on 2 cores)
 """
 
@@ -47,17 +44,17 @@ def main() -> None:
     for low in (0.0, 5e3, 10e3, 12e3, 14e3, 15e3, 16e3):
         print(f"  low = {low / 1e3:5.1f} kN: fuel {fuel(low):7.2f} kg")
     low = brentq(lambda x: fuel(x) - SEED_FUEL, 14e3, 16e3, xtol=10.0)
-    print(f"the seed's {SEED_FUEL} kg needs low = {low / 1e3:.2f} kN "
-          f"({low / 1905.0 / 3.7114:.2f} times the initial weight on Mars); the seed's fuel over 30 s is "
+    print(f"the Mars paper's {SEED_FUEL} kg needs low = {low / 1e3:.2f} kN "
+          f"({low / 1905.0 / 3.7114:.2f} times the initial weight on Mars); the paper's fuel over 30 s is "
           f"an average |F| of {SEED_FUEL * 225.0 * 9.807 / 30.0 / 1e3:.2f} kN")
 
     isp = brentq(lambda x: fuel(0.0, isp=x) - SEED_FUEL, 170.0, 225.0, xtol=0.05)
-    print(f"free throttling, the seed's {SEED_FUEL} kg needs Isp = {isp:.1f} s (ours, from reference [1]: 225 s)")
+    print(f"free throttling, the Mars paper's {SEED_FUEL} kg needs Isp = {isp:.1f} s (ours, from reference [1]: 225 s)")
 
     lo, hi = REFERENCE_ENGINE
     # arithmetic, no optimiser: the propellant flow is |F| / (Isp g0), at most its largest |F|
     print(f"the reference's engine, {lo / 1e3:.2f} kN <= |F| <= {hi / 1e3:.2f} kN, burns at most "
-          f"{hi * 30.0 / (225.0 * 9.807):.2f} kg in 30 s (|F| = {hi / 1e3:.2f} kN throughout): below the seed's "
+          f"{hi * 30.0 / (225.0 * 9.807):.2f} kg in 30 s (|F| = {hi / 1e3:.2f} kN throughout): below the Mars paper's "
           f"{SEED_FUEL} kg, which that engine cannot spend in 30 s")
 
 

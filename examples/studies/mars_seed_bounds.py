@@ -12,9 +12,8 @@ the cross-entropy method (30 generations of 3000 around the best 100). The sets 
 rounded to four digits (gains up, so the bounds still hold), run again at dt = 1 ms, and
 compared with the shipped preset (and perturbed, to see how fragile they are): fuel to landing, landing time,
 chattering (total variation of the thrust per second after landing), and under the disturbances
-a_p = 20 sin t (the paper's part 2) and a_p = sin t (its Fig. 3). Fixed seed: the output is
-reproducible. (The printed lines still say "seed" for the paper: their generated block in
-docs/reproduction-mars.md is a slow one, rewritten only when the study is run again.)
+a_p = 20 sin t (the paper's part 2) and a_p = sin t (its Fig. 3). Fixed random seed: the output is
+reproducible.
 
     python examples/studies/mars_seed_bounds.py      (about 1.5 min on 2 cores)
 """
@@ -93,14 +92,14 @@ def describe(name: str, g: dict[str, np.ndarray], i: int) -> None:
     law = landing.controllers.FixedTimeMSS(**{k: float(v[0]) for k, v in one.items()})
     b = landing.theory.mss_bounds(law, ap_max=20.0, theta1=0.2, theta2=0.1)
     print(f"{name}: " + ", ".join(f"{k}={float(v[0]):.4g}" for k, v in one.items()))
-    print(f"  T1 {t1[0]:.4f} s, T2 {t2[0]:.4f} s (seed 74.5780, 30.8217)")
+    print(f"  T1 {t1[0]:.4f} s, T2 {t2[0]:.4f} s (the Mars paper's 74.5780, 30.8217)")
     print(f"  nominal: peak abs(F) {float(m['peak_command'][0]) / 1e3:.2f} kN, fuel to landing "
           f"{float(m['fuel_to_settle'][0]):.2f} kg, landing (settle within 1 m) {float(m['settle_time'][0]):.2f} s, "
           f"abs(r(60 s)) {float(m['final_position_error'][0]):.1e} m, chattering "
           f"{float(m['chattering_variation'][0]):.4g} N/s, first rz = 0 crossing "
           f"{float(m['touchdown_time'][0]):.2f} s")
     print(f"  a_p = 20 sin t: max abs(r_i) over the last 20 s {np.abs(storm.states[0, tail, :3]).max():.2f} m "
-          f"(seed: within 23.8472 m), peak abs(F) {float(storm.metrics['peak_command'][0]) / 1e3:.1f} kN; "
+          f"(the Mars paper: within 23.8472 m), peak abs(F) {float(storm.metrics['peak_command'][0]) / 1e3:.1f} kN; "
           f"theory's s1 radius {float(b.s1_radius[0]):.4g} m by {float(b.settle_time[0]):.4g} s")
     print(f"  a_p = sin t: abs(r(60 s)) {float(sin1.metrics['final_position_error'][0]):.2e} m, "
           f"fuel to landing {float(sin1.metrics['fuel_to_settle'][0]):.2f} kg")
@@ -169,7 +168,7 @@ def main() -> None:
     describe("least peak thrust", cand, int(np.argmin(peak)))
     describe("least fuel", cand, int(np.argmin(fuel)))
     fragility(cand, int(np.argmin(fuel)), rng)
-    describe("shipped preset (T1, T2 within ten times the seed's)",
+    describe("shipped preset (T1, T2 within ten times the Mars paper's)",
              {k: np.array([v]) for k, v in MARS_FIXED_TIME_GAINS.items()}, 0)
     print(f"total {time.perf_counter() - t0:.0f} s")
 
