@@ -15,7 +15,7 @@ use std::fmt;
 
 use nalgebra::SVector;
 
-use crate::control::{AnyLaw, AnyMemory, LawInput};
+use crate::control::{AnyLaw, AnyMemory, ControlLaw, LawInput, LawVisitor, LawVisitorMut};
 use crate::lanes::Real;
 use crate::metrics::CommandStats;
 use crate::params::Named;
@@ -251,11 +251,13 @@ macro_rules! level_laws {
                 law.start(input)
             }
 
+            // each law's command and advance a function of its own, with its own stack frame
+            // (`LawVisitor`); the period matches on the law and calls it
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
-            unsafe fn command<const D: usize, L: Real>(
-                law: &AnyLaw<D, L>,
-                memory: &AnyMemory<D, L>,
+            unsafe fn command<const D: usize, L: Real, C: ControlLaw<L, D>>(
+                law: &C,
+                memory: &C::Memory,
                 input: &LawInput<D, L>,
             ) -> SVector<L, D> {
                 law.command(memory, input)
@@ -263,12 +265,34 @@ macro_rules! level_laws {
 
             $(#[target_feature(enable = $features)])?
             #[inline(never)]
-            unsafe fn advance<const D: usize, L: Real>(
-                law: &AnyLaw<D, L>,
-                memory: &mut AnyMemory<D, L>,
+            unsafe fn advance<const D: usize, L: Real, C: ControlLaw<L, D>>(
+                law: &C,
+                memory: &mut C::Memory,
                 input: &LawInput<D, L>,
             ) {
                 law.advance(memory, input)
+            }
+
+            struct Command<'a, const D: usize, L: Real>(&'a LawInput<D, L>);
+
+            impl<const D: usize, L: Real> LawVisitor<D, L> for Command<'_, D, L> {
+                type Output = SVector<L, D>;
+                #[inline(always)]
+                fn visit<C: ControlLaw<L, D>>(self, law: &C, memory: &C::Memory) -> SVector<L, D> {
+                    // SAFETY: as for `LawCalls` below
+                    unsafe { command(law, memory, self.0) }
+                }
+            }
+
+            struct Advance<'a, const D: usize, L: Real>(&'a LawInput<D, L>);
+
+            impl<const D: usize, L: Real> LawVisitorMut<D, L> for Advance<'_, D, L> {
+                type Output = ();
+                #[inline(always)]
+                fn visit<C: ControlLaw<L, D>>(self, law: &C, memory: &mut C::Memory) {
+                    // SAFETY: as for `LawCalls` below
+                    unsafe { advance(law, memory, self.0) }
+                }
             }
 
             $(#[target_feature(enable = $features)])?
@@ -319,11 +343,11 @@ macro_rules! level_laws {
                     memory: &AnyMemory<D, L>,
                     input: &LawInput<D, L>,
                 ) -> SVector<L, D> {
-                    unsafe { command(law, memory, input) }
+                    law.visit(memory, Command(input))
                 }
                 #[inline(always)]
                 fn advance(law: &AnyLaw<D, L>, memory: &mut AnyMemory<D, L>, input: &LawInput<D, L>) {
-                    unsafe { advance(law, memory, input) }
+                    law.visit_mut(memory, Advance(input))
                 }
                 #[inline(always)]
                 fn diagnostics(

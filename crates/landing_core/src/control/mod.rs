@@ -62,6 +62,21 @@ pub struct LawInput<const D: usize, R = f64> {
     pub inertia: SVector<R, D>,
 }
 
+/// What a kernel does with one law at its own type ([`AnyLaw::visit`]): the kernels compile
+/// each law's command into a function of its own this way. Dispatched inside one function, the
+/// match over every law had the stack frame of the largest (50 kB, probed page by page at every
+/// call: 3 % of W1's time, BENCHMARKS.md), whichever law ran.
+pub(crate) trait LawVisitor<const D: usize, R: Real> {
+    type Output;
+    fn visit<C: ControlLaw<R, D>>(self, law: &C, memory: &C::Memory) -> Self::Output;
+}
+
+/// [`LawVisitor`] with the law's memory to update ([`AnyLaw::visit_mut`]).
+pub(crate) trait LawVisitorMut<const D: usize, R: Real> {
+    type Output;
+    fn visit<C: ControlLaw<R, D>>(self, law: &C, memory: &mut C::Memory) -> Self::Output;
+}
+
 pub trait ControlLaw<R: Real, const D: usize>: Send + Sync {
     /// Internal state carried from one control period to the next, made by `start`. A law may
     /// also keep there what it derives from its gains alone, computed once per block rather
@@ -194,6 +209,28 @@ macro_rules! laws {
                 match (self, memory) {
                     $((Self::$variant(l), AnyMemory::$variant(m)) => l.command(m, input),)*
                     // start() makes the memory of the law's own variant
+                    _ => unreachable!("a law's memory has the law's variant"),
+                }
+            }
+
+            /// Calls `visitor` with the law and its memory at their own types.
+            #[inline(always)]
+            pub(crate) fn visit<V: LawVisitor<D, R>>(&self, memory: &AnyMemory<D, R>, visitor: V) -> V::Output {
+                match (self, memory) {
+                    $((Self::$variant(l), AnyMemory::$variant(m)) => visitor.visit(l, m),)*
+                    _ => unreachable!("a law's memory has the law's variant"),
+                }
+            }
+
+            /// [`AnyLaw::visit`] with the memory to update.
+            #[inline(always)]
+            pub(crate) fn visit_mut<V: LawVisitorMut<D, R>>(
+                &self,
+                memory: &mut AnyMemory<D, R>,
+                visitor: V,
+            ) -> V::Output {
+                match (self, memory) {
+                    $((Self::$variant(l), AnyMemory::$variant(m)) => visitor.visit(l, m),)*
                     _ => unreachable!("a law's memory has the law's variant"),
                 }
             }
