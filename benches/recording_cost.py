@@ -1,6 +1,8 @@
 """What recording costs a campaign (issue 27): the part-2 Mars preset (60 s at 1 ms), metrics only
 against recording every 50 ms (the preset's), through simulate_batch and through monte_carlo
-(in memory: one chunk and 20 chunks), medians of alternated repeats in one run.
+(in memory: one chunk, 20 chunks, 50 chunks (2 % of the cases each: the progress bar's chunks
+before 2026-12-06) and the progress bar's default chunks), medians of alternated repeats in one
+run.
 
     python benches/recording_cost.py [--cases 2000] [--repeat 3] [--threads 2]
 
@@ -40,6 +42,9 @@ def main() -> None:
         "simulate_batch": batch,
         "monte_carlo, one chunk": lambda e: mc(e, n),
         "monte_carlo, 20 chunks": lambda e: mc(e, -(-n // 20)),
+        "monte_carlo, 50 chunks": lambda e: mc(e, -(-n // 50)),
+        "monte_carlo, progress bar": lambda e: landing.monte_carlo(
+            s, n, seed=1, record_every=e, threads=threads, progress=True, check_bounds=False).result,
     }
     reference = batch(0).final_state
     for name, f in runs.items():

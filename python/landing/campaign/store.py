@@ -1114,7 +1114,7 @@ class CampaignStore:
 
 
 def default_chunk_size(n: int) -> int:
-    """Cases per chunk of a stored or cluster campaign when none is given: max(1000, n / 50) (at
+    """Cases per chunk of a stored, cluster or progress-bar campaign when none is given: max(1000, n / 50) (at
     most n); at a few ms of scheduling per chunk that keeps the overhead small for any scenario
     longer than a few steps (BENCHMARKS.md measures it).
 
