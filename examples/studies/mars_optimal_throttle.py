@@ -16,7 +16,7 @@ And the engine of the paper's reference [1] (Acikmese and Ploen 2007, where the 
 comes from: |F| between 4.97 and 13.26 kN): the most it can burn in 30 s is below the paper's
 212.9 kg, so that engine cannot be the paper's.
 
-    python examples/studies/mars_optimal_throttle.py     (about 4 min on 2 cores)
+    python examples/studies/mars_optimal_throttle.py     (about 2 min on 2 cores)
 """
 
 from __future__ import annotations

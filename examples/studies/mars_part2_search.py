@@ -26,7 +26,7 @@ first run starts from the preset's gains, the restarts from random points of the
 set of each run is then checked on all 300 cases (seed 1) at the same dt = 1 ms.
 
     python examples/studies/mars_part2_search.py [--cases 25] [--budget 3000] [--seed 1] [--margin 0.9]
-    (about 4 minutes on 2 cores)
+    (about 4 min on 2 cores)
 """
 
 from __future__ import annotations

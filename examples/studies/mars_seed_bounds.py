@@ -15,7 +15,7 @@ chattering (total variation of the thrust per second after landing), and under t
 a_p = 20 sin t (the paper's part 2) and a_p = sin t (its Fig. 3). Fixed random seed: the output is
 reproducible.
 
-    python examples/studies/mars_seed_bounds.py      (about 1.5 min on 2 cores)
+    python examples/studies/mars_seed_bounds.py      (about 1 min on 2 cores)
 """
 
 from __future__ import annotations
