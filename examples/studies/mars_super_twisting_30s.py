@@ -9,7 +9,7 @@ nominal Table I case for 100 s at dt = 1 ms. A case "lands in 30 s" when abs(r) 
 1 m by 30 s without crossing rz = 0 before. Of those, the one closest to 277.1288 kg of fuel to
 landing is printed.
 
-    python examples/studies/mars_super_twisting_30s.py      (about 15 s on 2 cores)
+    python examples/studies/mars_super_twisting_30s.py      (about 5 s on 2 cores)
 """
 
 from __future__ import annotations
