@@ -42,6 +42,7 @@ deterministic is left out with ``drop:`` or ``match:``.
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
 import datetime
 import difflib
 import os
@@ -61,6 +62,8 @@ END = "<!-- end -->\n"
 # the fields after the command: a ``;`` followed by a field's name (a command may hold ``;``)
 FIELD = re.compile(r";\s*(?=(?:part|match|drop|mask|raw|slow|checked)\b)")
 FAST_BUDGET_S = 60.0
+#: Commands run at once.
+JOBS = 2
 
 
 class DocsError(Exception):
@@ -163,6 +166,19 @@ def run(command: str, root: Path, timeout: float) -> tuple[str, float]:
     return done.stdout, time.perf_counter() - started
 
 
+def run_all(commands: list[str], root: Path, timeout: float) -> dict[str, str]:
+    """What each command prints, ``JOBS`` commands at a time: most are short and spend much of
+    their time on one thread (starting Python, setting up a run), so on two cores two of them
+    overlap."""
+    outputs: dict[str, str] = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=JOBS) as pool:
+        jobs = {command: pool.submit(run, command, root, timeout) for command in commands}
+        for command, job in jobs.items():
+            outputs[command], took = job.result()
+            print(f"  {took:6.1f} s  {command}", file=sys.stderr)
+    return outputs
+
+
 def select(block: Block, output: str) -> str:
     """The part of a command's output that a block holds."""
     lines = output.rstrip("\n").split("\n")
@@ -205,8 +221,11 @@ def process(paths: list[Path], *, update: bool, slow: bool, root: Path = ROOT, t
     """Check (or rewrite) every block of ``paths``; the number of blocks that differ."""
     today = today or datetime.date.today().isoformat()
     out = out or sys.stdout
-    outputs: dict[str, str] = {}
-    fast_s = 0.0
+    wanted = {b.command: b.slow for path in paths for b in parse(path) if slow or not b.slow}
+    started = time.perf_counter()
+    outputs = run_all([c for c, is_slow in wanted.items() if not is_slow], root, timeout)
+    fast_s = time.perf_counter() - started  # the budget is the fast commands' wall time
+    outputs.update(run_all([c for c, is_slow in wanted.items() if is_slow], root, timeout))
     differ = 0
     for path in paths:
         text = path.read_text()
@@ -215,10 +234,6 @@ def process(paths: list[Path], *, update: bool, slow: bool, root: Path = ROOT, t
         for b in parse(path):
             if b.slow and not slow:
                 continue
-            if b.command not in outputs:
-                outputs[b.command], took = run(b.command, root, timeout)
-                fast_s += 0.0 if b.slow else took
-                print(f"  {took:6.1f} s  {b.command}", file=sys.stderr)
             want = select(b, outputs[b.command])
             have = text[b.body_start:b.body_end]
             same = want == have
