@@ -319,6 +319,29 @@ pub fn output_bytes<const D: usize>(
     (recording + n * per_case, recording)
 }
 
+/// `len` zeros whose pages are not touched yet (the allocator's zeroed memory: fresh pages of
+/// the system's), so the threads that write them first fault them in, in parallel.
+fn untouched(len: usize, bytes: u128, recording: u128) -> Result<Vec<f64>, BatchError> {
+    let refused = || BatchError::Allocation {
+        bytes,
+        recording,
+        available: available_bytes(),
+    };
+    if len == 0 {
+        return Ok(Vec::new());
+    }
+    let layout = std::alloc::Layout::array::<f64>(len).map_err(|_| refused())?;
+    // SAFETY: the layout has a non-zero size; the memory, if given, is `len` f64 of all-zero
+    // bits (0.0), allocated by the global allocator with the layout `Vec<f64>` of capacity
+    // `len` frees it with
+    let ptr = unsafe { std::alloc::alloc_zeroed(layout) }.cast::<f64>();
+    if ptr.is_null() {
+        return Err(refused());
+    }
+    // SAFETY: as above: `len` initialised f64 at `ptr`, allocated with `Vec<f64>`'s layout
+    Ok(unsafe { Vec::from_raw_parts(ptr, len, len) })
+}
+
 fn nan_filled(len: usize, bytes: u128, recording: u128) -> Result<Vec<f64>, BatchError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len)
@@ -420,6 +443,8 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for BlockJob<'_, '_, D, P> {
             cfg: sh.cfg,
         };
         let (x0, cases) = (&block.x0, &block.cases);
+        // the outputs were allocated untouched (`Outputs::allocate_untouched`)
+        self.out.fill_nan();
         rollout_block::<D, R, _, K>(&set, &law, x0, cases, self.used, sh.cancel, &mut self.out)
     }
 }
@@ -550,7 +575,7 @@ fn run_here<const D: usize, P: PlantModel<D>, K: Kernel>(
     // the law's diagnostics, then the navigation's estimate when the plant has a sensor
     let nd = batch.laws.get(0).diagnostic_width() + batch.plants.get(0).navigation_width();
     let nr = cfg.n_records();
-    let mut o = Outputs::<D>::allocate(n, nr, nx, nd)?;
+    let mut o = Outputs::<D>::allocate_untouched(n, nr, nx, nd)?;
     let table = shared_table(batch, cfg);
     let shared = Shared {
         batch,
@@ -593,6 +618,28 @@ impl<const D: usize> Outputs<D> {
     /// freely and kills the process when the pages are touched, so a failed allocation is no
     /// protection.
     pub(crate) fn allocate(n: usize, nr: usize, nx: usize, nd: usize) -> Result<Self, BatchError> {
+        Self::with_recording(n, nr, nx, nd, nan_filled)
+    }
+
+    /// [`Outputs::allocate`] with the recording's pages left untouched: each block job fills its
+    /// own slices with NaN first ([`BlockBuffers::fill_nan`]), so the recording's pages are
+    /// faulted in by the pool's threads in parallel, not by one thread before the run.
+    pub(crate) fn allocate_untouched(
+        n: usize,
+        nr: usize,
+        nx: usize,
+        nd: usize,
+    ) -> Result<Self, BatchError> {
+        Self::with_recording(n, nr, nx, nd, untouched)
+    }
+
+    fn with_recording(
+        n: usize,
+        nr: usize,
+        nx: usize,
+        nd: usize,
+        recording_buffer: fn(usize, u128, u128) -> Result<Vec<f64>, BatchError>,
+    ) -> Result<Self, BatchError> {
         let (bytes, recording) = output_bytes::<D>(n, nr, nx, nd);
         let available = available_bytes();
         if bytes > isize::MAX as u128 || available.is_some_and(|a| bytes > u128::from(a)) {
@@ -612,9 +659,9 @@ impl<const D: usize> Outputs<D> {
             })?;
         metrics.resize(n, CaseMetrics::new());
         Ok(Self {
-            states: nan_filled(n * nr * nx, bytes, recording)?,
-            controls: nan_filled(n * nr * D, bytes, recording)?,
-            diagnostics: nan_filled(n * nr * nd, bytes, recording)?,
+            states: recording_buffer(n * nr * nx, bytes, recording)?,
+            controls: recording_buffer(n * nr * D, bytes, recording)?,
+            diagnostics: recording_buffer(n * nr * nd, bytes, recording)?,
             final_state: nan_filled(n * nx, bytes, recording)?,
             metrics,
         })

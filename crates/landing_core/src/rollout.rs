@@ -291,6 +291,16 @@ pub(crate) struct BlockBuffers<'a, const D: usize> {
     pub metrics: &'a mut [CaseMetrics<D>],
 }
 
+impl<const D: usize> BlockBuffers<'_, D> {
+    /// Fills the recording with NaN: what [`crate::batch::Outputs::allocate`] does for the
+    /// whole batch, done by the block's own job when its buffers were allocated untouched.
+    pub(crate) fn fill_nan(&mut self) {
+        self.states.fill(f64::NAN);
+        self.controls.fill(f64::NAN);
+        self.diagnostics.fill(f64::NAN);
+    }
+}
+
 /// The deterministic disturbance shared by every case of a batch, evaluated once per stage of
 /// every integrator step: `values[(k * substeps + j) * stages + s]` for control period k,
 /// substep j and the integrator's stage s, with the same operations a lane would use.
