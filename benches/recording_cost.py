@@ -4,7 +4,7 @@ against recording every 50 ms (the preset's), through simulate_batch and through
 before 2026-12-06) and the progress bar's default chunks), medians of alternated repeats in one
 run.
 
-    python benches/recording_cost.py [--cases 2000] [--repeat 3] [--threads 2]
+    python benches/recording_cost.py [--cases 2000] [--repeat 3] [--threads 2] [--paths NAME ...]
 
 Accuracy first: every path's final states equal simulate_batch's bit for bit.
 """
@@ -25,6 +25,7 @@ def main() -> None:
     ap.add_argument("--cases", type=int, default=2000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--paths", nargs="+", help="only these paths (names as printed, e.g. 'monte_carlo, progress bar')")
     args = ap.parse_args()
     s = landing.scenarios.preset("mars_monte_carlo")
     n, threads = args.cases, args.threads
@@ -46,6 +47,10 @@ def main() -> None:
         "monte_carlo, progress bar": lambda e: landing.monte_carlo(
             s, n, seed=1, record_every=e, threads=threads, progress=True, check_bounds=False).result,
     }
+    if args.paths:
+        unknown = set(args.paths) - set(runs)
+        assert not unknown, f"no path {sorted(unknown)}; the paths: {list(runs)}"
+        runs = {k: v for k, v in runs.items() if k in args.paths}
     reference = batch(0).final_state
     for name, f in runs.items():
         for every in (0, 50):
