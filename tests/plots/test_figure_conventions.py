@@ -381,3 +381,24 @@ def test_sliding_variables_keep_their_notes_out_of_the_curves(mc):
     for i, a in enumerate(boxes):
         for b in boxes[i + 1:]:
             assert not a.overlaps(b)
+
+
+def test_a_band_past_every_case_s_stop_is_empty_and_silent():
+    # cases that all stopped (NaN records) before the end: the band is NaN there (nothing drawn)
+    # and no "All-NaN slice" RuntimeWarning reaches the user
+    import warnings
+
+    import matplotlib.pyplot as plt
+
+    from landing.plots._common import BAND_ABOVE, draw_cases
+
+    t = np.linspace(0.0, 1.0, 11)
+    data = np.tile(t, (BAND_ABOVE + 5, 1))
+    data[:, 6:] = np.nan
+    fig, ax = plt.subplots()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        draw_cases(ax, t, data)
+    band = ax.collections[0].get_paths()[0].vertices
+    assert np.isfinite(band).all() and band[:, 0].max() <= t[5] + 1e-12
+    plt.close(fig)

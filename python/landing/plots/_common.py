@@ -3,6 +3,7 @@ reads, the case axis, and writing figures to files."""
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Optional, Union, cast
@@ -91,7 +92,11 @@ def draw_cases(ax: Axes, t: np.ndarray, data: np.ndarray, highlight: int = 0, sc
         return
     k = int(highlight) % n
     if n > BAND_ABOVE:
-        lo, hi = np.nanpercentile(data, [5.0, 95.0], axis=0)
+        # after every case has stopped (a touchdown event) the band is NaN: nothing is drawn
+        # there, which is right, and numpy's "All-NaN slice" warning would only alarm the user
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
+            lo, hi = np.nanpercentile(data, [5.0, 95.0], axis=0)
         ax.fill_between(t, lo, hi, color=colors[0], alpha=0.25, lw=0, label=f"{what} 5-95 % ({n})")
     else:
         others = np.delete(data, k, axis=0)
