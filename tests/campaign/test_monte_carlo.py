@@ -179,6 +179,19 @@ def test_a_check_that_cannot_fail_is_reported_as_not_informative():
     assert "not informative" not in next(x for x in short.report().splitlines() if "within the s1 radius" in x)
 
 
+def test_a_neighbourhood_whose_bound_time_is_beyond_the_run_gives_no_count():
+    # Theorem 4's s2 and s1 bound times (about 800 and 2978 s for part 2) are beyond the 60 s
+    # run: "300 of 300 stay from the bound time on" would read as a pass over nothing
+    mc = landing.monte_carlo(scenarios.mars_monte_carlo(dt=2e-3, record_every=25), 8, seed=1, progress=False)
+    assert mc.checks and all(not np.any(c.extra["checkable"]) for c in mc.checks.values())
+    lines = [x for x in mc.report().splitlines() if "stays in its neighbourhood" in x]
+    assert len(lines) == 2
+    for line in lines:
+        assert "not informative (the bound time" in line and " of 8" not in line
+        bound = float(line.split("the bound time, ")[1].split(" s")[0])
+        assert bound > 60.0
+
+
 def test_a_campaign_of_a_law_with_a_fuzzy_system_runs_in_chunks():
     # the Mamdani system is a configuration but not a dataclass: looking for per-case
     # parameters inside it raised a TypeError from dataclasses.fields (found by the figures' work)
