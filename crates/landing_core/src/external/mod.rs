@@ -538,7 +538,7 @@ impl<const D: usize, P: PlantModel<D>> Slice<'_, '_, D, P> {
 }
 
 /// A slice of fewer cases than this, of a batch run a slice at a time, advances its blocks on
-/// the thread that calls the law: at the default 1024 cases per call, handing each instant's
+/// the thread that calls the law: at 1024 cases per call, handing each instant's
 /// periods to the pool's other threads and waiting for them cost more than they saved (10^4
 /// Mars cases, 2 threads: 194 against 141 ns per case-step; BENCHMARKS.md). A batch run whole
 /// spreads its periods over the pool, as before.
