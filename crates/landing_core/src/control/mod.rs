@@ -65,7 +65,8 @@ pub struct LawInput<const D: usize, R = f64> {
 /// What a kernel does with one law at its own type ([`AnyLaw::visit`]): the kernels compile
 /// each law's command into a function of its own this way. Dispatched inside one function, the
 /// match over every law had the stack frame of the largest (50 kB, probed page by page at every
-/// call: 3 % of W1's time, BENCHMARKS.md), whichever law ran.
+/// call, whichever law ran: 1.4 % more instructions in W1 than before the realistic loop,
+/// BENCHMARKS.md).
 pub(crate) trait LawVisitor<const D: usize, R: Real> {
     type Output;
     fn visit<C: ControlLaw<R, D>>(self, law: &C, memory: &C::Memory) -> Self::Output;
