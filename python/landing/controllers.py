@@ -679,11 +679,10 @@ class PythonLaw(Controller):
         mapped and unmapped at every operation (BENCHMARKS.md, "A law written in Python"). The
         slices hold whole blocks of the kernel's lanes (a multiple of 8 cases at most). The
         results do not depend on it for a function that treats each case on its own, as a law
-        does; each slice's memory is its own. Sliced, a slice of fewer than 4096 cases advances
-        its plant on the thread that calls the function (handing so few cases to other threads at
-        every instant costs more than it saves); a cheap function (numba, JAX) on a large batch
-        and several threads may do better with None. On a plant written in Python the law sees
-        every case at each call.
+        does; each slice's memory is its own. On one thread the slices run one after another;
+        on more, two at once, the function called on one while the other threads advance the
+        other's plant, their calls alternating (a batch that fits in one call is cut in two from
+        1024 cases on). On a plant written in Python the law sees every case at each call.
 
     Examples
     --------

@@ -176,9 +176,10 @@ def test_a_batch_larger_than_cases_per_call_runs_a_slice_at_a_time_with_the_same
     for law in (twisting, mss):
         calls = []
 
-        def seen(t, e, *rest, law=law, calls=calls):
-            calls.append((t, e.shape[0], float(e[0, 0])))
-            return law.function(t, e, *rest)
+        def seen(t, e, de, ref, drift, inertia, params, memory, law=law, calls=calls):
+            # a slice's parameters are its own dict: its identity tells the slices apart
+            calls.append((t, e.shape[0], id(params)))
+            return law.function(t, e, de, ref, drift, inertia, params, memory)
 
         whole = landing.simulate_batch(P.MarsLander(), law.replace(cases_per_call=None), mars_x0(37), t_final=0.5,
                                        dt=dt, record_every=10, disturbance=storm, seed=3)
@@ -188,14 +189,60 @@ def test_a_batch_larger_than_cases_per_call_runs_a_slice_at_a_time_with_the_same
                                             seed=3, threads=threads, kernel="baseline")
             assert_same_run(whole, sliced, rtol=0)
             np.testing.assert_array_equal(sliced.final_state, whole.final_state)
-            # slices of whole blocks, the same size but the last, each through all 501 instants in turn
-            sizes = [n for _, n, _ in calls[::501]]
+            # slices of whole blocks, each through all 501 instants in time order: on one thread one
+            # after another, the same size but the last; on two, two at a time, their calls alternating
+            slices, current = [], {}
+            for i, (t, m, slice_id) in enumerate(calls):
+                if t == 0.0:
+                    current[slice_id] = []
+                    slices.append(current[slice_id])
+                current[slice_id].append((i, t, m))
+            sizes = [s[0][2] for s in slices]
+            for s in slices:
+                assert len({m for _, _, m in s}) == 1
+                np.testing.assert_allclose([t for _, t, _ in s], np.arange(501) * dt, rtol=0, atol=1e-12)
             assert sum(sizes) == 37 and len(calls) == 501 * len(sizes)
-            assert all(n <= per_call for n in sizes[:-1]) and len(set(sizes[:-1])) <= 1
-            for j in range(len(sizes)):
-                times = [t for t, _, _ in calls[501 * j:501 * (j + 1)]]
-                np.testing.assert_allclose(times, np.arange(501) * dt, rtol=0, atol=1e-12)
+            assert all(n <= per_call for n in sizes)
+            contiguous = [s[-1][0] - s[0][0] == 500 for s in slices]
+            if threads == 1:
+                assert all(contiguous) and len(set(sizes[:-1])) <= 1
+            else:
+                first, second = slices[0], slices[1]
+                assert [i for i, _, _ in first[:3]] == [0, 2, 4] and [i for i, _, _ in second[:3]] == [1, 3, 5]
             calls.clear()
+
+
+def test_a_batch_that_fits_one_call_runs_as_two_alternating_slices_on_two_threads():
+    # on two threads, one slice's call overlaps the other's plant periods: the same bits as one
+    # thread's single slice, half the cases per call
+    seen = []
+
+    def law(t, e, de, ref, drift, inertia, params, memory):
+        seen.append(e.shape[0])
+        return pd_sat(t, e, de, ref, drift, inertia, params, memory)
+
+    rng = np.random.default_rng(9)
+    x0 = np.zeros((1200, 6))
+    x0[:, :3] = rng.normal(0.0, 1.0, (1200, 3))
+    python = C.PythonLaw(law, params={"lambda": 0.3, "k": 0.02, "phi": 0.5}, diagnostics=("s",))
+    runs = {}
+    for threads in (1, 2):
+        seen.clear()
+        runs[threads] = landing.simulate_batch(P.DoubleIntegrator(), python, x0, t_final=1.0, dt=0.05,
+                                               threads=threads, record_every=1)
+        assert sum(seen) == 1200 * 21
+        if threads == 1:
+            assert set(seen) == {1200}
+        else:
+            # two slices of whole blocks, within a block of each other, called in turn
+            assert seen[0] + seen[1] == 1200 and abs(seen[0] - seen[1]) <= 16 and seen[2:4] == seen[:2]
+    for name in ("states", "controls", "final_state"):
+        np.testing.assert_array_equal(getattr(runs[2], name), getattr(runs[1], name))
+    np.testing.assert_array_equal(runs[2].diagnostics["s"], runs[1].diagnostics["s"])
+    builtin = landing.simulate_batch(P.DoubleIntegrator(), C.PDSlidingMode(lambda_=0.3, k=0.02, switch="sat",
+                                                                           boundary_layer=0.5),
+                                     x0, t_final=1.0, dt=0.05, threads=2, record_every=1)
+    np.testing.assert_array_equal(runs[2].states, builtin.states)
 
 
 def test_an_exception_in_a_slice_names_the_slice_s_cases():

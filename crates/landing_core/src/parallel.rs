@@ -30,6 +30,12 @@ pub(crate) fn try_each<T: Send, E: Send>(jobs: Vec<Job<'_, Result<T, E>>>) -> Re
         .collect()
 }
 
+/// Runs `a` on this thread and `b` on the pool (or after `a`, when no other thread takes it),
+/// and returns both results.
+pub(crate) fn both<A: Send, B: Send>(a: Job<'_, A>, b: Job<'_, B>) -> (A, B) {
+    rayon::join(a, b)
+}
+
 /// Runs `f` on `pool`, or on the current pool when there is none.
 pub(crate) fn on_pool<T: Send>(pool: Option<&rayon::ThreadPool>, f: Job<'_, T>) -> T {
     match pool {

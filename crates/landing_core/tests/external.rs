@@ -25,6 +25,8 @@ struct CaseByCase {
     dt: f64,
     /// (first case, cases, t) of every call.
     calls: Vec<(usize, usize, f64)>,
+    /// The track of every call ([`Inputs::track`]).
+    tracks: Vec<usize>,
     fail_at: Option<u64>,
     per_call: usize,
 }
@@ -36,6 +38,7 @@ impl CaseByCase {
             memory: Vec::new(),
             dt,
             calls: Vec::new(),
+            tracks: Vec::new(),
             fail_at: None,
             per_call: usize::MAX,
         }
@@ -68,6 +71,7 @@ impl ExternalLaw<3> for CaseByCase {
         }
         let n = inputs.e.len() / 3;
         self.calls.push((inputs.first, n, inputs.t));
+        self.tracks.push(inputs.track);
         let nd = self.diagnostic_width();
         for i in 0..n {
             // case `c` of the batch, row `i` of the call's arrays
@@ -207,50 +211,104 @@ fn an_external_law_gives_the_bits_of_the_same_law_built_in() {
                 assert_eq!(law.calls.len() as u64, cfg.steps + 1);
                 assert_eq!(law.calls.last(), Some(&(0, 21, cfg.t_final())));
             }
-            // a slice of the cases at a time: the same bits
-            for per_call in [1, 8, 9, 16, 21] {
+            // a slice of the cases at a time: the same bits, on one thread (the slices one
+            // after another) and on two (two at a time, their calls alternating)
+            for (per_call, threads) in [1, 8, 9, 16, 21].into_iter().flat_map(|p| [(p, 1), (p, 2)])
+            {
                 let mut law = CaseByCase::new(laws.clone(), cfg.dt);
                 law.per_call = per_call;
-                let out = run_external(&outside(&x0, &noisy), &cfg, &at(2, level), &mut law)
+                let out = run_external(&outside(&x0, &noisy), &cfg, &at(threads, level), &mut law)
                     .unwrap_or_else(|_| panic!("{name} runs"));
-                assert_eq!(
-                    fingerprint(&out),
-                    fingerprint(&reference),
-                    "{name} at {level:?}, {per_call} cases per call"
-                );
-                // whole blocks, as many as fit in per_call (at least one; all of them when the
-                // batch fits), in order, each through every instant
-                let w = level.lanes::<<MarsLander as PlantModel<3>>::Blocks>();
-                let slice = if per_call >= 21 {
-                    21
-                } else {
-                    (per_call / w).max(1) * w
-                };
-                let mut at_call = law.calls.iter().peekable();
-                for first in (0..21).step_by(slice) {
-                    let m = slice.min(21 - first);
-                    let mut k = 0;
-                    while let Some(&&(f, cases, t)) = at_call.peek().filter(|c| c.0 == first) {
-                        assert_eq!((f, cases, t), (first, m, k as f64 * cfg.dt));
-                        at_call.next();
-                        k += 1;
-                    }
-                    // the absurd case 3 stops at once: a slice of it alone ends early
-                    if (first, m) != (3, 1) {
-                        assert_eq!(
-                            k,
-                            cfg.steps + 1,
-                            "{name}: slice {first} through every instant"
-                        );
-                    }
-                }
-                assert!(
-                    at_call.next().is_none(),
-                    "{name}: only the slices, in order"
-                );
+                let what =
+                    format!("{name} at {level:?}, {per_call} cases per call, {threads} threads");
+                assert_eq!(fingerprint(&out), fingerprint(&reference), "{what}");
+                check_slices(&law, 21, per_call, threads, level, &cfg, &what);
             }
         }
     }
+}
+
+/// The calls of a batch of `n` cases run a slice at a time: slices of whole blocks (at most
+/// `per_call` cases, at least one block), starting in order and covering the batch, each
+/// called at every instant in time order (but the absurd case 3, which stops at once, when a
+/// slice holds it alone). On one thread the slices come one after another, every one but the
+/// last of the same size; on two (with more than one slice) two at a time, on two tracks whose
+/// calls alternate while both run.
+fn check_slices(
+    law: &CaseByCase,
+    n: usize,
+    per_call: usize,
+    threads: usize,
+    level: Level,
+    cfg: &SimConfig,
+    what: &str,
+) {
+    let w = level.lanes::<<MarsLander as PlantModel<3>>::Blocks>();
+    let instants = cfg.steps as usize + 1;
+    let calls = &law.calls;
+    let alternate = threads > 1 && per_call < n && n.div_ceil(w) > 1;
+    let on = |t: usize| -> Vec<_> {
+        calls
+            .iter()
+            .zip(&law.tracks)
+            .filter(|c| *c.1 == t)
+            .map(|c| *c.0)
+            .collect()
+    };
+    let tracks = if alternate {
+        assert_eq!(law.tracks[..2], [0, 1], "{what}");
+        vec![on(0), on(1)]
+    } else {
+        assert!(law.tracks.iter().all(|&t| t == 0), "{what}");
+        vec![on(0)]
+    };
+    // (first, cases) of each slice, in the order each track ran them
+    let mut slices = Vec::new();
+    for track in &tracks {
+        let mut at = 0;
+        while at < track.len() {
+            let (first, m, _) = track[at];
+            let mut k = 0;
+            while at < track.len() && track[at].0 == first {
+                assert_eq!(track[at], (first, m, k as f64 * cfg.dt), "{what}");
+                at += 1;
+                k += 1;
+            }
+            if (first, m) != (3, 1) {
+                assert_eq!(k, instants, "{what}: slice {first} through every instant");
+            }
+            slices.push((first, m));
+        }
+    }
+    slices.sort();
+    let mut next = 0;
+    for &(first, m) in &slices {
+        assert_eq!(first, next, "{what}: the slices cover the batch");
+        assert!(m <= per_call.max(w), "{what}: slice {first} of {m} cases");
+        assert!(
+            first % w == 0 && (m % w == 0 || first + m == n),
+            "{what}: whole blocks"
+        );
+        next = first + m;
+    }
+    assert_eq!(next, n, "{what}");
+    if !alternate {
+        let sizes: Vec<_> = slices.iter().map(|s| s.1).collect();
+        assert!(
+            sizes[..sizes.len() - 1].windows(2).all(|p| p[0] == p[1]),
+            "{what}"
+        );
+    } else {
+        assert!(slices.len() > 1, "{what}");
+    }
+    // the slices start in order
+    let starts: Vec<_> = calls
+        .iter()
+        .enumerate()
+        .filter(|(i, c)| calls[..*i].iter().all(|d| d.0 != c.0))
+        .map(|(_, c)| c.0)
+        .collect();
+    assert!(starts.windows(2).all(|p| p[0] < p[1]), "{what}: {starts:?}");
 }
 
 #[test]

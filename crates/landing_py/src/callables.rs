@@ -5,7 +5,7 @@ use numpy::{PyArray2, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use landing_core::external::{ExternalLaw, ExternalPlant, Inputs, StateLayout};
+use landing_core::external::{ExternalLaw, ExternalPlant, Inputs, Staging, StateLayout};
 
 use crate::errors::invalid;
 
@@ -32,15 +32,15 @@ impl Handed {
         }
     }
 
-    /// Slot `slot`'s array, holding `values` (`n x width`, row-major).
-    fn array<'py>(
+    /// Slot `slot`'s array, of shape (n, width), only this slot's: kept, or new when the
+    /// callee kept the one before (its count is more than one) or the shape changed.
+    fn slot<'py>(
         &mut self,
         py: Python<'py>,
         slot: usize,
-        values: &[f64],
         n: usize,
-    ) -> Bound<'py, PyAny> {
-        let width = values.len() / n;
+        width: usize,
+    ) -> Bound<'py, PyArray2<f64>> {
         if self.slots.len() <= slot {
             self.slots.resize_with(slot + 1, || None);
         }
@@ -53,27 +53,58 @@ impl Handed {
         {
             *held = Some(PyArray2::zeros(py, [n, width], false).unbind());
         }
-        let a = held.as_ref().expect("set above").bind(py);
+        held.as_ref().expect("set above").bind(py).clone()
+    }
+
+    /// Slot `slot`'s array, holding `values` (`n x width`, row-major).
+    fn array<'py>(
+        &mut self,
+        py: Python<'py>,
+        slot: usize,
+        values: &[f64],
+        n: usize,
+    ) -> Bound<'py, PyAny> {
+        let a = self.slot(py, slot, n, values.len() / n);
         // SAFETY: a C-contiguous (n, width) float64 array that only this slot holds (its count
         // is one, or it was just made), so no Python code sees the write; numpy's read-only
         // flag, which the Python layer sets, guards Python's writes, not this one
         unsafe { std::ptr::copy_nonoverlapping(values.as_ptr(), a.data(), values.len()) };
-        a.clone().into_any()
+        a.into_any()
     }
 
-    /// Calls `f(*head, *arrays)`, the arrays in slots `first ..` (each `n` rows).
+    /// Lends slots `first ..` (each `n x width`) as a driver's [`Staging`]: until the next call
+    /// that hands them over, only the slots hold them.
+    fn lend(&mut self, py: Python<'_>, first: usize, n: usize, width: usize) -> Staging {
+        let fields = std::array::from_fn(|j| self.slot(py, first + j, n, width).data());
+        // SAFETY: each array holds n x width float64 values and only its slot holds it (`slot`);
+        // nothing here touches the slots again before `call` hands them over
+        unsafe { Staging::new(fields, n * width) }
+    }
+
+    /// Calls `f(*head, *arrays)`, the arrays in slots `first ..` (each `n` rows), holding
+    /// `arrays`, or, when None, what the driver staged in them (`lend`).
     fn call<'py>(
         &mut self,
         f: &Bound<'py, PyAny>,
         head: Vec<Bound<'py, PyAny>>,
-        arrays: &[&[f64]],
+        arrays: Result<&[&[f64]], (usize, usize)>,
         first: usize,
         n: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
         let py = f.py();
         let mut items = head;
-        for (j, a) in arrays.iter().enumerate() {
-            items.push(self.array(py, first + j, a, n));
+        match arrays {
+            Ok(arrays) => {
+                for (j, a) in arrays.iter().enumerate() {
+                    items.push(self.array(py, first + j, a, n));
+                }
+            }
+            // staged: the lent arrays, as `lend` left them
+            Err((count, width)) => {
+                for j in 0..count {
+                    items.push(self.slot(py, first + j, n, width).into_any());
+                }
+            }
         }
         f.call1(PyTuple::new(py, items)?)
     }
@@ -93,9 +124,9 @@ fn copy_rows(who: &str, a: &PyReadonlyArray2<'_, f64>, n: usize, into: &mut [f64
     Ok(())
 }
 
-/// A Python callable as the core's [`ExternalLaw`]: `step(t, k, first, e, de, position,
+/// A Python callable as the core's [`ExternalLaw`]: `step(t, k, first, track, e, de, position,
 /// velocity, acceleration, drift, inertia)`, the arrays (m, D) float64 for the m cases from row
-/// `first` on (at most `per_call`), returns `(command, diagnostics)`, C-contiguous float64 (m, D)
+/// `first` on (at most `per_call`; `track`: [`Inputs::track`]), returns `(command, diagnostics)`, C-contiguous float64 (m, D)
 /// and (m, width), checked by the Python layer (`landing.controllers.PythonLaw`) and again here.
 pub struct PyLaw {
     pub step: Py<PyAny>,
@@ -119,13 +150,29 @@ impl<const D: usize> ExternalLaw<D> for PyLaw {
         self.handed.on_thread(entering);
     }
 
+    fn staging(&mut self, track: usize, cases: usize) -> Option<Staging> {
+        Some(Python::attach(|py| {
+            self.handed.lend(py, 7 * track, cases, D)
+        }))
+    }
+
     fn command(&mut self, i: &Inputs<D>, u: &mut [f64], diagnostics: &mut [f64]) -> PyResult<()> {
         Python::attach(|py| {
-            let head = (i.t, i.k, i.first).into_pyobject(py)?.into_iter().collect();
-            let m = i.cases();
+            let head = (i.t, i.k, i.first, i.track)
+                .into_pyobject(py)?
+                .into_iter()
+                .collect();
+            let (m, fields) = (i.cases(), i.fields());
+            // each track's arrays in slots of its own: the two slices' sizes may differ
+            let slots = i.track * fields.len();
+            let arrays = if i.staged {
+                Err((fields.len(), D))
+            } else {
+                Ok(&fields[..])
+            };
             let out = self
                 .handed
-                .call(self.step.bind(py), head, &i.fields(), 0, m)?;
+                .call(self.step.bind(py), head, arrays, slots, m)?;
             let (a, diag): (PyReadonlyArray2<'_, f64>, PyReadonlyArray2<'_, f64>) =
                 out.extract()?;
             copy_rows("the Python law's step (command)", &a, m, u)?;
@@ -156,7 +203,9 @@ impl<const D: usize> PyPlant<D> {
         Python::attach(|py| {
             let head = vec![t.into_pyobject(py)?.into_any()];
             // two slots per hook: its arguments after t
-            let r = self.handed.call(f.bind(py), head, args, 2 * i, self.n)?;
+            let r = self
+                .handed
+                .call(f.bind(py), head, Ok(args), 2 * i, self.n)?;
             copy_rows(&format!("the plant's {what}"), &r.extract()?, self.n, out)
         })
     }

@@ -116,6 +116,17 @@ def checked_floats(what: str, value: Any, shape: tuple[int, ...], where: str) ->
     return np.ascontiguousarray(arr, dtype=np.float64)
 
 
+class _Slice:
+    """The slice of cases a track of the core runs: its rows of the batch, its parameters and
+    its memory."""
+
+    __slots__ = ("first", "m", "params", "memory")
+
+    def __init__(self, first: int, m: int, params: dict[str, np.ndarray]) -> None:
+        self.first, self.m, self.params = first, m, params
+        self.memory: Optional[dict[str, np.ndarray]] = None
+
+
 class LawStep:
     """What the core calls at each control instant of one batch (``n`` cases of a plant with
     ``axes`` axes, numbered from ``first_case``): calls ``function(t, e, de, ref, drift,
@@ -123,8 +134,10 @@ class LawStep:
     (m, width).
 
     The core calls it on a slice of at most ``cases_per_call`` cases at a time (all the batch's
-    when it is smaller), each slice through all its instants before the next: ``first`` is the
-    slice's first row in the batch, and the slice's memory is its own.
+    when it is smaller): ``first`` is the slice's first row in the batch. With more than one
+    thread two slices run at once on two tracks, their calls alternating (``track``, 0 or 1),
+    each slice's in time order; a track's next slice starts at ``k = 0``. Each slice's memory
+    is its own.
     """
 
     def __init__(self, function: Callable[..., Any], *, name: str, params: Mapping[str, np.ndarray],
@@ -138,17 +151,14 @@ class LawStep:
         self.n, self.axes, self.first_case = n, axes, first_case
         self.cases_per_call = cases_per_call
         self.width = sum(w for _, w in self.layout)
-        # the slice being run: its rows, parameters and memory
-        self._rows = (0, n)
-        self._params: dict[str, np.ndarray] = self.params
-        self.memory: Optional[dict[str, np.ndarray]] = None
+        # the slice each track runs
+        self._tracks: list[_Slice] = [_Slice(0, n, self.params), _Slice(0, n, self.params)]
 
-    def _where(self, t: float) -> str:
-        first, m = self._rows
-        start = self.first_case + first
-        return f"PythonLaw {self.name} at t = {t:.9g} s on cases {start}..{start + m - 1}"
+    def _where(self, t: float, s: _Slice) -> str:
+        start = self.first_case + s.first
+        return f"PythonLaw {self.name} at t = {t:.9g} s on cases {start}..{start + s.m - 1}"
 
-    def _memory(self, value: Any, where: str, what: str) -> Optional[dict[str, np.ndarray]]:
+    def _memory(self, value: Any, s: _Slice, where: str, what: str) -> Optional[dict[str, np.ndarray]]:
         """A memory the function returned (or the initial one): a mapping of arrays, one row per
         case, with the names and shapes of the one before."""
         if value is None:
@@ -156,79 +166,76 @@ class LawStep:
         if not isinstance(value, Mapping):
             raise UserFunctionError(
                 f"{where} returned {what} of type {type(value).__name__}; expected a dict of arrays")
-        before = self.memory
+        before = s.memory
         if before is not None and set(value) != set(before):
             raise UserFunctionError(f"{where} returned {what} with keys {sorted(value)}; expected {sorted(before)}")
-        m = self._rows[1]
         out = {}
         for key, v in value.items():
             arr = np.asarray(v)
             shape = before[key].shape if before is not None else arr.shape
-            if before is None and (arr.ndim == 0 or arr.shape[0] != m):
+            if before is None and (arr.ndim == 0 or arr.shape[0] != s.m):
                 raise UserFunctionError(f"{where} returned {what}[{key!r}] of shape {arr.shape}; "
-                                        f"expected one row per case, ({m}, ...)")
+                                        f"expected one row per case, ({s.m}, ...)")
             out[key] = checked_floats(f"{what}[{key!r}]", v, shape, where)
         return out
 
-    def _start(self, t: float, first: int, args: tuple[Any, ...]) -> None:
-        """A slice's first instant: its rows, parameters and initial memory."""
+    def _start(self, t: float, first: int, track: int, args: tuple[Any, ...]) -> _Slice:
+        """A slice's first instant: its rows, parameters and initial memory, on its track."""
         m = args[1].shape[0]
-        self._rows = (first, m)
         whole = first == 0 and m == self.n
-        self._params = self.params if whole else {k: v[first:first + m] for k, v in self.params.items()}
-        self.memory = None
-        where = self._where(t)
+        s = _Slice(first, m, self.params if whole else {k: v[first:first + m] for k, v in self.params.items()})
+        self._tracks[track] = s
         init = self.initial
         if init is None:
-            return
+            return s
         if callable(init):
             try:
-                value = init(*args, self._params)
+                value = init(*args, s.params)
             except Exception as exc:
                 raise UserFunctionError(
-                    f"the memory initialiser of {where} raised {type(exc).__name__}: {exc}") from exc
-            self.memory = self._memory(value, where, "memory (initial)")
+                    f"the memory initialiser of {self._where(t, s)} raised {type(exc).__name__}: {exc}") from exc
+            s.memory = self._memory(value, s, self._where(t, s), "memory (initial)")
         else:
             # values shared by every case, broadcast to one row per case
-            self.memory = {k: np.array(np.broadcast_to(np.asarray(v, dtype=np.float64), (m, *np.shape(v))))
-                           for k, v in init.items()}
+            s.memory = {k: np.array(np.broadcast_to(np.asarray(v, dtype=np.float64), (m, *np.shape(v))))
+                        for k, v in init.items()}
+        return s
 
-    def __call__(self, t: float, k: int, first: int, e: np.ndarray, de: np.ndarray, position: np.ndarray,
-                 velocity: np.ndarray, acceleration: np.ndarray, drift: np.ndarray,
+    def __call__(self, t: float, k: int, first: int, track: int, e: np.ndarray, de: np.ndarray,
+                 position: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray, drift: np.ndarray,
                  inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         for a in (e, de, position, velocity, acceleration, drift, inertia):
             a.setflags(write=False)
         args = (t, e, de, ReferencePoint(position, velocity, acceleration), drift, inertia)
-        if k == 0:
-            self._start(t, first, args)
+        s = self._start(t, first, track, args) if k == 0 else self._tracks[track]
         try:
-            out = self.function(*args, self._params, self.memory)
+            out = self.function(*args, s.params, s.memory)
         except Exception as exc:
-            raise UserFunctionError(f"{self._where(t)} raised {type(exc).__name__}: {exc}") from exc
+            raise UserFunctionError(f"{self._where(t, s)} raised {type(exc).__name__}: {exc}") from exc
         diagnostics: Any = None
         if isinstance(out, tuple):
             if len(out) not in (2, 3):
-                raise UserFunctionError(f"{self._where(t)} returned a tuple of {len(out)} values; expected the "
+                raise UserFunctionError(f"{self._where(t, s)} returned a tuple of {len(out)} values; expected the "
                                         "command, (command, memory) or (command, memory, diagnostics)")
             command, memory = out[0], out[1]
             diagnostics = out[2] if len(out) == 3 else None
-            self.memory = self._memory(memory, self._where(t), "memory")
+            s.memory = self._memory(memory, s, self._where(t, s), "memory")
         else:
             command = out
-        m = self._rows[1]
+        m = s.m
         if (isinstance(command, np.ndarray) and command.dtype == np.float64 and command.shape == (m, self.axes)
                 and command.flags.c_contiguous):
             u = command  # the common case, checked without formatting a message
         else:
-            u = checked_floats("a command", command, (m, self.axes), self._where(t))
-        return u, self._diagnostics(diagnostics, t)
+            u = checked_floats("a command", command, (m, self.axes), self._where(t, s))
+        return u, self._diagnostics(diagnostics, t, s)
 
-    def _diagnostics(self, value: Any, t: float) -> np.ndarray:
-        m = self._rows[1]
+    def _diagnostics(self, value: Any, t: float, s: _Slice) -> np.ndarray:
+        m = s.m
         out = np.empty((m, self.width))
         if not self.layout:
             return out
-        where = self._where(t)
+        where = self._where(t, s)
         if not isinstance(value, Mapping):
             names = [name for name, _ in self.layout]
             raise UserFunctionError(f"{where} returned no diagnostics dict; it declares {names}")

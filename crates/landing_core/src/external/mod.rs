@@ -45,6 +45,13 @@ pub struct Inputs<const D: usize> {
     /// The index in the batch of the first case these inputs hold (a law called on the batch a
     /// slice at a time, [`ExternalLaw::cases_per_call`], sees each slice's).
     pub first: usize,
+    /// Which of the driver's two interleaved slices these inputs belong to, 0 or 1 (0 when
+    /// the slices run one after another): calls for the two alternate, so a law that keeps
+    /// buffers or state per slice keys them by it. A track's next slice starts at `k = 0`.
+    pub track: usize,
+    /// Whether the driver has already copied these inputs into the memory the law's
+    /// [`ExternalLaw::staging`] lent for this call.
+    pub staged: bool,
     /// The control instant, s.
     pub t: f64,
     /// Index of the control instant, `t = k dt` (`k = steps` at t_final, whose command is
@@ -65,6 +72,8 @@ impl<const D: usize> Inputs<D> {
         let z = || vec![0.0; n * D];
         Self {
             first: 0,
+            track: 0,
+            staged: false,
             t: 0.0,
             k: 0,
             e: z(),
@@ -168,6 +177,40 @@ impl InputRows<'_> {
     }
 }
 
+/// Memory a law lends the driver for the inputs of its next call on a track: seven buffers of
+/// `len` values, one per field of [`Inputs::fields`], in that order.
+pub struct Staging {
+    fields: [*mut f64; 7],
+    len: usize,
+}
+
+// SAFETY: the lender promises (`Staging::new`) that the memory is the driver's alone until the
+// track's next call, so the thread that writes it may be any
+unsafe impl Send for Staging {}
+
+impl Staging {
+    /// # Safety
+    ///
+    /// Each pointer must be valid for writes of `len` f64 values, and nothing else may read or
+    /// write that memory until the next [`ExternalLaw::command`] on the track it was lent for.
+    pub unsafe fn new(fields: [*mut f64; 7], len: usize) -> Self {
+        Self { fields, len }
+    }
+
+    /// Copies `inputs` into the lent memory, or returns false when the sizes differ.
+    fn write<const D: usize>(&self, inputs: &Inputs<D>) -> bool {
+        let fields = inputs.fields();
+        if fields.iter().any(|f| f.len() != self.len) {
+            return false;
+        }
+        for (to, from) in self.fields.iter().zip(fields) {
+            // SAFETY: `new`'s contract: `len` values, ours alone until the next call
+            unsafe { std::ptr::copy_nonoverlapping(from.as_ptr(), *to, self.len) };
+        }
+        true
+    }
+}
+
 /// A law computed outside the core: once per control instant, for the cases of a call (the
 /// batch, or a slice of it).
 pub trait ExternalLaw<const D: usize>: Send {
@@ -178,20 +221,31 @@ pub trait ExternalLaw<const D: usize>: Send {
     fn diagnostic_width(&self) -> usize;
 
     /// At most this many cases per call. A batch larger than that runs a slice of cases at a
-    /// time through all its control instants (the slices in order, each slice's calls in
-    /// time order): the slice's blocks and the law's arrays then stay in the caches between
-    /// two calls, where the whole batch's would stream through memory at every instant. The
-    /// slices hold whole blocks; every slice but the last has the same size.
+    /// time through all its control instants: the slice's blocks and the law's arrays then
+    /// stay in the caches between two calls, where the whole batch's would stream through
+    /// memory at every instant. The slices hold whole blocks, in order; on one thread they run
+    /// one after another, on more two at a time, their calls alternating ([`Inputs::track`]);
+    /// each slice's calls come in time order, and the slices start in order.
     fn cases_per_call(&self) -> usize {
         usize::MAX
     }
 
-    /// Called with `true` on the thread that is about to call [`command`](Self::command) for a
-    /// slice of cases, before the slice's first call, and with `false` after its last, on the
-    /// same thread, whether the slice ran to its end or stopped (cancelled, the law failed).
-    /// (The bindings keep the interpreter's record of the thread between the two: made and
-    /// dropped at every call, it cost more than the call.)
+    /// Called with `true` on the thread that is about to call [`command`](Self::command), before
+    /// the batch's first call, and with `false` after its last, on the same thread, whether
+    /// the batch ran to its end or stopped (cancelled, the law failed). Every call is made on
+    /// that thread. (The bindings keep the interpreter's record of the thread between the two:
+    /// made and dropped at every call, it cost more than the call.)
     fn on_thread(&mut self, _entering: bool) {}
+
+    /// Memory of the law's own into which the driver may copy the inputs of the next call on
+    /// `track` (of `cases` cases) before making it: asked after every call on the track, on
+    /// the thread that made it. A law that hands its inputs on in buffers of its own (the
+    /// bindings: numpy arrays) lends them, so that the copy is made where the driver advances
+    /// the plant, not on the thread that calls the law, which two interleaved slices keep busy
+    /// ([`Inputs::staged`] says that it was made). None, the default: the law copies them.
+    fn staging(&mut self, _track: usize, _cases: usize) -> Option<Staging> {
+        None
+    }
 
     /// Writes the commanded generalized accelerations of the call's cases at `inputs.t` into
     /// `command` (`n x D`) and its diagnostics into `diagnostics` (`n x width`).
@@ -350,11 +404,12 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
 /// Runs every case of the batch under `law`, a slice of at most `law.cases_per_call()` cases at
 /// a time: the law is called once per control instant (`steps + 1` times, the last at t_final,
 /// while a case of the slice still runs) with the inputs of the slice's cases; between two
-/// calls every block's period of the slice runs (on the rayon pool for an unsliced batch or a
-/// large slice, on the calling thread for a small one: [`PARALLEL_SLICE`]).
-/// Cancelled, at the next instant, when `options.cancel` is raised; stopped when the law
-/// fails. The output and its bits are those [`crate::batch::run`] gives for the same law
-/// built in.
+/// calls every block's period of the slice runs. On one thread the slices run one after
+/// another. On more, two slices run interleaved ([`Driver::interleaved`]): while the law is
+/// called on one, the other thread advances the other's plant, so the law's calls, which hold
+/// the interpreter on one core, overlap the periods. Cancelled, at the next instant, when
+/// `options.cancel` is raised; stopped when the law fails. The output and its bits are those
+/// [`crate::batch::run`] gives for the same law built in, whatever the slices or threads.
 pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
     batch: &Batch<D, P, ()>,
     cfg: &SimConfig,
@@ -391,75 +446,205 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         level,
     };
     let w = level.lanes::<P::Blocks>();
+    let threads = pool.map_or_else(rayon::current_num_threads, |p| p.current_num_threads());
+    let (slices, interleaved) = plan(n, w, law.cases_per_call(), threads);
+    let driver = Driver {
+        common: &common,
+        w,
+        n,
+        sliced: slices.len() > 1,
+        threads,
+        cancel,
+    };
+    let mut buffers = outputs.blocks(w, nr, nx, out_nd);
+    // each slice's output blocks
+    let mut rest = &mut buffers[..];
+    let mut parts = Vec::with_capacity(slices.len());
+    for s in &slices {
+        let (part, tail) = rest.split_at_mut(s.len());
+        parts.push((s.clone(), part));
+        rest = tail;
+    }
+    parallel::on_pool(
+        pool,
+        Box::new(|| {
+            law.on_thread(true);
+            let out = if interleaved {
+                driver.interleaved(law, parts)
+            } else {
+                parts
+                    .into_iter()
+                    .try_for_each(|(s, part)| driver.one_after_another(law, s, part))
+            };
+            law.on_thread(false);
+            out
+        }),
+    )?;
+    drop(buffers);
+    Ok(outputs.finish(cfg, nx, out_nd, level))
+}
+
+/// The batch's slices (ranges of whole blocks), and whether two run interleaved. One after
+/// another, every slice but the last holds `per_call` cases' worth of whole blocks (at least
+/// one). Interleaved (more than one thread, and enough cases that two calls per instant cost
+/// less than what the overlap saves: [`MIN_INTERLEAVED`]), the slices are an even number
+/// of near-equal ones, so that no slice runs alone at the end.
+fn plan(
+    n: usize,
+    w: usize,
+    per_call: usize,
+    threads: usize,
+) -> (Vec<std::ops::Range<usize>>, bool) {
     let blocks = n.div_ceil(w);
-    // whole blocks per slice, all of them when the batch fits in one call
-    let per_call = law.cases_per_call();
     let per_slice = if per_call >= n {
         blocks
     } else {
         (per_call / w).max(1)
     };
-    let threads = pool.map_or_else(rayon::current_num_threads, |p| p.current_num_threads());
-    let mut buffers = outputs.blocks(w, nr, nx, out_nd);
-    let mut first_block = 0;
-    while first_block < blocks {
-        let slice = first_block..blocks.min(first_block + per_slice);
-        let run = Slice {
-            common: &common,
-            w,
-            n,
-            blocks: slice.clone(),
-            sliced: per_slice < blocks,
-            threads,
-            cancel,
-        };
-        parallel::on_pool(
-            pool,
-            Box::new(|| {
-                law.on_thread(true);
-                let out = run.run(law, &mut buffers[slice.clone()]);
-                law.on_thread(false);
-                out
-            }),
-        )?;
-        first_block = slice.end;
+    let count = blocks.div_ceil(per_slice);
+    let interleaved = threads > 1 && blocks > 1 && (count > 1 || n >= 2 * MIN_INTERLEAVED);
+    if !interleaved {
+        let slices = (0..count)
+            .map(|i| i * per_slice..blocks.min((i + 1) * per_slice))
+            .collect();
+        return (slices, false);
     }
-    drop(buffers);
-    Ok(outputs.finish(cfg, nx, out_nd, level))
+    let count = (count.max(2).next_multiple_of(2)).min(blocks);
+    let (size, more) = (blocks / count, blocks % count);
+    let mut first = 0;
+    let slices = (0..count)
+        .map(|i| {
+            let len = size + usize::from(i < more);
+            first += len;
+            first - len..first
+        })
+        .collect();
+    (slices, true)
 }
 
-/// A run of consecutive blocks of the batch, taken through all its control instants.
-struct Slice<'a, 'c, const D: usize, P: PlantModel<D>> {
+/// A batch that fits in one call is cut in two interleaved slices from twice this many cases
+/// on (with more than one thread): below, the second call per instant costs more than the
+/// overlap saves. (A batch cut into slices anyway, by `cases_per_call`, always interleaves.)
+const MIN_INTERLEAVED: usize = 512;
+
+/// How the slices of a batch are run (see [`run_external`]).
+struct Driver<'a, 'c, const D: usize, P: PlantModel<D>> {
     common: &'a Common<'c, D, P>,
     /// Lanes per block.
     w: usize,
     /// Cases in the batch.
     n: usize,
-    blocks: std::ops::Range<usize>,
     /// Whether the batch runs in more than one slice.
     sliced: bool,
     threads: usize,
     cancel: &'a AtomicBool,
 }
 
-impl<const D: usize, P: PlantModel<D>> Slice<'_, '_, D, P> {
-    /// Starts the slice's blocks, then at each control instant calls the law on the slice's
-    /// cases and runs one period of every block still running, with the commands it returned.
-    fn run<X: ExternalLaw<D>>(
+impl<const D: usize, P: PlantModel<D>> Driver<'_, '_, D, P> {
+    fn check<E>(&self) -> Result<(), ExternalError<E>> {
+        if self.cancel.load(Ordering::Relaxed) {
+            return Err(BatchError::Cancelled.into());
+        }
+        Ok(())
+    }
+
+    /// The slice `blocks` through all its control instants: at each, the law's call, then one
+    /// period of every block still running, with the commands it returned.
+    fn one_after_another<X: ExternalLaw<D>>(
         &self,
         law: &mut X,
+        blocks: std::ops::Range<usize>,
         buffers: &mut [BlockBuffers<'_, D>],
     ) -> Result<(), ExternalError<X::Error>> {
-        let (common, w, level) = (self.common, self.w, self.common.level);
-        let (cfg, nd) = (common.cfg, common.nd);
-        let first = self.blocks.start * w;
-        let m = self.n.min(self.blocks.end * w) - first;
-        let blocks = self.blocks.len();
+        let mut slice = Running::start(self, blocks, buffers, 0);
+        // a small slice of a sliced batch advances its blocks on the calling thread
+        let spread = !(self.sliced && slice.m < PARALLEL_SLICE);
+        while slice.live() {
+            self.check()?;
+            slice.call(law).map_err(ExternalError::Law)?;
+            slice.advance(spread);
+        }
+        Ok(())
+    }
+
+    /// The slices two at a time, on two tracks. At each turn the law is called, on this
+    /// thread, on the inputs of one track's slice, while the pool advances the other track's
+    /// slice by the period its last call commanded (or, once that slice has ended, starts the
+    /// track's next slice); then the tracks change roles. Each slice sees the calls and periods
+    /// it would see alone, in the same order, so the bits are those of
+    /// [`one_after_another`](Self::one_after_another).
+    fn interleaved<X: ExternalLaw<D>>(
+        &self,
+        law: &mut X,
+        slices: Vec<(std::ops::Range<usize>, &mut [BlockBuffers<'_, D>])>,
+    ) -> Result<(), ExternalError<X::Error>> {
+        let mut next = slices.into_iter();
+        let mut tracks: [Option<Running<'_, '_, '_, '_, D, P>>; 2] = [None, None];
+        tracks[0] = next.next().map(|(s, b)| Running::start(self, s, b, 0));
+        let mut turn = 0;
+        while tracks.iter().any(Option::is_some) {
+            self.check()?;
+            let [a, b] = &mut tracks;
+            let (calling, stepping, track) = if turn == 0 { (a, b, 1) } else { (b, a, 0) };
+            let next = &mut next;
+            let (called, ()) = parallel::both(
+                Box::new(|| match calling.as_mut().filter(|s| s.live()) {
+                    Some(s) => s.call(law),
+                    None => Ok(()),
+                }),
+                Box::new(move || {
+                    if let Some(s) = stepping.as_mut().filter(|s| s.commanded) {
+                        s.advance(true);
+                    }
+                    if !stepping.as_ref().is_some_and(Running::live) {
+                        *stepping = next.next().map(|(s, b)| Running::start(self, s, b, track));
+                    }
+                }),
+            );
+            called.map_err(ExternalError::Law)?;
+            turn = 1 - turn;
+        }
+        Ok(())
+    }
+}
+
+/// A slice of consecutive blocks of the batch on its way through the control instants: its
+/// blocks, the law's inputs for its cases at instant `k`, and the commands of the last call.
+struct Running<'a, 'b, 'c, 'd, const D: usize, P: PlantModel<D>> {
+    driver: &'a Driver<'a, 'd, D, P>,
+    /// The slice's cases.
+    m: usize,
+    inputs: Inputs<D>,
+    command: Vec<f64>,
+    diagnostics: Vec<f64>,
+    held: Vec<Held>,
+    running: Vec<bool>,
+    buffers: &'b mut [BlockBuffers<'c, D>],
+    /// Blocks per task when the period is spread over the pool.
+    group: usize,
+    k: u64,
+    /// The law was called at `k`, and the period `k` has not run.
+    commanded: bool,
+    /// Where the law reads the next call's inputs, when it lent memory for them.
+    staging: Option<Staging>,
+}
+
+impl<'a, 'b, 'c, 'd, const D: usize, P: PlantModel<D>> Running<'a, 'b, 'c, 'd, D, P> {
+    /// Starts the blocks `blocks` (their inputs at t = 0 written), on `track` (see
+    /// [`Inputs::track`]).
+    fn start(
+        driver: &'a Driver<'a, 'd, D, P>,
+        blocks: std::ops::Range<usize>,
+        buffers: &'b mut [BlockBuffers<'c, D>],
+        track: usize,
+    ) -> Self {
+        let (common, w) = (driver.common, driver.w);
+        let first = blocks.start * w;
+        let m = driver.n.min(blocks.end * w) - first;
         let used = |b: usize| w.min(m - b * w);
         let mut inputs = Inputs::<D>::new(m);
         inputs.first = first;
-        let mut command = vec![0.0; m * D];
-        let mut diagnostics = vec![0.0; m * nd];
+        inputs.track = track;
         let jobs = inputs
             .rows(w)
             .into_iter()
@@ -471,74 +656,103 @@ impl<const D: usize, P: PlantModel<D>> Slice<'_, '_, D, P> {
                     used: used(b),
                     rows,
                 };
-                Box::new(move || kernel::dispatch(level, job))
+                Box::new(move || kernel::dispatch(common.level, job))
             })
             .collect();
-        let mut held = parallel::each(jobs);
-        let group = blocks
-            .div_ceil(self.threads * GROUPS_PER_THREAD)
-            .clamp(1, MAX_GROUP);
-        let mut running = vec![true; held.len()];
-        let mut k = 0;
-        while k <= cfg.steps && running.contains(&true) {
-            if self.cancel.load(Ordering::Relaxed) {
-                return Err(BatchError::Cancelled.into());
-            }
-            inputs.t = k as f64 * cfg.dt;
-            inputs.k = k;
-            law.command(&inputs, &mut command, &mut diagnostics)
-                .map_err(ExternalError::Law)?;
-            let mut steps: Vec<(Step<'_, '_, '_, D, P>, &mut bool)> = held
-                .iter_mut()
-                .zip(buffers.iter_mut())
-                .zip(command.chunks(w * D))
-                .zip(chunks_or_empty(&diagnostics, w * nd, blocks))
-                .zip(inputs.rows(w))
-                .zip(running.iter_mut())
-                .enumerate()
-                .filter(|(_, (_, running))| **running)
-                .map(
-                    |(b, (((((held, out), command), diagnostics), rows), running))| {
-                        let job = Step {
-                            common,
-                            k,
-                            held,
-                            used: used(b),
-                            command,
-                            diagnostics,
-                            rows,
-                            out,
-                        };
-                        (job, running)
-                    },
-                )
-                .collect();
-            // runs of consecutive blocks, one task each: a task per block cost more in
-            // scheduling than its period. (Asking for the next block's memory ahead, all 12 kB
-            // of a Mars block, made a run slower: the period reads about half of it.)
-            let mut jobs: Vec<Job<'_, ()>> = Vec::with_capacity(steps.len().div_ceil(group));
-            while !steps.is_empty() {
-                let rest = steps.split_off(group.min(steps.len()));
-                let run = std::mem::replace(&mut steps, rest);
-                jobs.push(Box::new(move || {
-                    for (job, running) in run {
-                        *running = kernel::dispatch(level, job);
-                    }
-                }));
-            }
-            if self.sliced && m < PARALLEL_SLICE {
-                jobs.into_iter().for_each(|job| job());
-            } else {
-                parallel::each(jobs);
-            }
-            k += 1;
+        let held = parallel::each(jobs);
+        let count = blocks.len();
+        Self {
+            driver,
+            m,
+            command: vec![0.0; m * D],
+            diagnostics: vec![0.0; m * common.nd],
+            running: vec![true; held.len()],
+            held,
+            inputs,
+            buffers,
+            group: count
+                .div_ceil(driver.threads * GROUPS_PER_THREAD)
+                .clamp(1, MAX_GROUP),
+            k: 0,
+            commanded: false,
+            staging: None,
         }
+    }
+
+    /// Whether the slice has an instant left: `k <= steps` and a case still running.
+    fn live(&self) -> bool {
+        self.k <= self.driver.common.cfg.steps && self.running.contains(&true)
+    }
+
+    /// The law's call at instant `k`.
+    fn call<X: ExternalLaw<D>>(&mut self, law: &mut X) -> Result<(), X::Error> {
+        self.inputs.t = self.k as f64 * self.driver.common.cfg.dt;
+        self.inputs.k = self.k;
+        law.command(&self.inputs, &mut self.command, &mut self.diagnostics)?;
+        self.commanded = true;
+        self.staging = law.staging(self.inputs.track, self.m);
         Ok(())
+    }
+
+    /// Period `k` of every block still running, under the last call's commands, spread over
+    /// the pool or on this thread; the inputs at `k + 1` written.
+    fn advance(&mut self, spread: bool) {
+        let (common, w, k) = (self.driver.common, self.driver.w, self.k);
+        let (m, nd, blocks) = (self.m, common.nd, self.held.len());
+        let used = |b: usize| w.min(m - b * w);
+        let mut steps: Vec<(Step<'_, '_, '_, D, P>, &mut bool)> = self
+            .held
+            .iter_mut()
+            .zip(self.buffers.iter_mut())
+            .zip(self.command.chunks(w * D))
+            .zip(chunks_or_empty(&self.diagnostics, w * nd, blocks))
+            .zip(self.inputs.rows(w))
+            .zip(self.running.iter_mut())
+            .enumerate()
+            .filter(|(_, (_, running))| **running)
+            .map(
+                |(b, (((((held, out), command), diagnostics), rows), running))| {
+                    let job = Step {
+                        common,
+                        k,
+                        held,
+                        used: used(b),
+                        command,
+                        diagnostics,
+                        rows,
+                        out,
+                    };
+                    (job, running)
+                },
+            )
+            .collect();
+        // runs of consecutive blocks, one task each: a task per block cost more in
+        // scheduling than its period. (Asking for the next block's memory ahead, all 12 kB
+        // of a Mars block, made a run slower: the period reads about half of it.)
+        let level = common.level;
+        let mut jobs: Vec<Job<'_, ()>> = Vec::with_capacity(steps.len().div_ceil(self.group));
+        while !steps.is_empty() {
+            let rest = steps.split_off(self.group.min(steps.len()));
+            let run = std::mem::replace(&mut steps, rest);
+            jobs.push(Box::new(move || {
+                for (job, running) in run {
+                    *running = kernel::dispatch(level, job);
+                }
+            }));
+        }
+        if spread {
+            parallel::each(jobs);
+        } else {
+            jobs.into_iter().for_each(|job| job());
+        }
+        self.k += 1;
+        self.commanded = false;
+        self.inputs.staged = self.staging.take().is_some_and(|s| s.write(&self.inputs));
     }
 }
 
-/// A slice of fewer cases than this, of a batch run a slice at a time, advances its blocks on
-/// the thread that calls the law: at 1024 cases per call, handing each instant's
+/// A slice of fewer cases than this, of a batch run a slice at a time on one thread, advances
+/// its blocks on the thread that calls the law: at 1024 cases per call, handing each instant's
 /// periods to the pool's other threads and waiting for them cost more than they saved (10^4
 /// Mars cases, 2 threads: 194 against 141 ns per case-step; BENCHMARKS.md). A batch run whole
 /// spreads its periods over the pool, as before.
