@@ -133,7 +133,7 @@ class TwoPointMass(Gravity):
         Masses of the first and second point, kg, scalar; G m > 0. Default ``EROS_MASS / 2``.
     position1, position2 : ArrayLike
         Positions of the points in the body frame, m, per axis (3,). Default
-        (+-7692.2, 0, 0) m.
+        (+-17.2 km / sqrt(5), 0, 0) = (+-7692.07, 0, 0) m.
     G : ArrayLike
         Newton's constant, m^3/(kg s^2), scalar. Default the core's ``G``.
 
