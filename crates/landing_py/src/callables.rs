@@ -81,8 +81,9 @@ impl Handed {
         unsafe { Staging::new(fields, n * width) }
     }
 
-    /// Calls `f(*head, *arrays)`, the arrays in slots `first ..` (each `n` rows), holding
-    /// `arrays`, or, when None, what the driver staged in them (`lend`).
+    /// Calls `f(*head, *arrays)`, the arrays in slots `first ..` (each `n` rows): `Ok` the
+    /// values copied into them, `Err((count, width))` the `count` arrays as the driver staged
+    /// them (`lend`).
     fn call<'py>(
         &mut self,
         f: &Bound<'py, PyAny>,
