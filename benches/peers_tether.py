@@ -108,9 +108,9 @@ import shlex
 import statistics
 import sys
 import time
-from importlib import metadata
 
 import numpy as np
+from _harness import machine, measure, version
 
 # --- W6 ------------------------------------------------------------------------------------------
 
@@ -507,37 +507,6 @@ def law_trace(setup, x0: np.ndarray, law_check) -> list[str]:
 
 
 # --- measuring -----------------------------------------------------------------------------------
-
-
-# numba's OpenMP workers spin for a while after a parallel region (libgomp's default wait
-# policy); every timed run starts after this pause, when they have gone to sleep (see
-# peers_small_body.py).
-SETTLE_S = 0.05
-
-
-def measure(fn) -> dict:
-    """Wall time and CPU time of this process (all its threads) over one run, after SETTLE_S."""
-    time.sleep(SETTLE_S)
-    c0, t0 = time.process_time(), time.perf_counter()
-    fn()
-    return {"wall": time.perf_counter() - t0, "cpu": time.process_time() - c0}
-
-
-def machine() -> str:
-    model = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo") as fh:
-            model = next(line.split(":", 1)[1].strip() for line in fh if line.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    return f"{model}, {len(os.sched_getaffinity(0))} cores, Linux {platform.release()}"
-
-
-def version(name: str) -> str:
-    try:
-        return metadata.version(name)
-    except metadata.PackageNotFoundError:
-        return "not installed"
 
 
 def main() -> None:

@@ -1,0 +1,40 @@
+"""What the peer benches (`peers_small_body.py`, `peers_tether.py`) share: a timed run after
+numba's workers have gone to sleep, and the machine and package versions for the header."""
+
+from __future__ import annotations
+
+import os
+import platform
+import time
+from collections.abc import Callable
+from importlib import metadata
+
+# numba's OpenMP workers spin for a while after a parallel region (libgomp's default wait
+# policy): measured, 8 ms of CPU taken from a 19 ms landing run that followed a two-thread
+# numba run at once. Every timed run starts after this pause, when they have gone to sleep.
+SETTLE_S = 0.05
+
+
+def measure(fn: Callable[[], object]) -> dict:
+    """Wall time and CPU time of this process (all its threads) over one run, after SETTLE_S."""
+    time.sleep(SETTLE_S)
+    c0, t0 = time.process_time(), time.perf_counter()
+    fn()
+    return {"wall": time.perf_counter() - t0, "cpu": time.process_time() - c0}
+
+
+def machine() -> str:
+    model = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as fh:
+            model = next(line.split(":", 1)[1].strip() for line in fh if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    return f"{model}, {len(os.sched_getaffinity(0))} cores, Linux {platform.release()}"
+
+
+def version(name: str) -> str:
+    try:
+        return metadata.version(name)
+    except metadata.PackageNotFoundError:
+        return "not installed"
