@@ -1,8 +1,9 @@
 """What recording costs a campaign (issue 27): the part-2 Mars preset (60 s at 1 ms), metrics only
 against recording every 50 ms (the preset's), through simulate_batch and through monte_carlo
 (in memory: one chunk, 20 chunks, 50 chunks (2 % of the cases each: the progress bar's chunks
-before 2026-12-06) and the progress bar's default chunks), medians of alternated repeats in one
-run.
+before 2026-12-06) and the progress bar's default chunks, and these chunks as before
+2026-12-07: each chunk's recording in arrays of its own, copied into the campaign's output,
+instead of written into it), medians of alternated repeats in one run.
 
     python benches/recording_cost.py [--cases 2000] [--repeat 3] [--threads 2] [--paths NAME ...]
 
@@ -18,6 +19,7 @@ import time
 import numpy as np
 
 import landing
+from landing.campaign._assembly import Assembly
 
 
 def main() -> None:
@@ -39,6 +41,16 @@ def main() -> None:
         return landing.monte_carlo(s, n, seed=1, record_every=every, chunk_size=chunk, threads=threads,
                                    progress=False, check_bounds=False).result
 
+    def copied(every: int) -> landing.SimulationResult:
+        # every chunk records into arrays of its own, copied into the output (before 2026-12-07)
+        lend = Assembly.destination
+        Assembly.destination = lambda self, start, stop: None  # type: ignore[method-assign]
+        try:
+            return landing.monte_carlo(s, n, seed=1, record_every=every, threads=threads, progress=True,
+                                       check_bounds=False).result
+        finally:
+            Assembly.destination = lend  # type: ignore[method-assign]
+
     runs = {
         "simulate_batch": batch,
         "monte_carlo, one chunk": lambda e: mc(e, n),
@@ -46,6 +58,7 @@ def main() -> None:
         "monte_carlo, 50 chunks": lambda e: mc(e, -(-n // 50)),
         "monte_carlo, progress bar": lambda e: landing.monte_carlo(
             s, n, seed=1, record_every=e, threads=threads, progress=True, check_bounds=False).result,
+        "progress bar, chunks copied": copied,
     }
     if args.paths:
         unknown = set(args.paths) - set(runs)
@@ -62,11 +75,11 @@ def main() -> None:
             runs[name](every)
             out.append(time.perf_counter() - t0)
     print(f"{n} cases x {steps} steps, {threads} threads; ns of wall time per case-step, median of {args.repeat}")
-    print(f"{'path':<26} {'metrics only':>13} {'every 50 ms':>12} {'cost':>7}")
+    print(f"{'path':<30} {'metrics only':>13} {'every 50 ms':>12} {'cost':>7}")
     for name in runs:
         a = statistics.median(times[(name, 0)]) / (n * steps) * 1e9
         b = statistics.median(times[(name, 50)]) / (n * steps) * 1e9
-        print(f"{name:<26} {a:>13.2f} {b:>12.2f} {100 * (b / a - 1):>6.1f}%")
+        print(f"{name:<30} {a:>13.2f} {b:>12.2f} {100 * (b / a - 1):>6.1f}%")
 
 
 if __name__ == "__main__":

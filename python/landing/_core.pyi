@@ -179,13 +179,19 @@ def simulate_batch(
     kernel: Optional[str] = None,
     stop_at: Optional[str] = None,
     diagnostic_layout: Optional[list[tuple[str, int]]] = None,
+    into: Optional[tuple[_Array, _Array, _Array]] = None,
 ) -> dict[str, Any]:
     """Run a batch. Returns t, states, controls, diagnostics, final_state, metrics (a dict of
     arrays), state_names, control_names, diagnostic_layout, axes and kernel (the level used).
 
+    ``into``: float64 C-contiguous arrays (N, T, n_state), (N, T, axes) and (N, T, width) the
+    recording is written into (and returned as states, controls and diagnostics) instead of
+    fresh ones; a shape other than the batch's raises ParameterError before anything runs.
+
     ``controller`` is a compiled law, or a law computed in Python: a callable ``step(t, k,
-    first, e, de, position, velocity, acceleration, drift, inertia)`` (each (m, axes) for the m
-    cases from row ``first`` on, but t, k and first) with an int attribute ``cases_per_call``:
+    first, track, e, de, position, velocity, acceleration, drift, inertia)`` (each (m, axes) for
+    the m cases from row ``first`` on, but t, k, first and track) with an int attribute
+    ``cases_per_call``:
     a larger batch runs a slice of at most that many cases at a time through all its instants.
     Called once per control instant of a slice, it returns ``(command, diagnostics)``, float64
     (m, axes) and (m, width), with ``diagnostic_layout`` the names and widths of its signals.

@@ -881,10 +881,10 @@ class SimulationResult:
         for name in ("states", "controls"):
             dest = getattr(into, name)
             if dest is not None:
-                dest[...] = _signal(part, name)
+                _copy(dest, _signal(part, name))
         into.final_state[...] = part.final_state
         for k, v in into.diagnostics.items():
-            v[...] = _signal(part, "diagnostics", k)
+            _copy(v, _signal(part, "diagnostics", k))
         for k, v in into.metrics.items():
             v[...] = part.metrics[k]
 
@@ -996,6 +996,15 @@ def _case_key(start: Any, stop: Optional[int]) -> Union[slice, np.ndarray]:
             f"cases takes (start, stop) or a 1-d integer index array or boolean mask, got {start!r}"
         )
     return key
+
+
+def _copy(dest: np.ndarray, values: np.ndarray) -> None:
+    """``dest[...] = values``, skipped when ``values`` is ``dest`` itself (a chunk a campaign
+    ran into its own output: the copy would only touch every page again)."""
+    same = (dest.dtype == values.dtype and dest.shape == values.shape and dest.strides == values.strides
+            and dest.__array_interface__["data"][0] == values.__array_interface__["data"][0])
+    if not same:
+        dest[...] = values
 
 
 def _signal(part: SimulationResult, name: str, key: Optional[str] = None) -> np.ndarray:

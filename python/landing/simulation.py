@@ -286,6 +286,41 @@ def simulate_batch(
     >>> print(" ".join(f"{e:.3f}" for e in r.metrics["final_position_error"]))
     0.000 0.001 0.500 5.497
     """
+    return simulate_batch_into(
+        None, plant, controller, x0,
+        t_final=t_final, dt=dt, integrator=integrator, substeps=substeps, reference=reference,
+        disturbance=disturbance, record_every=record_every, seed=seed, first_case=first_case,
+        settle_tolerance=settle_tolerance, chatter_cutoff=chatter_cutoff, threads=threads, kernel=kernel,
+        stop_at=stop_at,
+    )
+
+
+def simulate_batch_into(
+    into: Optional[tuple[np.ndarray, np.ndarray, np.ndarray]],
+    plant: Plant,
+    controller: Controller,
+    x0: Any,
+    *,
+    t_final: float,
+    dt: float,
+    integrator: str = "rk4",
+    substeps: int = 1,
+    reference: Optional[Reference] = None,
+    disturbance: DisturbanceLike = None,
+    record_every: int = 1,
+    seed: int = 0,
+    first_case: int = 0,
+    settle_tolerance: Optional[float] = None,
+    chatter_cutoff: Optional[float] = None,
+    threads: Optional[int] = None,
+    kernel: Optional[str] = None,
+    stop_at: Optional[str] = None,
+) -> SimulationResult:
+    """:func:`simulate_batch` with its recording written into ``into`` when given: float64
+    C-contiguous arrays (N, T, n_state), (N, T, axes) and (N, T, the diagnostics' widths side
+    by side), which become the result's states, controls and diagnostics (views of the third);
+    a campaign lends each chunk its rows of the campaign's output this way
+    (``landing.campaign``). Arrays of another shape raise ParameterError before anything runs."""
     x = _as_states(x0)
     if x.ndim != 2:
         raise ParameterError(
@@ -313,6 +348,8 @@ def simulate_batch(
         disturbance=compiled(disturbance),
         seed=seed_i,
         first_case=first,
+        # a campaign's rows of its output, which the recording is written into (Assembly)
+        into=into,
         **options._core_arguments(),
     )
     # a plant written in Python is handed over as its hooks for this batch
@@ -342,7 +379,7 @@ def simulate_batch(
             "(when: metrics['diverged_time'], why: metrics['diverged_reason']) and NaN from the "
             "divergence on",
             DivergenceWarning,
-            stacklevel=2,
+            stacklevel=3,  # the caller of simulate_batch
         )
     return SimulationResult(
         t=out["t"],

@@ -7,6 +7,7 @@ import landing
 from _cases import numpy_block, small_campaign
 from landing import dispersions, scenarios
 from landing.scenarios import preset
+from landing.simulation import simulate_batch_into
 
 
 def test_uniform_dispersion_is_the_philox_draw():
@@ -199,3 +200,61 @@ def test_a_campaign_of_a_law_with_a_fuzzy_system_runs_in_chunks():
     whole = landing.monte_carlo(s, 6, seed=1, progress=False)
     chunked = landing.monte_carlo(s, 6, seed=1, chunk_size=2, progress=False)
     assert np.array_equal(whole.result.final_state, chunked.result.final_state)
+
+
+@pytest.mark.parametrize("n, chunk, calls", [(20, 7, [(7, False), (7, True), (6, True)]),
+                                              (150, 100, [(64, False), (36, True), (50, True)])])
+def test_a_chunked_campaign_records_into_its_output_the_bits_of_one_batch(monkeypatch, n, chunk, calls):
+    # each chunk's recording is written by the core into the chunk's rows of the campaign's
+    # output (Assembly.destination); the first chunk runs its first 64 cases alone when it has
+    # more, to allocate the output from their shapes; a diverging case records NaN there
+    s = small_campaign()
+    x0 = s.initial_states(n, seed=8)
+    x0[5, 3] = 1e200
+    seen = []
+    real = landing.simulation._core.simulate_batch
+
+    def spy(plant, law, x, **kwargs):
+        out = real(plant, law, x, **kwargs)
+        into = kwargs.get("into")
+        seen.append((x.shape[0], into is not None and all(
+            out[k] is a for k, a in zip(("states", "controls", "diagnostics"), into))))
+        return out
+
+    monkeypatch.setattr(landing.simulation._core, "simulate_batch", spy)
+    monkeypatch.setattr(type(s), "initial_states", lambda self, n, seed=0, first_case=0: x0[first_case:first_case + n])
+    with pytest.warns(landing.errors.DivergenceWarning):
+        mc = landing.monte_carlo(s, n, seed=8, threads=2, chunk_size=chunk, progress=False)
+    assert seen == calls
+    with pytest.warns(landing.errors.DivergenceWarning):
+        one = s.simulate_batch(x0, seed=8, threads=1)
+    res = mc.result
+    assert np.isnan(one.states[5]).any()
+    for name in ("states", "controls", "final_state"):
+        assert getattr(res, name).tobytes() == getattr(one, name).tobytes(), name
+    assert list(res.diagnostics) == list(one.diagnostics)
+    for k, v in one.diagnostics.items():
+        assert res.diagnostics[k].shape == v.shape and res.diagnostics[k].tobytes() == v.tobytes(), k
+    for k in one.metrics:
+        np.testing.assert_array_equal(res.metrics[k], one.metrics[k])
+
+
+def test_a_lent_recording_of_the_wrong_shape_or_layout_is_refused():
+    s = small_campaign()
+    x0 = s.initial_states(4, seed=1)
+    one = s.simulate_batch(x0, seed=1)
+    states, controls = np.empty_like(one.states), np.empty_like(one.controls)
+    width = sum(v.shape[2] if v.ndim == 3 else 1 for v in one.diagnostics.values())
+    block = np.full((4, one.t.size, width), 7.25)
+    wrong = np.empty((4, one.t.size, width + 1))
+    with pytest.raises(landing.errors.ParameterError, match=r"the diagnostics lent .* shape \[4, \d+, \d+\]"):
+        simulate_batch_into((states, controls, wrong), s.plant, s.controller, x0, **s.run_options(seed=1))
+    assert (block == 7.25).all()
+    strided = np.empty((4, one.t.size, 2 * width))[:, :, ::2]
+    with pytest.raises(landing.errors.ParameterError, match="C-contiguous"):
+        simulate_batch_into((states, controls, strided), s.plant, s.controller, x0, **s.run_options(seed=1))
+    res = simulate_batch_into((states, controls, block), s.plant, s.controller, x0, **s.run_options(seed=1))
+    assert res.states is states and res.states.tobytes() == one.states.tobytes()
+    assert res.controls.tobytes() == one.controls.tobytes()
+    for k, v in one.diagnostics.items():
+        assert res.diagnostics[k].tobytes() == v.tobytes()

@@ -147,13 +147,13 @@ def test_resume_after_an_interruption_equals_an_uninterrupted_run(tmp_path, monk
         landing.load(path, scenario=s)
 
     ran: list[int] = []
-    run_batch = scenarios.Scenario.simulate_batch
+    run_cases = scenarios.Scenario.simulate_cases
 
-    def counting(self, x0, **kw):
-        ran.append(kw["first_case"])
-        return run_batch(self, x0, **kw)
+    def counting(self, x0, start, n, **kw):
+        ran.append(start)
+        return run_cases(self, x0, start, n, **kw)
 
-    monkeypatch.setattr(scenarios.Scenario, "simulate_batch", counting)
+    monkeypatch.setattr(scenarios.Scenario, "simulate_cases", counting)
     resumed = landing.monte_carlo(s, 20, seed=3, store=path)  # the store's chunk size is kept
     assert ran == [10, 15]  # chunks 0 and 1 were read, not re-run
     assert_same_campaign(resumed, reference_run)

@@ -27,6 +27,7 @@ fn options(threads: Option<usize>, level: Option<Level>) -> RunOptions<'static> 
         threads,
         level,
         cancel: None,
+        recording: None,
     }
 }
 

@@ -22,6 +22,7 @@ fn main() {
         threads: Some(1),
         level,
         cancel: None,
+        recording: None,
     };
     let start = Instant::now();
     let out = run(&batch, &cfg, &options).unwrap();

@@ -117,6 +117,12 @@ pub enum BatchError {
     Cancelled,
     /// The run's event cannot happen on this plant (a touchdown without an altitude).
     Event(Event),
+    /// A lent recording buffer ([`Lent`]) whose shape is not the batch's.
+    Lent {
+        what: &'static str,
+        shape: [usize; 3],
+        expected: [usize; 3],
+    },
 }
 
 impl std::fmt::Display for BatchError {
@@ -161,6 +167,15 @@ impl std::fmt::Display for BatchError {
                 "stop_at = '{}' needs a plant with an altitude (a lander); this plant has none",
                 e.name()
             ),
+            Self::Lent {
+                what,
+                shape,
+                expected,
+            } => write!(
+                f,
+                "the {what} lent for the recording have shape {shape:?}; this batch records \
+                 {expected:?} (cases, recorded instants, values)"
+            ),
         }
     }
 }
@@ -181,7 +196,8 @@ pub struct BatchOutput<const D: usize> {
     pub diagnostic_dim: usize,
     /// Recorded instants (length n_records).
     pub times: Vec<f64>,
-    /// n_cases x n_records x state_dim.
+    /// n_cases x n_records x state_dim (empty when the caller lent the recording:
+    /// [`RunOptions::recording`]; so are the controls and the diagnostics).
     pub states: Vec<f64>,
     /// n_cases x n_records x D: the applied (saturated) commands.
     pub controls: Vec<f64>,
@@ -209,6 +225,97 @@ pub struct RunOptions<'a> {
     pub level: Option<Level>,
     /// Raised by another thread to stop the batch early ([`BatchError::Cancelled`]).
     pub cancel: Option<&'a AtomicBool>,
+    /// The caller's buffers to write the recording into, instead of fresh ones: a campaign
+    /// lends each chunk its rows of the campaign's output, so that the recording's pages are
+    /// faulted in once, by the pool, and never copied ([`Lent`]).
+    pub recording: Option<Lent>,
+}
+
+/// A batch's recording buffers lent by the caller: states (n, records, state_dim), controls
+/// (n, records, D) and diagnostics (n, records, diagnostic_dim), each C-ordered `f64`. The
+/// batch checks each shape against its own and fills every value (NaN where nothing is
+/// recorded), as it does its own buffers.
+#[derive(Clone, Copy, Debug)]
+pub struct Lent {
+    buffers: [(*mut f64, [usize; 3]); 3],
+}
+
+// SAFETY: the pointers are written only by the batch that runs with them, each block's rows by
+// one thread at a time; `Lent::new`'s contract rules out any other access while it runs
+unsafe impl Send for Lent {}
+unsafe impl Sync for Lent {}
+
+impl Lent {
+    /// The buffers `(pointer, shape)` of the states, the controls and the diagnostics.
+    ///
+    /// # Safety
+    ///
+    /// Each pointer is valid for writes of as many `f64` as its shape's product (any pointer
+    /// when that is 0) for as long as any batch runs with this value or a copy of it; nothing
+    /// else reads or writes them meanwhile; and no two batches run with copies of it at once.
+    pub unsafe fn new(
+        states: (*mut f64, [usize; 3]),
+        controls: (*mut f64, [usize; 3]),
+        diagnostics: (*mut f64, [usize; 3]),
+    ) -> Self {
+        Self {
+            buffers: [states, controls, diagnostics],
+        }
+    }
+
+    /// Buffer `i` as a slice, checked against the `expected` shape (`what` names it).
+    fn take(
+        &self,
+        i: usize,
+        what: &'static str,
+        expected: [usize; 3],
+    ) -> Result<Buffer, BatchError> {
+        let (ptr, shape) = self.buffers[i];
+        if shape != expected {
+            return Err(BatchError::Lent {
+                what,
+                shape,
+                expected,
+            });
+        }
+        let len = expected.iter().product();
+        Ok(Buffer::Lent(
+            if len == 0 {
+                std::ptr::NonNull::dangling().as_ptr()
+            } else {
+                ptr
+            },
+            len,
+        ))
+    }
+}
+
+/// One recording buffer: the batch's own, or the caller's ([`Lent`]).
+enum Buffer {
+    Owned(Vec<f64>),
+    Lent(*mut f64, usize),
+}
+
+// SAFETY: a lent buffer is written by one thread at a time (`Lent`'s contract)
+unsafe impl Send for Buffer {}
+
+impl Buffer {
+    fn as_mut_slice(&mut self) -> &mut [f64] {
+        match self {
+            Self::Owned(v) => v,
+            // SAFETY: `Lent::new`'s contract: valid for `len` writes, no one else's meanwhile;
+            // `&mut self` makes this the only slice of it
+            Self::Lent(ptr, len) => unsafe { std::slice::from_raw_parts_mut(*ptr, *len) },
+        }
+    }
+
+    /// The values of a buffer of the batch's own; nothing for a lent one (the caller has them).
+    fn into_vec(self) -> Vec<f64> {
+        match self {
+            Self::Owned(v) => v,
+            Self::Lent(..) => Vec::new(),
+        }
+    }
 }
 
 /// A batch's run options as a caller outside Rust gives them (counts as signed integers,
@@ -299,6 +406,7 @@ impl RunRequest<'_> {
             threads,
             level,
             cancel: None,
+            recording: None,
         };
         Ok((cfg, options))
     }
@@ -443,7 +551,7 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for BlockJob<'_, '_, D, P> {
             cfg: sh.cfg,
         };
         let (x0, cases) = (&block.x0, &block.cases);
-        // the outputs were allocated untouched (`Outputs::allocate_untouched`)
+        // the outputs were allocated untouched, or lent (`Outputs::allocate_untouched`)
         self.out.fill_nan();
         rollout_block::<D, R, _, K>(&set, &law, x0, cases, self.used, sh.cancel, &mut self.out)
     }
@@ -569,13 +677,14 @@ fn run_here<const D: usize, P: PlantModel<D>, K: Kernel>(
     cfg: &SimConfig,
     kernel: K,
     cancel: &AtomicBool,
+    lent: Option<Lent>,
 ) -> Result<BatchOutput<D>, BatchError> {
     let n = batch.x0.len();
     let nx = P::STATE_DIM;
     // the law's diagnostics, then the navigation's estimate when the plant has a sensor
     let nd = batch.laws.get(0).diagnostic_width() + batch.plants.get(0).navigation_width();
     let nr = cfg.n_records();
-    let mut o = Outputs::<D>::allocate_untouched(n, nr, nx, nd)?;
+    let mut o = Outputs::<D>::allocate_untouched(n, nr, nx, nd, lent)?;
     let table = shared_table(batch, cfg);
     let shared = Shared {
         batch,
@@ -603,34 +712,50 @@ fn run_here<const D: usize, P: PlantModel<D>, K: Kernel>(
     Ok(o.finish(cfg, nx, nd, level))
 }
 
-/// A batch's output buffers, allocated once, before any case runs.
+/// A batch's output buffers, allocated once, before any case runs (the recording's may be the
+/// caller's: [`Lent`]).
 pub(crate) struct Outputs<const D: usize> {
-    states: Vec<f64>,
-    controls: Vec<f64>,
-    diagnostics: Vec<f64>,
+    states: Buffer,
+    controls: Buffer,
+    diagnostics: Buffer,
     final_state: Vec<f64>,
     metrics: Vec<CaseMetrics<D>>,
 }
 
 impl<const D: usize> Outputs<D> {
-    /// The buffers of `n` cases, `nr` records of `nx` states and `nd` diagnostics, refused
-    /// before anything is allocated when they would not fit: Linux grants virtual memory
-    /// freely and kills the process when the pages are touched, so a failed allocation is no
+    /// The buffers of `n` cases, `nr` records of `nx` states and `nd` diagnostics (the
+    /// recording's `lent` when given, checked against these shapes and filled with NaN), refused
+    /// before anything is allocated when they would not fit: Linux grants virtual memory freely
+    /// and kills the process when the pages are touched, so a failed allocation is no
     /// protection.
-    pub(crate) fn allocate(n: usize, nr: usize, nx: usize, nd: usize) -> Result<Self, BatchError> {
-        Self::with_recording(n, nr, nx, nd, nan_filled)
+    pub(crate) fn allocate(
+        n: usize,
+        nr: usize,
+        nx: usize,
+        nd: usize,
+        lent: Option<Lent>,
+    ) -> Result<Self, BatchError> {
+        let mut o = Self::with_recording(n, nr, nx, nd, lent, nan_filled)?;
+        if lent.is_some() {
+            for b in [&mut o.states, &mut o.controls, &mut o.diagnostics] {
+                b.as_mut_slice().fill(f64::NAN);
+            }
+        }
+        Ok(o)
     }
 
-    /// [`Outputs::allocate`] with the recording's pages left untouched: each block job fills its
-    /// own slices with NaN first ([`BlockBuffers::fill_nan`]), so the recording's pages are
-    /// faulted in by the pool's threads in parallel, not by one thread before the run.
+    /// [`Outputs::allocate`] with the recording's pages left untouched (and a lent recording
+    /// left as it is): each block job fills its own slices with NaN first
+    /// ([`BlockBuffers::fill_nan`]), so the recording's pages are faulted in by the pool's
+    /// threads in parallel, not by one thread before the run.
     pub(crate) fn allocate_untouched(
         n: usize,
         nr: usize,
         nx: usize,
         nd: usize,
+        lent: Option<Lent>,
     ) -> Result<Self, BatchError> {
-        Self::with_recording(n, nr, nx, nd, untouched)
+        Self::with_recording(n, nr, nx, nd, lent, untouched)
     }
 
     fn with_recording(
@@ -638,9 +763,14 @@ impl<const D: usize> Outputs<D> {
         nr: usize,
         nx: usize,
         nd: usize,
+        lent: Option<Lent>,
         recording_buffer: fn(usize, u128, u128) -> Result<Vec<f64>, BatchError>,
     ) -> Result<Self, BatchError> {
-        let (bytes, recording) = output_bytes::<D>(n, nr, nx, nd);
+        let (mut bytes, recording) = output_bytes::<D>(n, nr, nx, nd);
+        if lent.is_some() {
+            // the caller holds the recording already
+            bytes -= recording;
+        }
         let available = available_bytes();
         if bytes > isize::MAX as u128 || available.is_some_and(|a| bytes > u128::from(a)) {
             return Err(BatchError::Allocation {
@@ -658,10 +788,14 @@ impl<const D: usize> Outputs<D> {
                 available,
             })?;
         metrics.resize(n, CaseMetrics::new());
+        let buffer = |i: usize, what: &'static str, width: usize| match lent {
+            Some(l) => l.take(i, what, [n, nr, width]),
+            None => recording_buffer(n * nr * width, bytes, recording).map(Buffer::Owned),
+        };
         Ok(Self {
-            states: recording_buffer(n * nr * nx, bytes, recording)?,
-            controls: recording_buffer(n * nr * D, bytes, recording)?,
-            diagnostics: recording_buffer(n * nr * nd, bytes, recording)?,
+            states: buffer(0, "states", nx)?,
+            controls: buffer(1, "controls", D)?,
+            diagnostics: buffer(2, "diagnostics", nd)?,
             final_state: nan_filled(n * nx, bytes, recording)?,
             metrics,
         })
@@ -676,10 +810,10 @@ impl<const D: usize> Outputs<D> {
         nd: usize,
     ) -> Vec<BlockBuffers<'_, D>> {
         let blocks = self.metrics.len().div_ceil(w);
-        chunks(&mut self.states, w * nr * nx, blocks)
+        chunks(self.states.as_mut_slice(), w * nr * nx, blocks)
             .into_iter()
-            .zip(chunks(&mut self.controls, w * nr * D, blocks))
-            .zip(chunks(&mut self.diagnostics, w * nr * nd, blocks))
+            .zip(chunks(self.controls.as_mut_slice(), w * nr * D, blocks))
+            .zip(chunks(self.diagnostics.as_mut_slice(), w * nr * nd, blocks))
             .zip(chunks(&mut self.final_state, w * nx, blocks))
             .zip(self.metrics.chunks_mut(w))
             .map(|((((s, c), d), f), m)| BlockBuffers {
@@ -704,9 +838,9 @@ impl<const D: usize> Outputs<D> {
             state_dim: nx,
             diagnostic_dim: nd,
             times: cfg.record_times(),
-            states: self.states,
-            controls: self.controls,
-            diagnostics: self.diagnostics,
+            states: self.states.into_vec(),
+            controls: self.controls.into_vec(),
+            diagnostics: self.diagnostics.into_vec(),
             final_state: self.final_state,
             metrics: self.metrics,
             level,
@@ -749,7 +883,14 @@ pub fn run<const D: usize, P: PlantModel<D>>(
     let level = Level::resolve(options.level)?;
     let never = AtomicBool::new(false);
     let cancel = options.cancel.unwrap_or(&never);
-    run_on(batch, cfg, level, options.threads, cancel)
+    run_on(
+        batch,
+        cfg,
+        level,
+        options.threads,
+        cancel,
+        options.recording,
+    )
 }
 
 fn run_on<const D: usize, P: PlantModel<D>, K: Kernel>(
@@ -758,14 +899,15 @@ fn run_on<const D: usize, P: PlantModel<D>, K: Kernel>(
     kernel: K,
     threads: Option<usize>,
     cancel: &AtomicBool,
+    lent: Option<Lent>,
 ) -> Result<BatchOutput<D>, BatchError> {
     if batch.x0.is_empty() {
-        return run_here(batch, cfg, kernel, cancel);
+        return run_here(batch, cfg, kernel, cancel, lent);
     }
     let pool = parallel::pool(threads).map_err(BatchError::ThreadPool)?;
     parallel::on_pool(
         pool.as_ref(),
-        Box::new(|| run_here(batch, cfg, kernel, cancel)),
+        Box::new(|| run_here(batch, cfg, kernel, cancel, lent)),
     )
 }
 
@@ -778,7 +920,7 @@ pub fn run_scalar<const D: usize, P: PlantModel<D>>(
     threads: Option<usize>,
 ) -> Result<BatchOutput<D>, BatchError> {
     check_shapes(batch, cfg)?;
-    run_on(batch, cfg, Scalar, threads, &AtomicBool::new(false))
+    run_on(batch, cfg, Scalar, threads, &AtomicBool::new(false), None)
 }
 
 /// [`run`] with `threads` worker threads (`None`: all cores) at the best level.

@@ -250,6 +250,7 @@ fn every_level_gives_the_same_bits() {
         threads: Some(2),
         level: Some(level),
         cancel: None,
+        recording: None,
     };
     // W1-like with noise, per-case gains and recording; W3; W5 (fuzzy, command noise); W6
     let mut x0 = dispersed(21);
@@ -332,6 +333,7 @@ fn a_case_does_not_depend_on_its_lane_or_its_block_mates() {
             threads: Some(1),
             level: Some(level),
             cancel: None,
+            recording: None,
         };
         let alone = run(
             &batch(x0[40..45].to_vec(), laws(40..45)),
@@ -372,4 +374,49 @@ fn a_case_does_not_depend_on_its_lane_or_its_block_mates() {
             );
         }
     }
+}
+
+#[test]
+fn a_lent_recording_holds_the_bits_the_batch_records_in_its_own() {
+    use landing_core::batch::{BatchError, RunOptions, run};
+    let mut x0 = dispersed(21);
+    x0[3][3] = 1e200; // a diverging case: NaN from its divergence on
+    let b = batch(
+        x0,
+        PerCase::shared(reconstructed_gains(MssVariant::Printed).into()),
+    );
+    let cfg = SimConfig::new(0.5, 0.001, 2, 37, 7).unwrap();
+    let own = run_with_threads(&b, &cfg, Some(2)).unwrap();
+    let (nr, nx, nd) = (own.n_records(), own.state_dim, own.diagnostic_dim);
+    assert!(
+        own.states.iter().any(|x| x.is_nan()),
+        "the diverged case records NaN"
+    );
+    for threads in [1, 2] {
+        let mut lent = LentBuffers::new(21, nr, [nx, 3, nd]);
+        let out = run(&b, &cfg, &lent.options(threads)).unwrap();
+        // the caller holds the recording; the batch hands back the rest
+        assert!(out.states.is_empty() && out.controls.is_empty() && out.diagnostics.is_empty());
+        assert_eq!(out.n_records(), nr);
+        assert_eq!(bits(&lent.states), bits(&own.states));
+        assert_eq!(bits(&lent.controls), bits(&own.controls));
+        assert_eq!(bits(&lent.diagnostics), bits(&own.diagnostics));
+        assert_eq!(bits(&out.final_state), bits(&own.final_state));
+        assert_eq!(format!("{:?}", out.metrics), format!("{:?}", own.metrics));
+    }
+    // a shape other than the batch's is refused before anything runs or is written
+    let mut wrong = LentBuffers::new(21, nr, [nx, 3, nd + 1]);
+    let options: RunOptions<'_> = wrong.options(2);
+    match run(&b, &cfg, &options) {
+        Err(BatchError::Lent {
+            what,
+            shape,
+            expected,
+        }) => {
+            assert_eq!(what, "diagnostics");
+            assert_eq!((shape, expected), ([21, nr, nd + 1], [21, nr, nd]));
+        }
+        other => panic!("expected a refused lent shape, got {other:?}"),
+    }
+    assert!(wrong.states.iter().all(|&x| x == 7.25));
 }

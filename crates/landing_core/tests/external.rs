@@ -154,6 +154,7 @@ fn at(threads: usize, level: Level) -> RunOptions<'static> {
         threads: Some(threads),
         level: Some(level),
         cancel: None,
+        recording: None,
     }
 }
 
@@ -224,6 +225,31 @@ fn an_external_law_gives_the_bits_of_the_same_law_built_in() {
                 assert_eq!(fingerprint(&out), fingerprint(&reference), "{what}");
                 check_slices(&law, 21, per_call, threads, level, &cfg, &what);
             }
+            // the recording written into buffers the caller lends: the same bits there
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let widths = [reference.state_dim, 3, reference.diagnostic_dim];
+            let mut lent = LentBuffers::new(21, reference.n_records(), widths);
+            let mut law = CaseByCase::new(laws.clone(), cfg.dt);
+            law.per_call = 8;
+            let options = RunOptions {
+                level: Some(level),
+                ..lent.options(2)
+            };
+            let out = run_external(&outside(&x0, &noisy), &cfg, &options, &mut law)
+                .unwrap_or_else(|_| panic!("{name} runs"));
+            assert!(out.states.is_empty() && out.controls.is_empty());
+            assert_eq!(bits(&lent.states), bits(&reference.states), "{name}");
+            assert_eq!(bits(&lent.controls), bits(&reference.controls), "{name}");
+            assert_eq!(
+                bits(&lent.diagnostics),
+                bits(&reference.diagnostics),
+                "{name}"
+            );
+            assert_eq!(
+                bits(&out.final_state),
+                bits(&reference.final_state),
+                "{name}"
+            );
         }
     }
 }

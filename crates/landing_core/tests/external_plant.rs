@@ -151,6 +151,7 @@ fn options() -> RunOptions<'static> {
         threads: Some(2),
         level: None,
         cancel: None,
+        recording: None,
     }
 }
 
@@ -207,6 +208,33 @@ fn an_external_plant_gives_the_bits_of_the_same_plant_built_in() {
             // steps x substeps x evaluations
             let evaluations = cfg.steps as usize * 2 * integrator.evaluations();
             assert_eq!(outside.calls, evaluations, "{name}, {integrator:?}");
+            // the recording written into buffers the caller lends: the same bits there
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let widths = [7, 3, reference.diagnostic_dim];
+            let mut lent = LentBuffers::new(x0.len(), reference.n_records(), widths);
+            let out = run_external_plant(
+                &mut CaseByCase::new(),
+                Laws::Builtin(&laws),
+                &flat,
+                &PerCase::shared(Reference::default()),
+                &PerCase::shared(noisy),
+                &cfg,
+                &lent.options(2),
+            )
+            .unwrap_or_else(|_| panic!("{name} runs"));
+            assert!(out.states.is_empty() && out.diagnostics.is_empty());
+            assert_eq!(bits(&lent.states), bits(&reference.states), "{name}");
+            assert_eq!(bits(&lent.controls), bits(&reference.controls), "{name}");
+            assert_eq!(
+                bits(&lent.diagnostics),
+                bits(&reference.diagnostics),
+                "{name}"
+            );
+            assert_eq!(
+                bits(&out.final_state),
+                bits(&reference.final_state),
+                "{name}"
+            );
         }
     }
 }

@@ -34,6 +34,7 @@ fn check_levels<const D: usize, P: PlantModel<D>>(b: &Batch<D, P>, cfg: &SimConf
             threads: Some(2),
             level: Some(level),
             cancel: None,
+            recording: None,
         };
         let lanes = fingerprint(&run(b, cfg, &options).unwrap());
         assert!(lanes == scalar, "{level:?} differs from the scalar path");

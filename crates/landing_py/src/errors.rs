@@ -93,7 +93,8 @@ pub fn batch_error(e: BatchError) -> PyErr {
         BatchError::Length { .. }
         | BatchError::Shape { .. }
         | BatchError::Level(_)
-        | BatchError::Event(_) => ParameterError::new_err(e.to_string()),
+        | BatchError::Event(_)
+        | BatchError::Lent { .. } => ParameterError::new_err(e.to_string()),
         BatchError::ThreadPool(_) | BatchError::Cancelled => {
             SimulationError::new_err(e.to_string())
         }

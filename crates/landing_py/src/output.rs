@@ -26,11 +26,14 @@ pub fn shaped<'py, Sh: IntoDimension>(
 }
 
 /// A batch's output and the names that go with it.
-pub struct Parts<const D: usize> {
+pub struct Parts<'py, const D: usize> {
     pub out: BatchOutput<D>,
     pub state_names: &'static [&'static str],
     pub control_names: &'static [&'static str],
     pub layout: Vec<(String, usize)>,
+    /// The arrays the recording was written into, when the caller lent them: the output's
+    /// states, controls and diagnostics.
+    pub lent: Option<[Bound<'py, PyAny>; 3]>,
 }
 
 /// The metric columns of `out`, one array per column of [`CaseMetrics::COLUMNS`]: (N,) or
@@ -70,7 +73,7 @@ pub fn parameter<'py>(
 
 pub fn to_dict<'py, const D: usize>(
     py: Python<'py>,
-    parts: Parts<D>,
+    parts: Parts<'py, D>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let out = parts.out;
     let n = out.n_cases;
@@ -78,12 +81,17 @@ pub fn to_dict<'py, const D: usize>(
     let d = PyDict::new(py);
     let metrics = metrics(py, &out)?;
     d.set_item("t", array1(py, out.times))?;
-    d.set_item("states", shaped(py, out.states, [n, nr, out.state_dim])?)?;
-    d.set_item("controls", shaped(py, out.controls, [n, nr, D])?)?;
-    d.set_item(
-        "diagnostics",
-        shaped(py, out.diagnostics, [n, nr, out.diagnostic_dim])?,
-    )?;
+    let [states, controls, diagnostics] = match parts.lent {
+        Some(lent) => lent,
+        None => [
+            shaped(py, out.states, [n, nr, out.state_dim])?,
+            shaped(py, out.controls, [n, nr, D])?,
+            shaped(py, out.diagnostics, [n, nr, out.diagnostic_dim])?,
+        ],
+    };
+    d.set_item("states", states)?;
+    d.set_item("controls", controls)?;
+    d.set_item("diagnostics", diagnostics)?;
     d.set_item(
         "final_state",
         shaped(py, out.final_state, [n, out.state_dim])?,

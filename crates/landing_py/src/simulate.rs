@@ -3,11 +3,11 @@
 
 use std::sync::atomic::AtomicBool;
 
-use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyReadonlyArray2, PyReadwriteArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use landing_core::batch::{Batch, RunOptions, RunRequest, check_initial_states, run};
+use landing_core::batch::{Batch, Lent, RunOptions, RunRequest, check_initial_states, run};
 use landing_core::control::AnyLaw;
 use landing_core::disturbance::Disturbance as CoreDisturbance;
 use landing_core::external::{ExternalError, Laws, StateLayout, run_external, run_external_plant};
@@ -73,6 +73,8 @@ struct Simulate<'a, 'py> {
     n: usize,
     cfg: SimConfig,
     options: RunOptions<'static>,
+    /// The arrays the recording is written into, when the caller lends them (`into`).
+    lent: Option<[Bound<'py, PyAny>; 3]>,
 }
 
 impl<'py> Simulate<'_, 'py> {
@@ -160,6 +162,7 @@ impl<'py> Simulate<'_, 'py> {
                 state_names,
                 control_names,
                 layout,
+                lent: self.lent,
             },
         )
     }
@@ -250,7 +253,7 @@ enum PlantArg<'py> {
 /// diagnostic signals. A panic anywhere below arrives as a `SimulationError` (see [`guard`]);
 /// an exception `step` raises stops the batch and is raised as it is.
 #[pyfunction]
-#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None, stop_at=None, diagnostic_layout=None))]
+#[pyo3(signature = (plant, controller, x0, *, t_final, dt, integrator, substeps, reference, disturbance, record_every, seed, first_case, settle_tolerance, settle_relative, chatter_cutoff, threads, kernel=None, stop_at=None, diagnostic_layout=None, into=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_batch<'py>(
     py: Python<'py>,
@@ -273,6 +276,7 @@ pub fn simulate_batch<'py>(
     kernel: Option<&str>,
     stop_at: Option<&str>,
     diagnostic_layout: Option<Vec<(String, usize)>>,
+    into: Option<Recording<'py>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     guard(move || {
         let law = controller.cast::<Law>().ok().map(|l| l.borrow());
@@ -298,7 +302,20 @@ pub fn simulate_batch<'py>(
             kernel,
             stop_at,
         };
-        let (cfg, options) = request.compile().map_err(InputError::from)?;
+        let (cfg, mut options) = request.compile().map_err(InputError::from)?;
+        let mut into = into;
+        let lent = match &mut into {
+            None => None,
+            Some((states, controls, diagnostics)) => {
+                options.recording = Some(lend([
+                    ("states", states),
+                    ("controls", controls),
+                    ("diagnostics", diagnostics),
+                ])?);
+                let array = |a: &PyReadwriteArray3<'py, f64>| a.as_any().clone();
+                Some([array(states), array(controls), array(diagnostics)])
+            }
+        };
         let plant = match plant.cast::<Plant>() {
             Ok(p) => PlantArg::Compiled(p.borrow()),
             Err(_) => PlantArg::Python(
@@ -321,6 +338,7 @@ pub fn simulate_batch<'py>(
             n,
             cfg,
             options,
+            lent,
         };
         match plant {
             PlantArg::Compiled(p) => {
@@ -338,4 +356,27 @@ pub fn simulate_batch<'py>(
             }
         }
     })
+}
+
+/// The arrays a caller lends for a batch's recording: states, controls, diagnostics.
+type Recording<'py> = (
+    PyReadwriteArray3<'py, f64>,
+    PyReadwriteArray3<'py, f64>,
+    PyReadwriteArray3<'py, f64>,
+);
+
+/// The core's view of the lent arrays, each C-contiguous (the core checks their shapes).
+fn lend(arrays: [(&str, &mut PyReadwriteArray3<'_, f64>); 3]) -> PyResult<Lent> {
+    let mut buffers = Vec::with_capacity(3);
+    for (what, a) in arrays {
+        if !a.is_c_contiguous() {
+            invalid!("into: the {what} array must be C-contiguous");
+        }
+        let shape: [usize; 3] = a.shape().try_into().expect("a 3-dimensional array");
+        buffers.push((a.as_slice_mut()?.as_mut_ptr(), shape));
+    }
+    // SAFETY: each pointer is the data of an array this call holds borrowed for writing
+    // (`PyReadwriteArray`: no other borrow, from Rust or numpy's borrow checker) until it
+    // returns, of its shape's product of f64; the one batch this call runs is the only writer
+    Ok(unsafe { Lent::new(buffers[0], buffers[1], buffers[2]) })
 }

@@ -15,20 +15,27 @@ from landing.campaign.lazy import in_memory
 from landing.campaign.result import MonteCarloResult
 from landing.campaign.store import CampaignStore
 from landing.errors import ParameterError
-from landing.results import SimulationResult
+from landing.results import SIGNALS, SimulationResult
 from landing.scenarios import Scenario
 from landing.theory import BoundCheck, MSSBounds, check_mss
+
+#: Cases a campaign's first chunk runs alone (:meth:`Assembly.probe`): a few blocks of lanes.
+PROBE_CASES = 64
 
 __all__ = ["Assembly", "assemble_campaign", "check_in_slices", "finish_campaign", "write_chunk"]
 
 
 class Assembly:
     """A campaign's output, allocated once (from the first chunk's shapes) and filled chunk
-    by chunk: no list of parts, no concatenation of the whole at the end. Signals not kept are
-    never allocated; with a store, no recorded signal is: each chunk's are in the store once
-    written, and the result reads them from there on demand (:meth:`CampaignStore.signals`),
-    so the campaign holds its final states and metrics only (``rows``: the campaign's cases
-    the output holds, default all)."""
+    by chunk: no list of parts, no concatenation of the whole at the end. Once it is allocated,
+    each later chunk's recording is written by the core straight into the chunk's rows of it
+    (:meth:`destination`), so that its pages are faulted in once, by the pool's threads, and
+    never copied (recording every 50 ms cost a 20,000-case campaign a third of its time with
+    each chunk's fresh arrays copied in, a sixth written in place: BENCHMARKS.md). Signals not kept are never allocated;
+    with a store, no recorded signal is: each chunk's are in the store once written, and the
+    result reads them from there on demand (:meth:`CampaignStore.signals`), so the campaign
+    holds its final states and metrics only (``rows``: the campaign's cases the output holds,
+    default all)."""
 
     def __init__(self, n: int, keep: tuple[str, ...], store: Optional[CampaignStore] = None,
                  rows: Optional[np.ndarray] = None):
@@ -37,6 +44,27 @@ class Assembly:
         self.store = store
         self.rows = rows
         self.out: Optional[SimulationResult] = None
+        # the output's recording as the core writes it (states, controls, every diagnostic
+        # side by side), when the output holds all of it
+        self._recording: Optional[tuple[np.ndarray, np.ndarray, np.ndarray]] = None
+
+    def destination(self, start: int, stop: int) -> Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """The arrays cases ``start .. stop``'s recording is to be written into (rows of the
+        output's), or None when the chunk records into its own (the first chunk, a store,
+        signals not kept)."""
+        if self._recording is None:
+            return None
+        return (self._recording[0][start:stop], self._recording[1][start:stop], self._recording[2][start:stop])
+
+    def probe(self, start: int, stop: int) -> int:
+        """Where cases ``start .. stop`` split when the first of them are to run alone before the
+        rest (``start``: no split): the first chunk of a campaign in memory that keeps every
+        recorded signal runs its first :data:`PROBE_CASES` cases alone, so that the output is
+        allocated from their shapes and every later case is lent its rows."""
+        lends = self.out is None and self.store is None and set(SIGNALS) <= set(self.keep)
+        if not lends or start != 0 or stop - start >= self.n or stop - start <= PROBE_CASES:
+            return start
+        return min(stop, start + PROBE_CASES)
 
     def put(self, start: int, part: SimulationResult) -> None:
         part = part.keeping(self.keep if self.store is None else ())
@@ -47,8 +75,29 @@ class Assembly:
             self.out = part
             return
         if self.out is None:
-            self.out = SimulationResult.empty(self.n, like=part)
+            self.out = self._allocate(part)
+        # a chunk written into its destination holds views of the output: put skips them
         self.out.put(start, part)
+
+    def _allocate(self, like: SimulationResult) -> SimulationResult:
+        """The output of ``self.n`` cases shaped like the batch ``like``: its recording laid out
+        as the core writes it when every recorded signal is kept (so later chunks can be lent
+        it), else :meth:`SimulationResult.empty`."""
+        if like.states is None or like.controls is None or like.t.size == 0 or \
+                not set(SIGNALS) <= set(self.keep) or self.store is not None:
+            return SimulationResult.empty(self.n, like=like)
+        out = SimulationResult.empty(self.n, like=like.keeping(()))
+        widths = [v.shape[2] if v.ndim == 3 else 1 for v in like.diagnostics.values()]
+        states = np.empty((self.n,) + like.states.shape[1:])
+        controls = np.empty((self.n,) + like.controls.shape[1:])
+        block = np.empty((self.n, like.t.size, sum(widths)))
+        diagnostics = {}
+        offset = 0
+        for (name, v), width in zip(like.diagnostics.items(), widths):
+            diagnostics[name] = block[:, :, offset:offset + width] if v.ndim == 3 else block[:, :, offset]
+            offset += width
+        self._recording = (states, controls, block)
+        return dataclasses.replace(out, states=states, controls=controls, diagnostics=diagnostics)
 
     def result(self) -> SimulationResult:
         assert self.out is not None
@@ -86,19 +135,21 @@ def assemble_campaign(
     x0: np.ndarray,
     chunk_size: int,
     keep: tuple[str, ...],
-    run_chunk: Optional[Callable[[int, int], SimulationResult]],
+    run_chunk: Optional[Callable[[int, int, Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]], SimulationResult]],
     store: Optional[CampaignStore],
     check_bounds: bool,
     bar: Optional[ProgressBar] = None,
 ) -> MonteCarloResult:
     """Chunk by chunk into the preallocated output: a chunk the store holds is read (and
-    checked), any other is run (``run_chunk(start, stop)``) and, with a store, written to it
+    checked), any other is run (``run_chunk(start, stop, into)``, ``into`` the arrays its
+    recording is to be written into, or None: :meth:`Assembly.destination`) and, with a store, written to it
     as it completes; with a store each chunk's recorded signals are then dropped (the result
     reads them back from the store on demand)."""
     out = Assembly(n, keep, store)
     for index, start in enumerate(range(0, n, chunk_size)):
         stop = min(n, start + chunk_size)
         part: Optional[SimulationResult]
+        start_part = start
         if store is not None and run_chunk is None:
             part = store.read_chunk(index)  # load(): a damaged chunk is named, never filled
         else:
@@ -106,12 +157,19 @@ def assemble_campaign(
         if part is None:
             if run_chunk is None:  # pragma: no cover - load() checks completeness first
                 raise ParameterError(f"chunk {index} (cases {start}..{stop - 1}) is missing from the store")
-            part = run_chunk(start, stop)
+            head = out.probe(start, stop)
+            if head > start:
+                # the first cases alone, so that the output is allocated from their shapes and the
+                # rest of the chunk is lent its rows too (the copy of a whole first chunk was 1.9 %
+                # of a 6000-case campaign's samples, BENCHMARKS.md)
+                out.put(start, run_chunk(start, head, None))
+            part = run_chunk(head, stop, out.destination(head, stop))
+            start_part = head
             if store is not None:
                 write_chunk(store, scenario, seed, x0, index, start, stop, part)
             if bar:  # the cases computed now (a resumed campaign's bar counts only those)
                 bar.update(stop - start)
-        out.put(start, part)
+        out.put(start_part, part)
         del part
     return finish_campaign(scenario, seed, x0, out.result(), keep, store, check_bounds)
 

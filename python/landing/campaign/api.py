@@ -271,12 +271,12 @@ def monte_carlo(
     bar: Optional[ProgressBar] = None
     diverged_warnings = 0
 
-    def run_chunk(start: int, stop: int) -> SimulationResult:
+    def run_chunk(start: int, stop: int, into: Optional[tuple[np.ndarray, np.ndarray, np.ndarray]]) -> SimulationResult:
         nonlocal diverged_warnings
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", DivergenceWarning)
             part = scenario.simulate_cases(x0[start:stop], start, n, seed=seed, threads=threads,
-                                           record_every=every)
+                                           record_every=every, into=into)
         diverged_warnings += sum(issubclass(w.category, DivergenceWarning) for w in caught)
         return part
 

@@ -20,7 +20,7 @@ from landing.plants import Plant
 from landing.reference import Reference
 from landing.results import SimulationResult
 from landing.scenarios._dispersed import apply_draws, checked_dispersions
-from landing.simulation import RunOptions, simulate, simulate_batch
+from landing.simulation import RunOptions, simulate, simulate_batch, simulate_batch_into
 
 if TYPE_CHECKING:  # pragma: no cover
     from landing.theory.bounds import MSSBounds
@@ -197,17 +197,22 @@ class Scenario:
         ``(cases, components)`` (as :meth:`parameter_draws` gives them)."""
         return apply_draws(self, draws) if draws else self
 
-    def simulate_cases(self, x0: Any, start: int, n: int, *, seed: int, **overrides: Any) -> SimulationResult:
+    def simulate_cases(self, x0: Any, start: int, n: int, *, seed: int,
+                       into: Optional[tuple[np.ndarray, np.ndarray, np.ndarray]] = None,
+                       **overrides: Any) -> SimulationResult:
         """Cases ``start .. start + len(x0)`` of an ``n``-case campaign from their initial
         states ``x0``: the parameters given per case keep these cases' rows (:meth:`cases`), the
         dispersed ones take these cases' draws (their metric columns ``param.<path>``), and
-        ``seed`` and ``first_case = start`` key the random disturbances, as in the campaign."""
+        ``seed`` and ``first_case = start`` key the random disturbances, as in the campaign.
+        ``into``: arrays the recording is written into (the campaign's rows of its output,
+        ``landing.simulation.simulate_batch_into``)."""
         x0 = np.asarray(x0, dtype=float)
         stop = start + x0.shape[0]
         scenario = self.cases(start, stop, n)
         draws = self.parameter_draws(start, stop, seed)
         scenario = scenario.with_draws(draws)
-        part = scenario.simulate_batch(x0, seed=seed, first_case=start, **overrides)
+        options = scenario.run_options(seed=seed, first_case=start, **overrides)
+        part = simulate_batch_into(into, scenario.plant, scenario.controller, x0, **options)
         if draws:
             part = part.with_metrics({f"param.{k}": (v[:, 0] if v.shape[1] == 1 else v) for k, v in draws.items()})
         return part

@@ -433,7 +433,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
     let nr = cfg.n_records();
     // the output's rows: the law's diagnostics, then the navigation's estimate
     let out_nd = nd + batch.plants.get(0).navigation_width();
-    let mut outputs = Outputs::<D>::allocate(n, nr, nx, out_nd)?;
+    let mut outputs = Outputs::<D>::allocate(n, nr, nx, out_nd, options.recording)?;
     if n == 0 {
         return Ok(outputs.finish(cfg, nx, out_nd, level));
     }

@@ -378,7 +378,7 @@ fn run_entered<const D: usize, X: ExternalPlant<D>>(
     let never = AtomicBool::new(false);
     let cancel = options.cancel.unwrap_or(&never);
     let nr = cfg.n_records();
-    let mut outputs = Outputs::<D>::allocate(n, nr, nx, nd)?;
+    let mut outputs = Outputs::<D>::allocate(n, nr, nx, nd, options.recording)?;
     if n == 0 {
         return Ok(outputs.finish(cfg, nx, nd, Level::Baseline));
     }

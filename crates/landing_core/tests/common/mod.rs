@@ -65,3 +65,45 @@ pub fn final_state(out: &BatchOutput<3>, case: usize) -> MarsState {
 pub fn check_plant_ok<P: Validate>(p: &P) {
     p.validate().expect("valid plant");
 }
+
+/// Recording buffers to lend a batch (`landing_core::batch::Lent`), filled with a value the
+/// batch must overwrite everywhere, NaN included.
+pub struct LentBuffers {
+    pub states: Vec<f64>,
+    pub controls: Vec<f64>,
+    pub diagnostics: Vec<f64>,
+    shapes: [[usize; 3]; 3],
+}
+
+impl LentBuffers {
+    /// Buffers for `n` cases and `records` instants of `[state_dim, D, diagnostic_dim]` values.
+    pub fn new(n: usize, records: usize, widths: [usize; 3]) -> Self {
+        let shapes = widths.map(|w| [n, records, w]);
+        let filled = |s: [usize; 3]| vec![7.25; s.iter().product()];
+        Self {
+            states: filled(shapes[0]),
+            controls: filled(shapes[1]),
+            diagnostics: filled(shapes[2]),
+            shapes,
+        }
+    }
+
+    /// The options of a batch on `threads` threads writing its recording into these buffers.
+    pub fn options(&mut self, threads: usize) -> RunOptions<'static> {
+        // SAFETY: the buffers outlive each batch a test runs with the options, one at a time,
+        // and are read only after it
+        let lent = unsafe {
+            landing_core::batch::Lent::new(
+                (self.states.as_mut_ptr(), self.shapes[0]),
+                (self.controls.as_mut_ptr(), self.shapes[1]),
+                (self.diagnostics.as_mut_ptr(), self.shapes[2]),
+            )
+        };
+        RunOptions {
+            threads: Some(threads),
+            level: None,
+            cancel: None,
+            recording: Some(lent),
+        }
+    }
+}
