@@ -21,7 +21,7 @@ use nalgebra::SVector;
 use super::integral_reaching::{C1, C2, IntegralSurface, K};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, ReadError, Validate, check_axes};
-use crate::fuzzy::Mamdani;
+use crate::fuzzy::{MAX_INPUTS, Mamdani};
 use crate::lanes::{Real, add, sub, zeros};
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
@@ -86,12 +86,16 @@ impl<const D: usize, R: Real> FuzzyVariableRate<D, R> {
         } else {
             zeros()
         };
+        // the axes' systems evaluated side by side (`Mamdani::evaluate_each`)
+        let mut x = [[R::zero(); MAX_INPUTS]; D];
+        for (i, x) in x.iter_mut().enumerate() {
+            x[0] = self.ke[i] * s[i];
+            x[1] = self.kec[i] * ds[i];
+        }
+        let eps = self.system.evaluate_each(&x);
         let mut out = s;
         for i in 0..D {
-            out[i] = self.ku[i]
-                * self
-                    .system
-                    .evaluate(&[self.ke[i] * s[i], self.kec[i] * ds[i]]);
+            out[i] = self.ku[i] * eps[i];
         }
         (s, ds, out)
     }

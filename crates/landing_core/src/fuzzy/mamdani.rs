@@ -47,6 +47,9 @@ pub const RESOLUTION: Param = Param::scalar("resolution")
     .rule("2 <= resolution <= max_fuzzy_resolution (100000)")
     .doc("points sampling the output universe for the centroid, ends included");
 
+/// Grid points whose aggregated membership [`Mamdani::evaluate`] holds at a time, on the stack.
+const CHUNK: usize = 32;
+
 /// Most sets one output variable may have (the aggregation keeps one activation per set on
 /// the stack, so evaluation never allocates).
 pub const MAX_OUTPUT_SETS: usize = 16;
@@ -251,8 +254,114 @@ impl Mamdani {
     /// with `S0 = sum m_j`, `S1 = sum j m_j`: two sums per grid point.
     #[inline(always)]
     pub fn evaluate<R: Real>(&self, x: &[R]) -> R {
+        let mut point = [R::zero(); MAX_INPUTS];
+        for (i, p) in point.iter_mut().enumerate().take(self.inputs.len()) {
+            *p = x[i];
+        }
+        self.evaluate_each(&[point])[0]
+    }
+
+    /// [`evaluate`](Self::evaluate) at `A` points at once (a law's axes; each point's inputs
+    /// first, the rest of its row unread), each giving the bits it gives alone. Each point's
+    /// two centroid sums are chains of dependent additions over the grid, in grid order; run
+    /// in one loop, the points' chains advance side by side where one after another each
+    /// would wait on its own.
+    #[inline(always)]
+    pub fn evaluate_each<R: Real, const A: usize>(&self, x: &[[R; MAX_INPUTS]; A]) -> [R; A] {
         let zero = R::zero();
-        // memberships of every input set, each evaluated once
+        let n = self.grid.len();
+        // (loops, not `std::array::from_fn`: its closures are not inlined into a kernel
+        // compiled for an instruction set, whose intrinsics then become calls)
+        let mut fire = [[zero; MAX_OUTPUT_SETS]; A];
+        for (f, x) in fire.iter_mut().zip(x) {
+            *f = self.strengths(x);
+        }
+        // per point, the output sets fired in some lane, and the grid points where one of
+        // them is positive
+        let mut active = [[0usize; MAX_OUTPUT_SETS]; A];
+        let mut n_active = [0usize; A];
+        let mut span = [(n, 0usize); A];
+        for a in 0..A {
+            for (k, f) in fire[a].iter().enumerate().take(self.output.sets.len()) {
+                if f.simd_gt(zero).any() {
+                    active[a][n_active[a]] = k;
+                    n_active[a] += 1;
+                    span[a].0 = span[a].0.min(self.support[k].0);
+                    span[a].1 = span[a].1.max(self.support[k].1);
+                }
+            }
+        }
+        let first = span.iter().map(|s| s.0).min().unwrap_or(n);
+        let last = span.iter().map(|s| s.1).max().unwrap_or(0);
+        // The aggregated membership of CHUNK grid points at a time, set by set over each set's
+        // support only: outside it a set's membership is 0, which min and max with the
+        // non-negative strengths leave out, so each point gets the value `aggregated` gives it
+        // (min and max are exact in any order) for a fraction of the work (at most two sets
+        // are positive at a point of an even partition, however many fire in the block). The
+        // sums then run over the grid in order; a point adds exact zeros outside its own span,
+        // which leave its sums as they were. (A zero's sign, which the max of zeros may
+        // change, changes no sum.)
+        let (mut s0, mut s1) = ([zero; A], [zero; A]);
+        let mut m = [[zero; CHUNK]; A];
+        let mut from = first;
+        while from <= last {
+            let to = (from + CHUNK).min(last + 1);
+            for a in 0..A {
+                for &k in &active[a][..n_active[a]] {
+                    let (lo, hi) = (self.support[k].0.max(from), (self.support[k].1 + 1).min(to));
+                    if lo >= hi {
+                        continue;
+                    }
+                    let f = fire[a][k];
+                    let row = &self.table[k * n + lo..k * n + hi];
+                    for (mj, &t) in m[a][lo - from..hi - from].iter_mut().zip(row) {
+                        *mj = mj.max(f.min(R::splat(t)));
+                    }
+                }
+            }
+            // (the point's index i, not an iterator: each i reads a row of every point's m)
+            #[allow(clippy::needless_range_loop)]
+            for i in 0..to - from {
+                let j = (from + i) as f64;
+                for a in 0..A {
+                    let mj = std::mem::replace(&mut m[a][i], zero);
+                    s0[a] += mj;
+                    s1[a] += mj * j;
+                }
+            }
+            from = to;
+        }
+        let h = (self.output.hi - self.output.lo) / (n - 1) as f64;
+        let mut out = [zero; A];
+        for (a, out) in out.iter_mut().enumerate() {
+            let (first, last) = span[a];
+            if first > last {
+                continue;
+            }
+            let active = &active[a][..n_active[a]];
+            let m0 = if first == 0 {
+                self.aggregated(&fire[a], active, 0)
+            } else {
+                zero
+            };
+            let mn = if last == n - 1 {
+                self.aggregated(&fire[a], active, n - 1)
+            } else {
+                zero
+            };
+            let area = s0[a] - (m0 + mn) * 0.5;
+            let moment = s1[a] - mn * (0.5 * (n - 1) as f64) + (m0 - mn) / 6.0;
+            let centroid = R::splat(self.output.lo) + moment * h / area;
+            *out = R::select(area.simd_gt(zero), centroid, zero);
+        }
+        out
+    }
+
+    /// Each output set's firing strength at `x`: the largest over its rules of the smallest
+    /// membership of the rule's antecedents (every input set's membership evaluated once).
+    #[inline(always)]
+    fn strengths<R: Real>(&self, x: &[R]) -> [R; MAX_OUTPUT_SETS] {
+        let zero = R::zero();
         let mut mu = [[zero; MAX_INPUT_SETS]; MAX_INPUTS];
         for (i, v) in self.inputs.iter().enumerate() {
             let xi = x[i].clamp(R::splat(v.lo), R::splat(v.hi));
@@ -268,44 +377,7 @@ impl Mamdani {
             }
             fire[r.consequent] = fire[r.consequent].max(w);
         }
-        // the output sets fired in some lane, and the grid points where one is positive
-        let n = self.grid.len();
-        let mut active = [0usize; MAX_OUTPUT_SETS];
-        let mut n_active = 0;
-        let (mut first, mut last) = (n, 0);
-        for (k, f) in fire.iter().enumerate().take(self.output.sets.len()) {
-            if f.simd_gt(zero).any() {
-                active[n_active] = k;
-                n_active += 1;
-                first = first.min(self.support[k].0);
-                last = last.max(self.support[k].1);
-            }
-        }
-        if first > last {
-            return zero;
-        }
-        let active = &active[..n_active];
-        let (mut s0, mut s1) = (zero, zero);
-        for j in first..=last {
-            let m = self.aggregated(&fire, active, j);
-            s0 += m;
-            s1 += m * (j as f64);
-        }
-        let m0 = if first == 0 {
-            self.aggregated(&fire, active, 0)
-        } else {
-            zero
-        };
-        let mn = if last == n - 1 {
-            self.aggregated(&fire, active, n - 1)
-        } else {
-            zero
-        };
-        let h = (self.output.hi - self.output.lo) / (n - 1) as f64;
-        let area = s0 - (m0 + mn) * 0.5;
-        let moment = s1 - mn * (0.5 * (n - 1) as f64) + (m0 - mn) / 6.0;
-        let centroid = R::splat(self.output.lo) + moment * h / area;
-        R::select(area.simd_gt(zero), centroid, zero)
+        fire
     }
 }
 
@@ -369,6 +441,7 @@ pub fn variable_rate_system(resolution: usize) -> Mamdani {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fuzzy::Membership;
 
     #[test]
     fn a_single_rule_returns_its_set_centroid() {
@@ -399,6 +472,140 @@ mod tests {
         assert!((m.evaluate(&[1.25]) - 8.0 / 3.0).abs() < 1e-6);
         // nothing fires
         assert_eq!(m.evaluate(&[5.0]), 0.0);
+    }
+
+    /// The centroid as the definition reads, written apart from `evaluate`: every rule, every
+    /// output set and every grid point, in grid order.
+    fn naive(m: &Mamdani, x: &[f64]) -> f64 {
+        let n = m.resolution();
+        let mut fire = vec![0.0f64; m.output.sets.len()];
+        for r in &m.rules {
+            let w = r.antecedent.iter().enumerate().fold(1.0f64, |w, (i, &a)| {
+                let v = &m.inputs[i];
+                w.min(v.sets[a].eval(x[i].clamp(v.lo, v.hi)))
+            });
+            fire[r.consequent] = fire[r.consequent].max(w);
+        }
+        let mu: Vec<f64> = (0..n)
+            .map(|j| {
+                let y = m.grid[j];
+                m.output
+                    .sets
+                    .iter()
+                    .zip(&fire)
+                    .fold(0.0f64, |acc, (s, &f)| acc.max(f.min(s.eval(y))))
+            })
+            .collect();
+        let (s0, s1) = mu
+            .iter()
+            .enumerate()
+            .fold((0.0, 0.0), |(s0, s1), (j, &v)| (s0 + v, s1 + v * j as f64));
+        let (m0, mn) = (mu[0], mu[n - 1]);
+        let h = (m.output.hi - m.output.lo) / (n - 1) as f64;
+        let area = s0 - (m0 + mn) * 0.5;
+        let moment = s1 - mn * (0.5 * (n - 1) as f64) + (m0 - mn) / 6.0;
+        if area > 0.0 {
+            m.output.lo + moment * h / area
+        } else {
+            0.0
+        }
+    }
+
+    /// Systems with trapezoids, shoulders, sets narrower than the grid's step and uneven
+    /// overlaps, at resolutions below, at and above the chunk of grid points.
+    fn odd_systems() -> Vec<Mamdani> {
+        let s_in = Variable {
+            lo: -5.0,
+            hi: 5.0,
+            sets: vec![
+                Membership::Trapezoid(-5.0, -5.0, -3.0, 0.3),
+                Membership::Triangle(-2.0, 0.1, 2.5),
+                Membership::Trapezoid(-0.5, 2.0, 5.0, 5.0),
+            ],
+        };
+        let d_in = Variable {
+            lo: -5.0,
+            hi: 5.0,
+            sets: vec![
+                Membership::Triangle(-5.0, -5.0, 1.0),
+                Membership::Triangle(-1.0, 5.0, 5.0),
+            ],
+        };
+        let out = Variable {
+            lo: -4.0,
+            hi: 4.0,
+            sets: vec![
+                Membership::Trapezoid(-4.0, -4.0, -1.0, 3.9),
+                Membership::Triangle(-3.3, -1.0, 0.7),
+                Membership::Triangle(-0.01, 0.0, 0.013),
+                Membership::Trapezoid(0.5, 1.5, 2.2, 4.0),
+                Membership::Triangle(3.0, 4.0, 4.0),
+            ],
+        };
+        let rules = [
+            (0, 0, 0),
+            (0, 1, 1),
+            (1, 0, 2),
+            (1, 1, 3),
+            (2, 0, 4),
+            (2, 1, 0),
+        ]
+        .map(|(a, b, c)| Rule {
+            antecedent: vec![a, b],
+            consequent: c,
+        })
+        .to_vec();
+        [2, 3, CHUNK - 1, CHUNK, CHUNK + 1, 401, 1000]
+            .into_iter()
+            .map(|res| {
+                Mamdani::new(
+                    vec![s_in.clone(), d_in.clone()],
+                    out.clone(),
+                    rules.clone(),
+                    res,
+                )
+                .unwrap()
+            })
+            .chain([2, 7, 401, 2001].map(variable_rate_system))
+            .collect()
+    }
+
+    #[test]
+    fn the_centroid_has_the_bits_of_the_definition_at_every_point_and_lane() {
+        use crate::lanes::Lanes;
+        // a deterministic spread of inputs: inside, on the corners, outside the universe
+        let xs: Vec<f64> = (0..97)
+            .map(|i| -6.5 + 13.0 * ((i * 37) % 97) as f64 / 96.0)
+            .collect();
+        let mut fired = 0;
+        for m in odd_systems() {
+            for (i, &a) in xs.iter().enumerate() {
+                let b = xs[(i * 11 + 5) % xs.len()];
+                let want = naive(&m, &[a, b]);
+                fired += usize::from(want != 0.0);
+                assert_eq!(m.evaluate(&[a, b]).to_bits(), want.to_bits(), "({a}, {b})");
+            }
+            // three points of eight lanes each at once, every lane the bits of the definition
+            for start in (0..xs.len() - 24).step_by(7) {
+                let point = |p: usize| {
+                    let mut row = [Lanes::<8>([0.0; 8]); MAX_INPUTS];
+                    row[0] = Lanes(std::array::from_fn(|l| xs[start + 8 * p + l]));
+                    row[1] = Lanes(std::array::from_fn(|l| {
+                        xs[(start + 8 * p + l) * 5 % xs.len()]
+                    }));
+                    row
+                };
+                let got = m.evaluate_each(&[point(0), point(1), point(2)]);
+                for (p, got) in got.iter().enumerate() {
+                    let row = point(p);
+                    for l in 0..8 {
+                        let want = naive(&m, &[row[0].0[l], row[1].0[l]]);
+                        assert_eq!(got.0[l].to_bits(), want.to_bits(), "point {p}, lane {l}");
+                    }
+                }
+            }
+        }
+        assert!(fired > 500, "too few inputs fire a rule: {fired}");
     }
 
     #[test]
