@@ -50,6 +50,14 @@ impl Stage {
 /// into the kernel (a closure call left out of line would be compiled at the baseline level).
 pub trait StageDerivative<R: Real, S: State<R>> {
     fn at(&self, stage: Stage, x: &S) -> S;
+
+    /// [`at`](Self::at) written into `k`. A derivative of a large state overrides it to write
+    /// in place: returned by value, a state of kilobytes was copied out of the plant's
+    /// derivative at every stage (BENCHMARKS.md, W6).
+    #[inline(always)]
+    fn at_into(&self, stage: Stage, x: &S, k: &mut S) {
+        *k = self.at(stage, x);
+    }
 }
 
 impl<R: Real, S: State<R>, F: Fn(Stage, &S) -> S> StageDerivative<R, S> for F {
@@ -112,10 +120,12 @@ impl IntegratorKind {
         h: f64,
         next: &mut S,
     ) {
-        // `next` holds the weighted sum of the stage derivatives until the last line
+        // `next` holds the weighted sum of the stage derivatives until the last line; `k` each
+        // stage's derivative, written in place
         let mut y = *x;
+        let mut k = *x;
         for i in 0..self.tableau().stages {
-            let k = f.at(self.stage(i), if i == 0 { x } else { &y });
+            f.at_into(self.stage(i), if i == 0 { x } else { &y }, &mut k);
             self.accumulate(i, x, &k, h, next, &mut y);
         }
         self.combine(x, h, next);

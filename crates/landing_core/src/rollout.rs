@@ -424,6 +424,13 @@ impl<const D: usize, R: Real, P: Plant<R, D>, U: StageCommand<D, R, P>> StageDer
 {
     #[inline(always)]
     fn at(&self, stage: Stage, y: &P::State) -> P::State {
+        let mut k = *y;
+        self.at_into(stage, y, &mut k);
+        k
+    }
+
+    #[inline(always)]
+    fn at_into(&self, stage: Stage, y: &P::State, k: &mut P::State) {
         let time = stage.time(self.tj, self.h);
         let d = stage_disturbance(
             self.disturbance,
@@ -442,7 +449,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>, U: StageCommand<D, R, P>> StageDer
             self.plant.modelled_acceleration(time, y)
         };
         self.u.with(self.plant, time, |u| {
-            self.plant.derivative_with_drift(time, y, u, &d, &drift)
+            self.plant.derivative_into(time, y, u, &d, &drift, k)
         })
     }
 }

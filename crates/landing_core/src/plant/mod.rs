@@ -99,6 +99,22 @@ pub trait Plant<R: Real, const D: usize>: Send + Sync {
         self.derivative(t, x, u, d)
     }
 
+    /// [`derivative_with_drift`](Self::derivative_with_drift) written into `dx`, with its bits:
+    /// what the rollout calls at every stage. Plants with a large state override it to write
+    /// in place (returned by value, the state was copied out at every stage).
+    #[inline(always)]
+    fn derivative_into(
+        &self,
+        t: f64,
+        x: &Self::State,
+        u: &SVector<R, D>,
+        d: &SVector<R, D>,
+        drift: &SVector<R, D>,
+        dx: &mut Self::State,
+    ) {
+        *dx = self.derivative_with_drift(t, x, u, d, drift);
+    }
+
     /// Whether the finite state `x` is in the model's documented domain (positive mass,
     /// within the plant's range, outside singularities), per lane; docs/parameters.md lists
     /// each plant's. A rollout stops a case and flags it `OutOfDomain` when it is not (a

@@ -255,9 +255,18 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         )
     }
 
-    /// `x'` of the chain and the sub-satellite (see the module documentation).
+    /// `x'` of the chain and the sub-satellite (see the module documentation), written into
+    /// `dx`: every component is set before the springs' pulls are added, so `dx` may hold
+    /// anything on entry (the rollout's stage buffer; made and returned here, the 38-component
+    /// state was zeroed and copied out at every stage: 15 % of W6, BENCHMARKS.md).
     #[inline(always)]
-    fn chain_derivative(&self, x: &SVector<R, S>, u: &Vector2<R>, d: &Vector2<R>) -> SVector<R, S> {
+    fn chain_into(
+        &self,
+        x: &SVector<R, S>,
+        u: &Vector2<R>,
+        d: &Vector2<R>,
+        dx: &mut SVector<R, S>,
+    ) {
         let () = Self::LAYOUT;
         let b = &self.body;
         let n = b.orbital_rate;
@@ -266,7 +275,6 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let h = self.segment_length();
         let (s, c) = x[2].sin_cos();
         let attachment = self.attachment_at(x, s, c);
-        let mut dx = zeros();
         // Hill-frame field on every point mass; spring forces are added below
         for k in 0..N {
             let i = 6 + 4 * k;
@@ -291,15 +299,9 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
             let inv = one / (a0 * a1);
             let (t0, u0) = self.pull(&d0, &dv0, l0, inv * a1);
             let (t1, u1) = self.pull(&d1, &dv1, l1, inv * a0);
+            apply_pull::<N, S, R>(dx, &mut pull_on_attachment, inv_node, j, &scale_by(&u0, t0));
             apply_pull::<N, S, R>(
-                &mut dx,
-                &mut pull_on_attachment,
-                inv_node,
-                j,
-                &scale_by(&u0, t0),
-            );
-            apply_pull::<N, S, R>(
-                &mut dx,
+                dx,
                 &mut pull_on_attachment,
                 inv_node,
                 j + 1,
@@ -310,13 +312,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         if j == N {
             let (d0, dv0, l0) = Self::segment(x, j, &attachment);
             let (t0, u0) = self.pull(&d0, &dv0, l0, one / l0);
-            apply_pull::<N, S, R>(
-                &mut dx,
-                &mut pull_on_attachment,
-                inv_node,
-                j,
-                &scale_by(&u0, t0),
-            );
+            apply_pull::<N, S, R>(dx, &mut pull_on_attachment, inv_node, j, &scale_by(&u0, t0));
         }
         // the sub-satellite: thrust perpendicular to the main-to-centre line, through the centre
         let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
@@ -338,7 +334,6 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         dx[3] = ax + force[0] * inv_m;
         dx[4] = ay + force[1] * inv_m;
         dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) * (R::one() / j_s) + d[1];
-        dx
     }
 }
 
@@ -480,7 +475,23 @@ impl<const N: usize, const S: usize, R: Real> Plant<R, 2> for TetheredFlexible<N
         u: &Vector2<R>,
         d: &Vector2<R>,
     ) -> SVector<R, S> {
-        self.chain_derivative(x, u, d)
+        let mut dx = zeros();
+        self.chain_into(x, u, d, &mut dx);
+        dx
+    }
+
+    /// `derivative`, written in place (the modelled acceleration is zero: no drift to reuse).
+    #[inline(always)]
+    fn derivative_into(
+        &self,
+        _t: f64,
+        x: &SVector<R, S>,
+        u: &Vector2<R>,
+        d: &Vector2<R>,
+        _drift: &Vector2<R>,
+        dx: &mut SVector<R, S>,
+    ) {
+        self.chain_into(x, u, d, dx);
     }
 
     /// The first node must not sit on the main satellite: the tether's direction (the pitch
