@@ -22,6 +22,12 @@ Three tables:
    that what is timed is the engine's round trip (gathering the inputs of every case, the call
    into Python, the checks of the return, handing the commands back), per control instant,
    from 10^2 to 10^5 cases, against the built-in open-loop law on the same cases.
+5. Whether two threads calling the function at once would run it faster than one thread
+   calling it twice, outside the engine: numpy lets go of the interpreter inside its loops on
+   large arrays, so the loops of two calls could overlap while each call's interpreted part
+   waits its turn. The function alone on two slices' arrays (2048 and 4096 cases), the two
+   calls in turn on one thread against one call on each of two threads at once: the speed-up
+   a driver calling the law from both threads could at most expect.
 
 The timed runs go round-robin over the rows; the tables give the median of ``--repeat`` runs.
 
@@ -35,7 +41,9 @@ import datetime
 import os
 import platform
 import statistics
+import threading
 import time
+import types
 
 import numpy as np
 
@@ -142,6 +150,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--t-final", type=float, default=2.0)
+    ap.add_argument("--tables", type=int, nargs="+", default=[1, 2, 3, 4, 5], help="which tables to print")
     args = ap.parse_args()
     plant = P.MarsLander(thrust_limit=50_000.0)
     dt, t_final = 1e-3, args.t_final
@@ -163,6 +172,20 @@ def main() -> None:
     print(f"# {datetime.date.today()}  {platform.processor() or platform.machine()}  "
           f"{os.cpu_count()} cores  landing {landing.__version__}  numpy {np.__version__}")
     print(f"# accuracy: max relative difference of the final states {err:.2g}")
+    if 1 in args.tables:
+        table1(args, plant, builtin, python, careful, x0, kw, steps)
+    if 2 in args.tables:
+        table2(args, plant, builtin, python, x0, kw, steps)
+    if 3 in args.tables:
+        table3(args, plant, builtin, python, x0, kw, steps)
+    if 4 in args.tables:
+        table4(args, plant, kw, steps)
+    if 5 in args.tables:
+        table5(args)
+
+
+def table1(args, plant, builtin, python, careful, x0, kw, steps) -> None:
+    t_final, dt = kw["t_final"], kw["dt"]
     print(f"\n1. fixed-time MSS, {args.cases} Mars cases, {t_final} s at dt = {dt} s ({steps} control instants); "
           f"median of {args.repeat}, ns per case-step")
     rows = {}
@@ -185,6 +208,8 @@ def main() -> None:
         print(f"   {threads} thread(s): built-in {bi:8.1f}   PythonLaw {py:8.1f}   ratio {py / bi:5.2f}   "
               f"careful numpy {ca:8.1f}   ratio {ca / bi:5.2f}")
 
+
+def table2(args, plant, builtin, python, x0, kw, steps) -> None:
     for threads in args.threads:
         print(f"\n2. cases per call, {args.cases} Mars cases, {threads} thread(s); median of {args.repeat}, "
               "ns per case-step")
@@ -202,6 +227,8 @@ def main() -> None:
             print(f"   {name:>22}: {statistics.median(v) / (args.cases * steps) * 1e9:8.1f}   "
                   f"ratio {statistics.median(v) / base:5.2f}")
 
+
+def table3(args, plant, builtin, python, x0, kw, steps) -> None:
     print(f"\n3. where the time goes, cases_per_call={python.cases_per_call}, 1 thread; median of {args.repeat}, "
           "ns per case-step")
     inside = [0.0]
@@ -230,6 +257,9 @@ def main() -> None:
         print(f"   {label}: bound on the ratio with no engine overhead: (function + open loop) / built-in = "
               f"{(med['function'] + med['open loop']) / med['built-in']:.2f}")
 
+
+def table4(args, plant, kw, steps) -> None:
+    t_final, dt = kw["t_final"], kw["dt"]
     print(f"\n4. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
           f"{dt} s, {max(args.threads)} thread(s); median of {args.repeat}, microseconds per control instant")
     zero = C.PythonLaw(zeros)
@@ -244,6 +274,56 @@ def main() -> None:
         o, p = (statistics.median(t[k]) / (steps + 1) * 1e6 for k in ("open", "python"))
         print(f"   {n:>7} cases: OpenLoop {o:9.1f}   PythonLaw {p:9.1f}   overhead {p - o:9.1f} "
               f"({(p - o) / n * 1e3:6.1f} ns per case)")
+
+
+def table5(args) -> None:
+    print(f"\n5. the function alone, two calls in turn on one thread against one on each of two threads at once; "
+          f"median of {args.repeat}, ns per case per call")
+    for label, function in (("printed", mss_printed), ("careful", mss_lean)):
+        for n in (2048, 4096):
+            a, b = two_calls(function, n, args.repeat)
+            print(f"   {label}, {n} cases: in turn {a:6.1f}   at once {b:6.1f}   speed-up {a / b:5.2f}")
+
+
+def two_calls(function, n: int, repeat: int, calls: int = 200) -> tuple[float, float]:
+    """The median time per case per call of ``calls`` calls on each of two arrays of ``n``
+    cases: the two in turn on this thread, and each on a thread of its own at once."""
+    rng = np.random.default_rng(5)
+
+    def arguments():
+        e, de = rng.normal(0.0, 100.0, (n, 3)), rng.normal(0.0, 5.0, (n, 3))
+        ref = types.SimpleNamespace(position=np.zeros((n, 3)), velocity=np.zeros((n, 3)),
+                                    acceleration=np.zeros((n, 3)))
+        return (0.0, e, de, ref, rng.normal(0.0, 1.0, (n, 3)), np.ones((n, 3)), GAINS, None)
+
+    pair = (arguments(), arguments())
+
+    def loop(a):
+        for _ in range(calls):
+            function(*a)
+
+    def in_turn():
+        start = time.perf_counter()
+        loop(pair[0])
+        loop(pair[1])
+        return time.perf_counter() - start
+
+    def at_once():
+        threads = [threading.Thread(target=loop, args=(a,)) for a in pair]
+        start = time.perf_counter()
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        return time.perf_counter() - start
+
+    in_turn(), at_once()
+    runs: dict[str, list[float]] = {"in turn": [], "at once": []}
+    for _ in range(repeat):
+        runs["in turn"].append(in_turn())
+        runs["at once"].append(at_once())
+    in_turn_ns, at_once_ns = (statistics.median(v) / (2 * calls * n) * 1e9 for v in runs.values())
+    return in_turn_ns, at_once_ns
 
 
 if __name__ == "__main__":
