@@ -230,3 +230,40 @@ fn refining_the_tether_converges() {
     // and the differences are not round-off: the coarsest model is visibly off
     assert!(e[0] > 1e-3, "{e:?}");
 }
+
+/// The derivative the rollout asks for, written into its stage buffer, sets every component
+/// whatever the buffer held (it is not cleared first): the same bits as the derivative made
+/// fresh, into a buffer of NaNs and into one holding another state's derivative. An odd node
+/// count takes the path of the last, unpaired segment.
+#[test]
+fn the_derivative_written_in_place_sets_every_component() {
+    fn check<const N: usize, const S: usize>() {
+        let plant = TetheredFlexible::<N, S> {
+            body: body(FAST_ORBIT, 1.0),
+            density: 0.01,
+            axial_stiffness: 50.0,
+            axial_damping: 0.3,
+        };
+        let mut x = plant.state_at(0.1, 0.3, 0.002, 0.05).unwrap();
+        // bend and shake the chain so that every component of x' is nonzero
+        for (i, v) in x.iter_mut().enumerate().skip(6) {
+            *v += 1e-3 * ((i * 7 % 11) as f64 - 5.0);
+        }
+        let (u, d) = (Vector2::new(0.02, -0.01), Vector2::new(1e-4, 2e-4));
+        let fresh = plant.derivative(0.0, &x, &u, &d);
+        let other = plant.derivative(0.0, &(x * 1.01), &u, &d);
+        for start in [SVector::<f64, S>::from_element(f64::NAN), other] {
+            let mut dx = start;
+            plant.derivative_into(0.0, &x, &u, &d, &Vector2::zeros(), &mut dx);
+            for i in 0..S {
+                assert_eq!(
+                    dx[i].to_bits(),
+                    fresh[i].to_bits(),
+                    "N = {N}, component {i}"
+                );
+            }
+        }
+    }
+    check::<4, 22>();
+    check::<5, 26>();
+}
