@@ -279,6 +279,46 @@ def test_inputs_a_law_keeps_are_never_overwritten():
     np.testing.assert_array_equal(np.stack(kept), res.states[:, :, :3].transpose(1, 0, 2))
 
 
+@pytest.mark.parametrize("keep", [False, True], ids=["arrays-reused", "arrays-kept"])
+def test_cases_that_have_stopped_keep_their_last_inputs(keep):
+    # the engine writes each instant's inputs of the cases still running into the arrays it
+    # handed over at the instant before; the cases that have stopped must keep their last
+    # inputs there, also when the function kept those arrays and the engine had to make new ones
+    n, stop = 64, 0.3
+    seen, kept = [], []
+
+    def law(t, e, de, ref, drift, inertia, params, memory):
+        seen.append((t, e.copy()))
+        if keep:
+            kept.append(e)
+        u = -e - 2.0 * de
+        if t >= stop:
+            u[:32] = np.nan  # whole blocks of lanes stop at every level
+        return u
+
+    x0 = np.zeros((n, 6))
+    x0[:, :3] = np.linspace(1.0, 2.0, n)[:, None] * np.array([1.0, -2.0, 0.5])
+    with pytest.warns(DivergenceWarning):
+        res = landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(law), x0, t_final=1.0, dt=0.01,
+                                     threads=1)
+    assert res.metrics["diverged"].tolist() == [True] * 32 + [False] * 32
+    times = np.array([t for t, _ in seen])
+    e = np.stack([v for _, v in seen])
+    assert len(times) == 101 and np.array_equal(times, np.arange(101) * 0.01)
+    first = int(np.argmax(times >= stop))
+    # before the stop every case moves; the period of the instant that commanded NaN is the
+    # stopped cases' last (it writes no inputs), so from then on they see that instant's inputs,
+    # while the others go on moving
+    assert (np.diff(e[: first + 1, :32], axis=0) != 0).any(axis=(1, 2)).all()
+    np.testing.assert_array_equal(e[first:, :32], np.broadcast_to(e[first, :32], e[first:, :32].shape))
+    assert (np.diff(e[first:, 32:], axis=0) != 0).any(axis=(1, 2)).all()
+    # and those are the positions at that instant (q_ref = 0) of a run in which nothing stops
+    # (the stopped run records NaN from its stop on)
+    clean = landing.simulate_batch(P.DoubleIntegrator(), C.PythonLaw(lambda t, e, de, *rest: -e - 2.0 * de), x0,
+                                   t_final=1.0, dt=0.01)
+    np.testing.assert_array_equal(e[first, :32], clean.states[:32, first, :3])
+
+
 def test_a_time_dependent_disturbance_sees_the_true_time():
     # OpenLoop stepped one period at a time restarts every call at t = 0; a PythonLaw does not
     dist = landing.disturbances.Sinusoid(amplitude=(1.0, 0.0, 0.0), omega=3.0)

@@ -9,7 +9,7 @@ use landing_core::control::{
     AnyLaw, AnyMemory, FixedTimeMss, LawInput, MssVariant, SuperTwisting, SuperTwistingVariant,
 };
 use landing_core::disturbance::Disturbance;
-use landing_core::external::{ExternalError, ExternalLaw, Inputs, run_external};
+use landing_core::external::{ExternalError, ExternalLaw, Inputs, Staging, run_external};
 use landing_core::metrics::Divergence;
 use landing_core::plant::{MarsLander, PlantModel};
 use landing_core::reference::{RefPoint, Reference};
@@ -29,6 +29,8 @@ struct CaseByCase {
     tracks: Vec<usize>,
     fail_at: Option<u64>,
     per_call: usize,
+    /// The bits of every call's inputs, (first case, k, the seven fields), when recording.
+    seen: Option<Vec<(usize, u64, Vec<u64>)>>,
 }
 
 impl CaseByCase {
@@ -41,6 +43,7 @@ impl CaseByCase {
             tracks: Vec::new(),
             fail_at: None,
             per_call: usize::MAX,
+            seen: None,
         }
     }
 }
@@ -72,6 +75,11 @@ impl ExternalLaw<3> for CaseByCase {
         let n = inputs.e.len() / 3;
         self.calls.push((inputs.first, n, inputs.t));
         self.tracks.push(inputs.track);
+        if let Some(seen) = &mut self.seen {
+            let fields = inputs.fields();
+            let bits = fields.iter().flat_map(|f| f.iter().map(|x| x.to_bits()));
+            seen.push((inputs.first, inputs.k, bits.collect()));
+        }
         let nd = self.diagnostic_width();
         for i in 0..n {
             // case `c` of the batch, row `i` of the call's arrays
@@ -104,6 +112,76 @@ impl ExternalLaw<3> for CaseByCase {
             law.advance(&mut self.memory[c], &input);
         }
         Ok(())
+    }
+}
+
+/// [`CaseByCase`] reading its inputs from memory it lends the driver ([`ExternalLaw::staging`]),
+/// as the bindings do with their numpy arrays: after a call the lent memory holds that call's
+/// inputs (copied in when the driver did not write them there), and the driver writes the next
+/// instant's inputs of the cases still running into it.
+struct Lending {
+    inner: CaseByCase,
+    /// Per track, the seven fields.
+    lent: [[Vec<f64>; 7]; 2],
+    /// Calls whose inputs the driver wrote into the lent memory.
+    staged: usize,
+}
+
+impl ExternalLaw<3> for Lending {
+    type Error = String;
+
+    fn diagnostic_width(&self) -> usize {
+        self.inner.diagnostic_width()
+    }
+
+    fn cases_per_call(&self) -> usize {
+        self.inner.per_call
+    }
+
+    fn staging(&mut self, track: usize, cases: usize) -> Option<Staging> {
+        let fields = &mut self.lent[track];
+        assert!(
+            fields.iter().all(|f| f.len() == 3 * cases),
+            "lent after a call on the same slice"
+        );
+        let pointers = std::array::from_fn(|j| fields[j].as_mut_ptr());
+        // SAFETY: each buffer holds 3 x cases values, and only `command` touches them, at the
+        // track's next call
+        Some(unsafe { Staging::new(pointers, 3 * cases) })
+    }
+
+    fn command(
+        &mut self,
+        inputs: &Inputs<3>,
+        command: &mut [f64],
+        diagnostics: &mut [f64],
+    ) -> Result<(), String> {
+        let lent = &mut self.lent[inputs.track];
+        let mut view = inputs.clone();
+        if inputs.staged {
+            self.staged += 1;
+            let Inputs {
+                e,
+                de,
+                position,
+                velocity,
+                acceleration,
+                drift,
+                inertia,
+                ..
+            } = &mut view;
+            for (to, from) in [e, de, position, velocity, acceleration, drift, inertia]
+                .into_iter()
+                .zip(lent.iter())
+            {
+                to.copy_from_slice(from);
+            }
+        } else {
+            for (to, from) in lent.iter_mut().zip(inputs.fields()) {
+                *to = from.to_vec();
+            }
+        }
+        self.inner.command(&view, command, diagnostics)
     }
 }
 
@@ -335,6 +413,63 @@ fn check_slices(
         .map(|(_, c)| c.0)
         .collect();
     assert!(starts.windows(2).all(|p| p[0] < p[1]), "{what}: {starts:?}");
+}
+
+/// A law that lends memory for its inputs sees, at every call, the bits a law reading the
+/// driver's own inputs sees, and the run gives the same bits. The first 32 of 40 cases, whole
+/// blocks at every level, diverge at once while the others run: their rows must keep their
+/// first inputs.
+#[test]
+fn a_law_lending_memory_for_its_inputs_sees_the_same_inputs() {
+    let laws: Vec<AnyLaw<3>> = vec![reconstructed_gains(MssVariant::Printed).into(); 40];
+    let mut x0 = mars_dispersed(40, 42);
+    for level in Level::supported() {
+        let w = level.lanes::<<MarsLander as PlantModel<3>>::Blocks>();
+        assert!(32 % w == 0 && w < 32, "{level:?}: {w} lanes");
+    }
+    for x in &mut x0[..32] {
+        x[3] = 1e200;
+    }
+    let noisy = mars_storm().with_noise(Vector3::repeat(0.5));
+    let cfg = SimConfig::new(0.2, 0.001, 2, 37, 7).unwrap();
+    for level in Level::supported() {
+        for (per_call, threads) in [(usize::MAX, 1), (usize::MAX, 2), (16, 1), (16, 2), (17, 2)] {
+            let what = format!("{level:?}, {per_call} cases per call, {threads} threads");
+            let mut plain = CaseByCase::new(laws.clone(), cfg.dt);
+            plain.per_call = per_call;
+            plain.seen = Some(Vec::new());
+            let reference =
+                run_external(&outside(&x0, &noisy), &cfg, &at(threads, level), &mut plain)
+                    .unwrap_or_else(|_| panic!("{what}"));
+            let mut inner = CaseByCase::new(laws.clone(), cfg.dt);
+            inner.per_call = per_call;
+            inner.seen = Some(Vec::new());
+            let mut lending = Lending {
+                inner,
+                lent: Default::default(),
+                staged: 0,
+            };
+            let out = run_external(
+                &outside(&x0, &noisy),
+                &cfg,
+                &at(threads, level),
+                &mut lending,
+            )
+            .unwrap_or_else(|_| panic!("{what}"));
+            assert_eq!(fingerprint(&out), fingerprint(&reference), "{what}");
+            let sorted = |law: &CaseByCase| {
+                let mut seen = law.seen.clone().expect("recorded");
+                seen.sort_by_key(|s| (s.0, s.1));
+                seen
+            };
+            let (a, b) = (sorted(&plain), sorted(&lending.inner));
+            assert_eq!(a.len(), b.len(), "{what}");
+            assert!(a == b, "{what}: the inputs differ");
+            // every call but each slice's first was written into the lent memory
+            let slices = b.iter().filter(|s| s.1 == 0).count();
+            assert_eq!(lending.staged, b.len() - slices, "{what}");
+        }
+    }
 }
 
 #[test]

@@ -33,7 +33,9 @@ impl Handed {
     }
 
     /// Slot `slot`'s array, of shape (n, width), only this slot's: kept, or new when the
-    /// callee kept the one before (its count is more than one) or the shape changed.
+    /// callee kept the one before (its count is more than one: the new one is a copy, so that
+    /// memory lent to a driver still holds the last call's inputs, [`Staging`]) or the shape
+    /// changed (zeros).
     fn slot<'py>(
         &mut self,
         py: Python<'py>,
@@ -47,11 +49,19 @@ impl Handed {
         let held = &mut self.slots[slot];
         // SAFETY: a plain reference count read of a live object, with the GIL held
         let ours = |a: &Py<PyArray2<f64>>| unsafe { pyo3::ffi::Py_REFCNT(a.as_ptr()) } == 1;
-        if !held
-            .as_ref()
-            .is_some_and(|a| ours(a) && a.bind(py).shape() == [n, width])
-        {
-            *held = Some(PyArray2::zeros(py, [n, width], false).unbind());
+        let fresh = match held.as_ref() {
+            Some(a) if a.bind(py).shape() == [n, width] => (!ours(a)).then(|| {
+                let kept = a.bind(py);
+                let copy = PyArray2::<f64>::zeros(py, [n, width], false);
+                // SAFETY: both C-contiguous (n, width) float64 arrays (the slot's arrays are
+                // made here); the new one is not yet seen by any Python code
+                unsafe { std::ptr::copy_nonoverlapping(kept.data(), copy.data(), n * width) };
+                copy
+            }),
+            _ => Some(PyArray2::zeros(py, [n, width], false)),
+        };
+        if let Some(a) = fresh {
+            *held = Some(a.unbind());
         }
         held.as_ref().expect("set above").bind(py).clone()
     }
@@ -73,7 +83,7 @@ impl Handed {
     }
 
     /// Lends slots `first ..` (each `n x width`) as a driver's [`Staging`]: until the next call
-    /// that hands them over, only the slots hold them.
+    /// that hands them over, only the slots hold them. They hold what the last call handed over.
     fn lend(&mut self, py: Python<'_>, first: usize, n: usize, width: usize) -> Staging {
         let fields = std::array::from_fn(|j| self.slot(py, first + j, n, width).data());
         // SAFETY: each array holds n x width float64 values and only its slot holds it (`slot`);

@@ -19,6 +19,7 @@ mod plant;
 pub use plant::{ExternalPlant, Laws, MAX_EXTERNAL_STATE, StateLayout, run_external_plant};
 
 use std::any::Any;
+use std::mem::MaybeUninit;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::parallel::{self, Job};
@@ -49,8 +50,8 @@ pub struct Inputs<const D: usize> {
     /// the slices run one after another): calls for the two alternate, so a law that keeps
     /// buffers or state per slice keys them by it. A track's next slice starts at `k = 0`.
     pub track: usize,
-    /// Whether the driver has already copied these inputs into the memory the law's
-    /// [`ExternalLaw::staging`] lent for this call.
+    /// Whether the driver has written these inputs into the memory the law's
+    /// [`ExternalLaw::staging`] lent for this call (the fields here are then stale).
     pub staged: bool,
     /// The control instant, s.
     pub t: f64,
@@ -122,29 +123,18 @@ impl<const D: usize> Inputs<D> {
 
     /// Disjoint views of `w` cases each, one per block.
     fn rows(&mut self, w: usize) -> Vec<InputRows<'_>> {
-        fn split(v: &mut [f64], len: usize) -> std::slice::ChunksMut<'_, f64> {
-            v.chunks_mut(len)
-        }
-        let len = w * D;
-        let mut de = split(&mut self.de, len);
-        let mut position = split(&mut self.position, len);
-        let mut velocity = split(&mut self.velocity, len);
-        let mut acceleration = split(&mut self.acceleration, len);
-        let mut drift = split(&mut self.drift, len);
-        let mut inertia = split(&mut self.inertia, len);
-        // every field has as many chunks as `e`
-        let missing = "the input fields have one length";
-        split(&mut self.e, len)
-            .map(|e| InputRows {
-                e,
-                de: de.next().expect(missing),
-                position: position.next().expect(missing),
-                velocity: velocity.next().expect(missing),
-                acceleration: acceleration.next().expect(missing),
-                drift: drift.next().expect(missing),
-                inertia: inertia.next().expect(missing),
-            })
-            .collect()
+        let Self {
+            e,
+            de,
+            position,
+            velocity,
+            acceleration,
+            drift,
+            inertia,
+            ..
+        } = self;
+        let fields = [e, de, position, velocity, acceleration, drift, inertia];
+        InputRows::split(fields.map(|v| v.as_mut_slice()), w * D)
     }
 }
 
@@ -159,26 +149,59 @@ struct InputRows<'a> {
     inertia: &'a mut [f64],
 }
 
-impl InputRows<'_> {
-    /// Writes the first `used` lanes of `input`.
+impl<'a> InputRows<'a> {
+    /// Views of `len` values of each field, one per block (the last may be shorter).
+    fn split(fields: [&'a mut [f64]; 7], len: usize) -> Vec<Self> {
+        let [e, de, position, velocity, acceleration, drift, inertia] =
+            fields.map(|v| v.chunks_mut(len));
+        // every field has as many chunks as `e`
+        e.zip(de)
+            .zip(position)
+            .zip(velocity)
+            .zip(acceleration)
+            .zip(drift)
+            .zip(inertia)
+            .map(
+                |((((((e, de), position), velocity), acceleration), drift), inertia)| InputRows {
+                    e,
+                    de,
+                    position,
+                    velocity,
+                    acceleration,
+                    drift,
+                    inertia,
+                },
+            )
+            .collect()
+    }
+
+    /// Writes the first `used` lanes of `input`, field after field: the rows of each field are
+    /// `D` consecutive values per case, so each field's `used x D` values go out in one run.
     fn write<const D: usize, R: Real>(&mut self, input: &LawInput<D, R>, used: usize) {
-        for i in 0..used {
-            for c in 0..D {
-                let at = i * D + c;
-                self.e[at] = input.e[c].lane(i);
-                self.de[at] = input.de[c].lane(i);
-                self.position[at] = input.reference.position[c].lane(i);
-                self.velocity[at] = input.reference.velocity[c].lane(i);
-                self.acceleration[at] = input.reference.acceleration[c].lane(i);
-                self.drift[at] = input.drift[c].lane(i);
-                self.inertia[at] = input.inertia[c].lane(i);
+        let r = &input.reference;
+        let fields: [(&mut [f64], &SVector<R, D>); 7] = [
+            (&mut *self.e, &input.e),
+            (&mut *self.de, &input.de),
+            (&mut *self.position, &r.position),
+            (&mut *self.velocity, &r.velocity),
+            (&mut *self.acceleration, &r.acceleration),
+            (&mut *self.drift, &input.drift),
+            (&mut *self.inertia, &input.inertia),
+        ];
+        for (to, from) in fields {
+            for (i, row) in to.chunks_exact_mut(D).take(used).enumerate() {
+                for (value, lanes) in row.iter_mut().zip(from.iter()) {
+                    *value = lanes.lane(i);
+                }
             }
         }
     }
 }
 
 /// Memory a law lends the driver for the inputs of its next call on a track: seven buffers of
-/// `len` values, one per field of [`Inputs::fields`], in that order.
+/// `len` values, one per field of [`Inputs::fields`], in that order, holding the inputs of the
+/// call just made on the track. The driver writes the rows of the cases still running there,
+/// straight from their blocks; a case that has stopped keeps its last inputs.
 pub struct Staging {
     fields: [*mut f64; 7],
     len: usize,
@@ -197,17 +220,15 @@ impl Staging {
         Self { fields, len }
     }
 
-    /// Copies `inputs` into the lent memory, or returns false when the sizes differ.
-    fn write<const D: usize>(&self, inputs: &Inputs<D>) -> bool {
-        let fields = inputs.fields();
-        if fields.iter().any(|f| f.len() != self.len) {
-            return false;
-        }
-        for (to, from) in self.fields.iter().zip(fields) {
-            // SAFETY: `new`'s contract: `len` values, ours alone until the next call
-            unsafe { std::ptr::copy_nonoverlapping(from.as_ptr(), *to, self.len) };
-        }
-        true
+    /// The lent memory as views of `w` cases each, one per block.
+    fn rows<const D: usize>(&mut self, w: usize) -> Vec<InputRows<'_>> {
+        let len = self.len;
+        // SAFETY: `new`'s contract: `len` values each, ours alone until the next call; the
+        // views borrow `self` mutably, so none outlives the loan or aliases another
+        let fields = self
+            .fields
+            .map(|p| unsafe { std::slice::from_raw_parts_mut(p, len) });
+        InputRows::split(fields, w * D)
     }
 }
 
@@ -237,12 +258,15 @@ pub trait ExternalLaw<const D: usize>: Send {
     /// made and dropped at every call, it cost more than the call.)
     fn on_thread(&mut self, _entering: bool) {}
 
-    /// Memory of the law's own into which the driver may copy the inputs of the next call on
+    /// Memory of the law's own into which the driver may write the inputs of the next call on
     /// `track` (of `cases` cases) before making it: asked after every call on the track, on
     /// the thread that made it. A law that hands its inputs on in buffers of its own (the
-    /// bindings: numpy arrays) lends them, so that the copy is made where the driver advances
-    /// the plant, not on the thread that calls the law, which two interleaved slices keep busy
-    /// ([`Inputs::staged`] says that it was made). None, the default: the law copies them.
+    /// bindings: numpy arrays) lends them, holding the inputs of the call just made
+    /// ([`Staging`]), so that each running block writes its rows there as it ends its period,
+    /// on whichever thread advances the plant, and no copy is made on the thread that calls
+    /// the law ([`Inputs::staged`] says that they were written there; the fields of the
+    /// [`Inputs`] are then stale). A law that lends memory for a slice lends it at each of the
+    /// slice's later calls. None, the default: the law reads the [`Inputs`].
     fn staging(&mut self, _track: usize, _cases: usize) -> Option<Staging> {
         None
     }
@@ -376,12 +400,16 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
         };
         let (used, nd) = (self.used, co.nd);
         let a: SVector<R, D> = SVector::from_fn(|c, _| lanes(self.command, used, D, c));
-        let mut diag = [R::zero(); MAX_DIAGNOSTIC_WIDTH];
-        for (c, d) in diag[..nd].iter_mut().enumerate() {
-            *d = lanes(self.diagnostics, used, nd, c);
+        // only the law's `nd` diagnostics are set: zeroing all the room (1 kB a block at
+        // AVX-512) showed in a profile of a Python law's run
+        let mut room = [const { MaybeUninit::<R>::uninit() }; MAX_DIAGNOSTIC_WIDTH];
+        for (c, d) in room[..nd].iter_mut().enumerate() {
+            d.write(lanes(self.diagnostics, used, nd, c));
         }
+        // SAFETY: the first `nd` values were written just above
+        let diag = unsafe { std::slice::from_raw_parts(room.as_ptr().cast::<R>(), nd) };
         if self.k == co.cfg.steps {
-            kept.block.finish(&set, Some((&a, &diag[..nd])), self.out);
+            kept.block.finish(&set, Some((&a, diag)), self.out);
             return false;
         }
         let period = Period {
@@ -389,7 +417,7 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
             set: &set,
             k: self.k,
             a: &a,
-            diag: &diag[..nd],
+            diag,
             out: &mut *self.out,
         };
         if !K::out_of_line(period) {
@@ -695,18 +723,25 @@ impl<'a, 'b, 'c, 'd, const D: usize, P: PlantModel<D>> Running<'a, 'b, 'c, 'd, D
     }
 
     /// Period `k` of every block still running, under the last call's commands, spread over
-    /// the pool or on this thread; the inputs at `k + 1` written.
+    /// the pool or on this thread; the inputs at `k + 1` written, into the memory the law lent
+    /// when it lent some of the slice's size.
     fn advance(&mut self, spread: bool) {
         let (common, w, k) = (self.driver.common, self.driver.w, self.k);
         let (m, nd, blocks) = (self.m, common.nd, self.held.len());
         let used = |b: usize| w.min(m - b * w);
-        let mut steps: Vec<(Step<'_, '_, '_, D, P>, &mut bool)> = self
+        let mut lent = self.staging.take().filter(|s| s.len == m * D);
+        let staged = lent.is_some();
+        let rows = match &mut lent {
+            Some(s) => s.rows::<D>(w),
+            None => self.inputs.rows(w),
+        };
+        let steps = self
             .held
             .iter_mut()
             .zip(self.buffers.iter_mut())
             .zip(self.command.chunks(w * D))
             .zip(chunks_or_empty(&self.diagnostics, w * nd, blocks))
-            .zip(self.inputs.rows(w))
+            .zip(rows)
             .zip(self.running.iter_mut())
             .enumerate()
             .filter(|(_, (_, running))| **running)
@@ -724,30 +759,41 @@ impl<'a, 'b, 'c, 'd, const D: usize, P: PlantModel<D>> Running<'a, 'b, 'c, 'd, D
                     };
                     (job, running)
                 },
-            )
-            .collect();
-        // runs of consecutive blocks, one task each: a task per block cost more in
-        // scheduling than its period. (Asking for the next block's memory ahead, all 12 kB
-        // of a Mars block, made a run slower: the period reads about half of it.)
+            );
         let level = common.level;
-        let mut jobs: Vec<Job<'_, ()>> = Vec::with_capacity(steps.len().div_ceil(self.group));
-        while !steps.is_empty() {
-            let rest = steps.split_off(self.group.min(steps.len()));
-            let run = std::mem::replace(&mut steps, rest);
-            jobs.push(Box::new(move || {
-                for (job, running) in run {
-                    *running = kernel::dispatch(level, job);
-                }
-            }));
-        }
         if spread {
+            // runs of consecutive blocks, one task each: a task per block cost more in
+            // scheduling than its period. (Asking for the next block's memory ahead, all 12 kB
+            // of a Mars block, made a run slower: the period reads about half of it.)
+            let mut jobs: Vec<Job<'_, ()>> = Vec::with_capacity(blocks.div_ceil(self.group));
+            let mut run = Vec::with_capacity(self.group);
+            for step in steps {
+                run.push(step);
+                if run.len() == self.group {
+                    let group = std::mem::replace(&mut run, Vec::with_capacity(self.group));
+                    jobs.push(Box::new(move || periods(level, group)));
+                }
+            }
+            if !run.is_empty() {
+                jobs.push(Box::new(move || periods(level, run)));
+            }
             parallel::each(jobs);
         } else {
-            jobs.into_iter().for_each(|job| job());
+            periods(level, steps);
         }
         self.k += 1;
         self.commanded = false;
-        self.inputs.staged = self.staging.take().is_some_and(|s| s.write(&self.inputs));
+        self.inputs.staged = staged;
+    }
+}
+
+/// Runs the periods `steps`, noting which blocks go on.
+fn periods<'x, 'y, 'z: 'y, 'r, const D: usize, P: PlantModel<D>>(
+    level: Level,
+    steps: impl IntoIterator<Item = (Step<'x, 'y, 'z, D, P>, &'r mut bool)>,
+) {
+    for (job, running) in steps {
+        *running = kernel::dispatch(level, job);
     }
 }
 
