@@ -21,7 +21,8 @@ Three tables:
 4. The per-call overhead of a Python law: a law that returns zeros (``np.zeros_like(e)``), so
    that what is timed is the engine's round trip (gathering the inputs of every case, the call
    into Python, the checks of the return, handing the commands back), per control instant,
-   from 10^2 to 10^5 cases, against the built-in open-loop law on the same cases.
+   from 10^2 to 10^5 cases, against the built-in open-loop law on the same cases, at each
+   ``--threads``.
 5. Whether two threads calling the function at once would run it faster than one thread
    calling it twice, outside the engine: numpy lets go of the interpreter inside its loops on
    large arrays, so the loops of two calls could overlap while each call's interpreted part
@@ -260,20 +261,21 @@ def table3(args, plant, builtin, python, x0, kw, steps) -> None:
 
 def table4(args, plant, kw, steps) -> None:
     t_final, dt = kw["t_final"], kw["dt"]
-    print(f"\n4. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
-          f"{dt} s, {max(args.threads)} thread(s); median of {args.repeat}, microseconds per control instant")
     zero = C.PythonLaw(zeros)
-    for n in (100, 1_000, 10_000, 100_000):
-        x = dispersed(n)
-        rows = {"open": lambda x=x: landing.simulate_batch(plant, C.OpenLoop(), x, threads=max(args.threads), **kw),
-                "python": lambda x=x: landing.simulate_batch(plant, zero, x, threads=max(args.threads), **kw)}
-        t = {k: [] for k in rows}
-        for r in range(args.repeat):
-            for k in (["open", "python"] if r % 2 == 0 else ["python", "open"]):
-                t[k].append(timed(rows[k]))
-        o, p = (statistics.median(t[k]) / (steps + 1) * 1e6 for k in ("open", "python"))
-        print(f"   {n:>7} cases: OpenLoop {o:9.1f}   PythonLaw {p:9.1f}   overhead {p - o:9.1f} "
-              f"({(p - o) / n * 1e3:6.1f} ns per case)")
+    for threads in args.threads:
+        print(f"\n4. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
+              f"{dt} s, {threads} thread(s); median of {args.repeat}, microseconds per control instant")
+        for n in (100, 1_000, 10_000, 100_000):
+            x = dispersed(n)
+            rows = {"open": lambda x=x, t=threads: landing.simulate_batch(plant, C.OpenLoop(), x, threads=t, **kw),
+                    "python": lambda x=x, t=threads: landing.simulate_batch(plant, zero, x, threads=t, **kw)}
+            t = {k: [] for k in rows}
+            for r in range(args.repeat):
+                for k in (["open", "python"] if r % 2 == 0 else ["python", "open"]):
+                    t[k].append(timed(rows[k]))
+            o, p = (statistics.median(t[k]) / (steps + 1) * 1e6 for k in ("open", "python"))
+            print(f"   {n:>7} cases: OpenLoop {o:9.1f}   PythonLaw {p:9.1f}   overhead {p - o:9.1f} "
+                  f"({(p - o) / n * 1e3:6.1f} ns per case)")
 
 
 def table5(args) -> None:
