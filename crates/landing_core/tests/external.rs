@@ -160,20 +160,7 @@ impl ExternalLaw<3> for Lending {
         let mut view = inputs.clone();
         if inputs.staged {
             self.staged += 1;
-            let Inputs {
-                e,
-                de,
-                position,
-                velocity,
-                acceleration,
-                drift,
-                inertia,
-                ..
-            } = &mut view;
-            for (to, from) in [e, de, position, velocity, acceleration, drift, inertia]
-                .into_iter()
-                .zip(lent.iter())
-            {
+            for (to, from) in view.fields_mut().into_iter().zip(lent.iter()) {
                 to.copy_from_slice(from);
             }
         } else {

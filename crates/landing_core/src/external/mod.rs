@@ -108,21 +108,8 @@ impl<const D: usize> Inputs<D> {
         [e, de, position, velocity, acceleration, drift, inertia].map(|v| v.as_slice())
     }
 
-    /// Writes case `i`'s row of every field.
-    fn write(&mut self, i: usize, input: &LawInput<D, f64>) {
-        let rows = i * D..(i + 1) * D;
-        self.e[rows.clone()].copy_from_slice(input.e.as_slice());
-        self.de[rows.clone()].copy_from_slice(input.de.as_slice());
-        let r = &input.reference;
-        self.position[rows.clone()].copy_from_slice(r.position.as_slice());
-        self.velocity[rows.clone()].copy_from_slice(r.velocity.as_slice());
-        self.acceleration[rows.clone()].copy_from_slice(r.acceleration.as_slice());
-        self.drift[rows.clone()].copy_from_slice(input.drift.as_slice());
-        self.inertia[rows].copy_from_slice(input.inertia.as_slice());
-    }
-
-    /// Disjoint views of `w` cases each, one per block.
-    fn rows(&mut self, w: usize) -> Vec<InputRows<'_>> {
+    /// The fields as [`fields`](Self::fields) orders them, to write.
+    pub fn fields_mut(&mut self) -> [&mut [f64]; 7] {
         let Self {
             e,
             de,
@@ -133,62 +120,60 @@ impl<const D: usize> Inputs<D> {
             inertia,
             ..
         } = self;
-        let fields = [e, de, position, velocity, acceleration, drift, inertia];
-        InputRows::split(fields.map(|v| v.as_mut_slice()), w * D)
+        [e, de, position, velocity, acceleration, drift, inertia].map(|v| v.as_mut_slice())
+    }
+
+    /// Writes case `i`'s row of every field.
+    fn write(&mut self, i: usize, input: &LawInput<D, f64>) {
+        let rows = i * D..(i + 1) * D;
+        for (to, from) in self.fields_mut().into_iter().zip(quantities(input)) {
+            to[rows.clone()].copy_from_slice(from.as_slice());
+        }
+    }
+
+    /// Disjoint views of `w` cases each, one per block.
+    fn rows(&mut self, w: usize) -> Vec<InputRows<'_>> {
+        InputRows::split(self.fields_mut(), w * D)
     }
 }
 
-/// One block's rows of [`Inputs`].
-struct InputRows<'a> {
-    e: &'a mut [f64],
-    de: &'a mut [f64],
-    position: &'a mut [f64],
-    velocity: &'a mut [f64],
-    acceleration: &'a mut [f64],
-    drift: &'a mut [f64],
-    inertia: &'a mut [f64],
+/// The quantities of a law's input in the order of [`Inputs::fields`].
+fn quantities<const D: usize, R: Real>(input: &LawInput<D, R>) -> [&SVector<R, D>; 7] {
+    let r = &input.reference;
+    [
+        &input.e,
+        &input.de,
+        &r.position,
+        &r.velocity,
+        &r.acceleration,
+        &input.drift,
+        &input.inertia,
+    ]
 }
+
+/// One block's rows of [`Inputs`], field after field.
+struct InputRows<'a>([&'a mut [f64]; 7]);
 
 impl<'a> InputRows<'a> {
     /// Views of `len` values of each field, one per block (the last may be shorter).
     fn split(fields: [&'a mut [f64]; 7], len: usize) -> Vec<Self> {
-        let [e, de, position, velocity, acceleration, drift, inertia] =
-            fields.map(|v| v.chunks_mut(len));
+        let mut chunks = fields.map(|v| v.chunks_mut(len));
         // every field has as many chunks as `e`
-        e.zip(de)
-            .zip(position)
-            .zip(velocity)
-            .zip(acceleration)
-            .zip(drift)
-            .zip(inertia)
-            .map(
-                |((((((e, de), position), velocity), acceleration), drift), inertia)| InputRows {
-                    e,
-                    de,
-                    position,
-                    velocity,
-                    acceleration,
-                    drift,
-                    inertia,
-                },
-            )
+        (0..chunks[0].len())
+            .map(|_| {
+                InputRows(
+                    chunks
+                        .each_mut()
+                        .map(|c| c.next().expect("the input fields have one length")),
+                )
+            })
             .collect()
     }
 
     /// Writes the first `used` lanes of `input`, field after field: the rows of each field are
     /// `D` consecutive values per case, so each field's `used x D` values go out in one run.
     fn write<const D: usize, R: Real>(&mut self, input: &LawInput<D, R>, used: usize) {
-        let r = &input.reference;
-        let fields: [(&mut [f64], &SVector<R, D>); 7] = [
-            (&mut *self.e, &input.e),
-            (&mut *self.de, &input.de),
-            (&mut *self.position, &r.position),
-            (&mut *self.velocity, &r.velocity),
-            (&mut *self.acceleration, &r.acceleration),
-            (&mut *self.drift, &input.drift),
-            (&mut *self.inertia, &input.inertia),
-        ];
-        for (to, from) in fields {
+        for (to, from) in self.0.iter_mut().zip(quantities(input)) {
             for (i, row) in to.chunks_exact_mut(D).take(used).enumerate() {
                 for (value, lanes) in row.iter_mut().zip(from.iter()) {
                     *value = lanes.lane(i);
