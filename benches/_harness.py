@@ -38,3 +38,27 @@ def version(name: str) -> str:
         return metadata.version(name)
     except metadata.PackageNotFoundError:
         return "not installed"
+
+
+def numba_fma() -> Callable[[float, float, float], float]:
+    """`fma(a, b, c)`: `a b + c` rounded once, for numba-compiled peers (LLVM's `llvm.fma`, one
+    instruction where the processor has it). The core fuses the integrators' updates
+    (`Real::mul_add`), so a peer written in the core's semantics fuses them too. Imported
+    lazily: numba is only needed by the peers."""
+    from numba import njit, types
+    from numba.extending import intrinsic
+
+    @intrinsic
+    def _fma(typingctx, a, b, c):  # type: ignore[no-untyped-def]
+        sig = types.float64(types.float64, types.float64, types.float64)
+
+        def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+            return builder.fma(*args)
+
+        return sig, codegen
+
+    @njit(inline="always")
+    def fma(a: float, b: float, c: float) -> float:
+        return _fma(a, b, c)
+
+    return fma

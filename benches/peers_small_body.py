@@ -76,7 +76,7 @@ import sys
 import time
 
 import numpy as np
-from _harness import machine, measure, version
+from _harness import machine, measure, numba_fma, version
 
 # --- W3 ------------------------------------------------------------------------------------------
 
@@ -134,6 +134,8 @@ def w3_run_landing(setup, x0: np.ndarray, threads: int | None) -> np.ndarray:
 def make_numba_w3():
     """The W3 peer: one case per prange iteration, every operation in landing's order."""
     import numba
+
+    fma = numba_fma()
 
     coef = cubic_coefficients(W3_P0, W3_V0, W3_PT, np.zeros(3), W3_T_END)
     C0, C1, C2, C3 = (np.ascontiguousarray(coef[:, j]) for j in range(4))
@@ -218,19 +220,19 @@ def make_numba_w3():
                 rhs(x, u, dr, k, False)
                 for j in range(6):
                     acc[j] = k[j]
-                    y[j] = x[j] + k[j] * (0.5 * dt)
+                    y[j] = fma(k[j], 0.5 * dt, x[j])
                 rhs(y, u, dr, k, True)
                 for j in range(6):
-                    acc[j] += k[j] * 2.0
-                    y[j] = x[j] + k[j] * (0.5 * dt)
+                    acc[j] = fma(k[j], 2.0, acc[j])
+                    y[j] = fma(k[j], 0.5 * dt, x[j])
                 rhs(y, u, dr, k, True)
                 for j in range(6):
-                    acc[j] += k[j] * 2.0
-                    y[j] = x[j] + k[j] * (1.0 * dt)
+                    acc[j] = fma(k[j], 2.0, acc[j])
+                    y[j] = fma(k[j], 1.0 * dt, x[j])
                 rhs(y, u, dr, k, True)
                 for j in range(6):
                     acc[j] += k[j]
-                    x[j] = x[j] + acc[j] * (dt / 6.0)
+                    x[j] = fma(acc[j], dt / 6.0, x[j])
             out[c] = x
         return out
 
@@ -310,6 +312,8 @@ def make_numba_w5(setup=None):
     command noise from the same counter-based generator (Philox4x64-10, key (seed, 2), counter
     (control period, case, 0, 0): the core's rng.rs), drawn inside the loop as landing draws it."""
     import numba
+
+    fma = numba_fma()
 
     coef = cubic_coefficients(W5_P0, W5_V0, W5_PT, np.zeros(3), W5_T_END)
     C0, C1, C2, C3 = (np.ascontiguousarray(coef[:, j]) for j in range(4))
@@ -475,19 +479,19 @@ def make_numba_w5(setup=None):
                 rhs(x, u, d, dr, kd, False)
                 for j in range(6):
                     acc[j] = kd[j]
-                    y[j] = x[j] + kd[j] * (0.5 * dt)
+                    y[j] = fma(kd[j], 0.5 * dt, x[j])
                 rhs(y, u, d, dr, kd, True)
                 for j in range(6):
-                    acc[j] += kd[j] * 2.0
-                    y[j] = x[j] + kd[j] * (0.5 * dt)
+                    acc[j] = fma(kd[j], 2.0, acc[j])
+                    y[j] = fma(kd[j], 0.5 * dt, x[j])
                 rhs(y, u, d, dr, kd, True)
                 for j in range(6):
-                    acc[j] += kd[j] * 2.0
-                    y[j] = x[j] + kd[j] * (1.0 * dt)
+                    acc[j] = fma(kd[j], 2.0, acc[j])
+                    y[j] = fma(kd[j], 1.0 * dt, x[j])
                 rhs(y, u, d, dr, kd, True)
                 for j in range(6):
                     acc[j] += kd[j]
-                    x[j] = x[j] + acc[j] * (dt / 6.0)
+                    x[j] = fma(acc[j], dt / 6.0, x[j])
             out[c] = x
         return out
 

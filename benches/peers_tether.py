@@ -110,7 +110,7 @@ import sys
 import time
 
 import numpy as np
-from _harness import machine, measure, version
+from _harness import machine, measure, numba_fma, version
 
 # --- W6 ------------------------------------------------------------------------------------------
 
@@ -191,6 +191,8 @@ def make_numba():
     (numba, run, law_check): run(x0, steps) -> the final states after `steps` control periods;
     law_check(xa, xb), for the check (see there)."""
     import numba
+
+    fma = numba_fma()
 
     N = NODES
     n = orbital_rate()
@@ -393,19 +395,19 @@ def make_numba():
                     derivative(x, u0, u1, kd, att, patt)
                     for j in range(DIM):
                         acc[j] = kd[j]
-                        y[j] = x[j] + kd[j] * half_h
+                        y[j] = fma(kd[j], half_h, x[j])
                     derivative(y, u0, u1, kd, att, patt)
                     for j in range(DIM):
-                        acc[j] += kd[j] * 2.0
-                        y[j] = x[j] + kd[j] * half_h
+                        acc[j] = fma(kd[j], 2.0, acc[j])
+                        y[j] = fma(kd[j], half_h, x[j])
                     derivative(y, u0, u1, kd, att, patt)
                     for j in range(DIM):
-                        acc[j] += kd[j] * 2.0
-                        y[j] = x[j] + kd[j] * full_h
+                        acc[j] = fma(kd[j], 2.0, acc[j])
+                        y[j] = fma(kd[j], full_h, x[j])
                     derivative(y, u0, u1, kd, att, patt)
                     for j in range(DIM):
                         acc[j] += kd[j]
-                        x[j] = x[j] + acc[j] * sixth_h
+                        x[j] = fma(acc[j], sixth_h, x[j])
             out[c] = x
         return out
 

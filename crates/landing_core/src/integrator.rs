@@ -175,7 +175,7 @@ impl IntegratorKind {
         let c = R::splat(h / self.tableau().divisor);
         for i in 0..S::DIM {
             // x + sum c, written over the sum
-            let v = x.component(i) + sum.component(i) * c;
+            let v = sum.component(i).mul_add(c, x.component(i));
             sum.set_component(i, v);
         }
     }

@@ -78,14 +78,14 @@ impl<R: Real, const N: usize> State<R> for SVector<R, N> {
     #[inline(always)]
     fn set_add_scaled(&mut self, x: &Self, k: &Self, c: R) {
         for i in 0..N {
-            self[i] = x[i] + k[i] * c;
+            self[i] = k[i].mul_add(c, x[i]);
         }
     }
 
     #[inline(always)]
     fn add_scaled_assign(&mut self, k: &Self, c: R) {
         for i in 0..N {
-            self[i] += k[i] * c;
+            self[i] = k[i].mul_add(c, self[i]);
         }
     }
 

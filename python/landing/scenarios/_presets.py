@@ -104,8 +104,9 @@ def mars_nominal(**overrides: Any) -> Scenario:
 
 #: Fixed-time MSS gains that land the nominal case sooner: the set `landing.tune` chose under
 #: the same requirements as the preset's (docs/parameters.md, "The Mars gains study through
-#: landing.tune", `python examples/studies/tune_mars.py`), spending the thrust margin the
-#: preset leaves (its peak 39.97 kN against the preset's 34.40 kN).
+#: landing.tune", `python examples/studies/tune_mars.py`, seed 1 as run before the core's
+#: arithmetic changed in its last bits on 2026-12-07), spending the thrust margin the preset
+#: leaves (its peak 39.97 kN against the preset's 34.40 kN). The study's last line re-checks it.
 MARS_FAST_GAINS: dict[str, Any] = dict(
     beta1=2.76, q1=0.565, beta2=0.0134, q2=1.23, alpha1=3.84, gamma1=0.42, alpha2=0.0309, gamma2=1.18,
 )
@@ -165,7 +166,8 @@ def mars_monte_carlo(**overrides: Any) -> Scenario:
 #: Fixed-time MSS gains that meet the Mars paper's part-2 figures on the 300-case campaign
 #: (seed 1) at touchdown, without a thrust limit: sites within 23.8472 m per horizontal axis, touchdown at
 #: most 1.5 m/s, s2 inside 26.5257 by 7.89 s and s1 inside 23.8472 m by 9.76 s. Found by
-#: examples/studies/mars_part2_search.py (docs/reproduction-mars.md, "Part 2"): 180.9 kN per
+#: examples/studies/mars_part2_search.py (docs/reproduction-mars.md, "Part 2"; before the core's
+#: arithmetic changed in its last bits on 2026-12-07, the search's neighbour now): 180.9 kN per
 #: axis at its peak, and not robust: on another draw of 300 cases (seed 2) it touches down at up
 #: to 6.25 m/s. With the paper's 40 kN per axis no guidance meets them (the same study's bound).
 MARS_PART2_GAINS: dict[str, float] = dict(beta1=9.999, q1=0.5423, beta2=1.199e-4, q2=1.305, alpha1=44.29,

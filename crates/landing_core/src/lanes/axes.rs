@@ -258,6 +258,14 @@ impl<R: Real, const D: usize> Real for Axes<R, D> {
         each!(self.sqrt())
     }
     #[inline(always)]
+    fn mul_add(self, a: Self, b: Self) -> Self {
+        let mut out = self.0;
+        for ((o, a), b) in out.iter_mut().zip(a.0).zip(b.0) {
+            *o = o.mul_add(a, b);
+        }
+        Axes(out)
+    }
+    #[inline(always)]
     fn min(self, other: Self) -> Self {
         each2!(self.min(other))
     }

@@ -101,14 +101,15 @@ const EXP_Q: [f64; 5] = [
 /// the rounding of the last `s + s tmp`.
 #[inline(always)]
 fn exp_reduce<R: Real>(x: R) -> (R, R) {
-    let kd = x * INV_LN2_16 + super::ROUNDER;
+    let kd = x.mul_add(R::splat(INV_LN2_16), R::splat(super::ROUNDER));
     let n = kd - super::ROUNDER;
-    let hi = x - n * LN2_16_HI;
-    let lo = n * LN2_16_LO;
-    let r = hi - lo;
+    // exact, fused or not: `n LN2_16_HI` is exact
+    let hi = n.mul_add(R::splat(-LN2_16_HI), x);
+    let neg_lo = n * -LN2_16_LO;
+    let r = hi + neg_lo;
     let r2 = r * r;
     let q = exp_q(r, r2);
-    let t = hi - (lo - r2 * q);
+    let t = hi + r2.mul_add(q, neg_lo);
     (kd, t + kd.lookup16(&EXP_TAIL))
 }
 
@@ -162,7 +163,7 @@ pub fn exp<R: Real>(x: R) -> R {
 #[inline(always)]
 fn scale_normal<R: Real>(kd: R, tmp: R) -> R {
     let s = kd.lookup16(&EXP_T_SHIFTED).add_shl48(kd);
-    s + s * tmp
+    s.mul_add(tmp, s)
 }
 
 /// `2^k T_j (1 + tmp)` for any k the clamps allow: 2^k in two factors, `p 2^k1` exact and
@@ -171,7 +172,7 @@ fn scale_normal<R: Real>(kd: R, tmp: R) -> R {
 #[inline(always)]
 fn scale_general<R: Real>(kd: R, tmp: R) -> R {
     let t = kd.lookup16(&EXP_T);
-    let p = t + t * tmp;
+    let p = t.mul_add(tmp, t);
     let k = exp_k(kd);
     let k1 = k.max(R::splat(-1000.0)).min(R::splat(1000.0));
     (p * k1.pow2i()) * (k - k1).pow2i()
@@ -180,7 +181,9 @@ fn scale_general<R: Real>(kd: R, tmp: R) -> R {
 /// `Q(r)` of `e^r = 1 + r + r^2 Q(r)` (Estrin's scheme, `r2 = r^2`).
 #[inline(always)]
 fn exp_q<R: Real>(r: R, r2: R) -> R {
-    (r * EXP_Q[1] + EXP_Q[0]) + r2 * ((r * EXP_Q[3] + EXP_Q[2]) + r2 * EXP_Q[4])
+    let a0 = r.mul_add(R::splat(EXP_Q[1]), R::splat(EXP_Q[0]));
+    let a1 = r.mul_add(R::splat(EXP_Q[3]), R::splat(EXP_Q[2]));
+    r2.mul_add(r2.mul_add(R::splat(EXP_Q[4]), a1), a0)
 }
 
 /// 2^54, to bring a subnormal into the normal range before its exponent is read.
@@ -237,10 +240,14 @@ fn log_with<const UNITS16: bool, R: Real>(x: R) -> R {
         (e - R::select(tiny, R::splat(54.0), R::zero()), m)
     };
     let (e, f, hfsq, sr) = ln_core(e, m);
+    // `16 e` and `e LN2_HI` are exact
     let y = if UNITS16 {
-        e * 16.0 + (f - (hfsq - sr)) * INV_LN2_16
+        (f - (hfsq - sr)).mul_add(R::splat(INV_LN2_16), e * 16.0)
     } else {
-        e * LN2_HI + (f - (hfsq - (sr + e * LN2_LO)))
+        e.mul_add(
+            R::splat(LN2_HI),
+            f - (hfsq - e.mul_add(R::splat(LN2_LO), sr)),
+        )
     };
     if normal {
         return y;
@@ -266,9 +273,13 @@ fn ln_core<R: Real>(e: R, m: R) -> (R, R, R, R) {
     let z = s * s;
     let w = z * z;
     // fdlibm's even/odd split of R(z) = z L(z): two independent Horner chains in w = z^2
-    let t1 = w * (w * (w * LOG_L[5] + LOG_L[3]) + LOG_L[1]);
-    let t2 = z * (w * (w * (w * LOG_L[6] + LOG_L[4]) + LOG_L[2]) + LOG_L[0]);
-    let rz = t1 + t2;
+    let c = |x: f64| R::splat(x);
+    let t1 = w * w.mul_add(w.mul_add(c(LOG_L[5]), c(LOG_L[3])), c(LOG_L[1]));
+    let t2 = w.mul_add(
+        w.mul_add(w.mul_add(c(LOG_L[6]), c(LOG_L[4])), c(LOG_L[2])),
+        c(LOG_L[0]),
+    );
+    let rz = z.mul_add(t2, t1);
     (e, f, hfsq, s * (hfsq + rz))
 }
 
@@ -297,7 +308,7 @@ pub fn exp16<R: Real>(x: R) -> R {
         let r = (x - n) * LN2_16;
         let r2 = r * r;
         let q = exp_q(r, r2);
-        (kd, (r + r2 * q) + kd.lookup16(&EXP_TAIL))
+        (kd, r2.mul_add(q, r) + kd.lookup16(&EXP_TAIL))
     }
     if x.abs().simd_le(R::splat(EXP16_FAST)).all() {
         let (kd, tmp) = reduce(x);

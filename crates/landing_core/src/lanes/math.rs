@@ -2,8 +2,9 @@
 //! `exp16` for powers sharing one logarithm (written in `lanes/exp_log.rs`) and `sin`, `cos`, `sin_cos`, `atan2` (in `lanes/trig.rs`).
 //!
 //! Every function is a fixed sequence of the primitive operations of [`Real`] (IEEE `+ - * /`,
-//! `sqrt`, comparisons, `select`, a few exact bit manipulations and exact lookups in a
-//! 16-entry table): no fused multiply-add, no libm and no branch on a lane's value (special
+//! fused multiply-add, `sqrt`, comparisons, `select`, a few exact bit manipulations and exact
+//! lookups in a 16-entry table): no libm (but for the baseline level's `fma`, correctly rounded
+//! as the instruction is) and no branch on a lane's value (special
 //! cases are masks and selects). So `f64` and every `Lanes<W>` give the same bits per lane, whatever the width or
 //! the instruction-set level (SSE2, AVX2, AVX-512) the kernel was compiled for. The one
 //! exception is documented at [`sin_cos`]: arguments beyond 2^20 pi/2 take a cold per-lane libm
@@ -34,15 +35,16 @@ pub(super) fn estrin11<R: Real>(x: R, c: &[f64; 11]) -> R {
     let x2 = x * x;
     let x4 = x2 * x2;
     let x8 = x4 * x4;
-    let a0 = x * c[1] + c[0];
-    let a1 = x * c[3] + c[2];
-    let a2 = x * c[5] + c[4];
-    let a3 = x * c[7] + c[6];
-    let a4 = x * c[9] + c[8];
-    let b0 = x2 * a1 + a0;
-    let b1 = x2 * a3 + a2;
-    let b2 = x2 * c[10] + a4;
-    (x4 * b1 + b0) + x8 * b2
+    let k = |i: usize| R::splat(c[i]);
+    let a0 = x.mul_add(k(1), k(0));
+    let a1 = x.mul_add(k(3), k(2));
+    let a2 = x.mul_add(k(5), k(4));
+    let a3 = x.mul_add(k(7), k(6));
+    let a4 = x.mul_add(k(9), k(8));
+    let b0 = x2.mul_add(a1, a0);
+    let b1 = x2.mul_add(a3, a2);
+    let b2 = x2.mul_add(k(10), a4);
+    x8.mul_add(b2, x4.mul_add(b1, b0))
 }
 
 /// `(a - b, e)` with `a - b = s + e` exactly (Knuth's TwoSum, valid whatever the magnitudes).

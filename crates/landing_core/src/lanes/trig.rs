@@ -44,10 +44,16 @@ fn sin_cos_kernel<R: Real>(x: R, y: R) -> (R, R) {
     let z = x * x;
     let w = z * z;
     let v = z * x;
-    let rs = (z * (z * SIN_S[3] + SIN_S[2]) + SIN_S[1]) + (z * w) * (z * SIN_S[5] + SIN_S[4]);
+    let c = |x: f64| R::splat(x);
+    let rs = (z * w).mul_add(
+        z.mul_add(c(SIN_S[5]), c(SIN_S[4])),
+        z.mul_add(z.mul_add(c(SIN_S[3]), c(SIN_S[2])), c(SIN_S[1])),
+    );
     let sin = x - (((z * (y * 0.5 - v * rs)) - y) - v * SIN_S[0]);
-    let rc = z * (z * (z * COS_C[2] + COS_C[1]) + COS_C[0])
-        + (w * w) * (z * (z * COS_C[5] + COS_C[4]) + COS_C[3]);
+    let rc = (w * w).mul_add(
+        z.mul_add(z.mul_add(c(COS_C[5]), c(COS_C[4])), c(COS_C[3])),
+        z * z.mul_add(z.mul_add(c(COS_C[2]), c(COS_C[1])), c(COS_C[0])),
+    );
     let hz = z * 0.5;
     let one_hz = R::one() - hz;
     let cos = one_hz + (((R::one() - one_hz) - hz) + (z * rc - x * y));

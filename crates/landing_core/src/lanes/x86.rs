@@ -6,7 +6,8 @@
 //! types say it with intrinsics: each operation is one instruction per register, the same IEEE
 //! operation in every lane as `f64`'s ([`Real`]'s contract): `min`/`max` are `minpd`/`maxpd`,
 //! whose "second operand unless the first is smaller" is exactly `Real::min`; comparisons are
-//! ordered and quiet; `is_finite` is `x - x == 0`. No fused multiply-add.
+//! ordered and quiet; `is_finite` is `x - x == 0`; `mul_add` is `vfmadd` (AVX2, AVX-512) or
+//! libm's `fma` per lane (SSE2, which has no fused multiply-add).
 //!
 //! The intrinsics need their level's target features; every method is `#[inline(always)]` and
 //! the types are only used inside the kernels compiled for their level, which run only on CPUs
@@ -27,7 +28,7 @@ macro_rules! level {
     (
         $ty:ident, $mask:ident, $reg:ty, $mreg:ty, $width:expr,
         set1: $set1:path, add: $add:path, sub: $sub:path, mul: $mul:path, div: $div:path,
-        sqrt: $sqrt:path, min: $min:path, max: $max:path,
+        sqrt: $sqrt:path, fma: $fma:expr, min: $min:path, max: $max:path,
         and: $and:path, or: $or:path, xor: $xor:path, andnot: $andnot:path,
         slli: $slli:expr, srli: $srli:expr, cast_i: $cast_i:path, cast_d: $cast_d:path,
         set1_i: $set1_i:path, or_i: $or_i:path, and_i: $and_i:path,
@@ -278,6 +279,14 @@ macro_rules! level {
                 self.map(|a| unsafe { $sqrt(a) })
             }
             #[inline(always)]
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                let mut out = self.0;
+                for k in 0..N {
+                    out[k] = unsafe { ($fma)(self.0[k], a.0[k], b.0[k]) };
+                }
+                Self(out)
+            }
+            #[inline(always)]
             fn min(self, other: Self) -> Self {
                 self.zip(other, |a, b| unsafe { $min(a, b) })
             }
@@ -409,7 +418,7 @@ macro_rules! level {
 level!(
     Sse2, Sse2Mask, __m128d, __m128d, 2,
     set1: _mm_set1_pd, add: _mm_add_pd, sub: _mm_sub_pd, mul: _mm_mul_pd, div: _mm_div_pd,
-    sqrt: _mm_sqrt_pd, min: _mm_min_pd, max: _mm_max_pd,
+    sqrt: _mm_sqrt_pd, fma: sse2_ops::fma, min: _mm_min_pd, max: _mm_max_pd,
     and: _mm_and_pd, or: _mm_or_pd, xor: _mm_xor_pd, andnot: _mm_andnot_pd,
     slli: |x| _mm_slli_epi64::<52>(x), srli: |x| _mm_srli_epi64::<52>(x), cast_i: _mm_castpd_si128,
     cast_d: _mm_castsi128_pd, set1_i: _mm_set1_epi64x, or_i: _mm_or_si128, and_i: _mm_and_si128,
@@ -436,7 +445,7 @@ level!(
 level!(
     Avx2, Avx2Mask, __m256d, __m256d, 4,
     set1: _mm256_set1_pd, add: _mm256_add_pd, sub: _mm256_sub_pd, mul: _mm256_mul_pd,
-    div: _mm256_div_pd, sqrt: _mm256_sqrt_pd, min: _mm256_min_pd, max: _mm256_max_pd,
+    div: _mm256_div_pd, sqrt: _mm256_sqrt_pd, fma: |a, b, c| _mm256_fmadd_pd(a, b, c), min: _mm256_min_pd, max: _mm256_max_pd,
     and: _mm256_and_pd, or: _mm256_or_pd, xor: _mm256_xor_pd, andnot: _mm256_andnot_pd,
     slli: |x| _mm256_slli_epi64::<52>(x), srli: |x| _mm256_srli_epi64::<52>(x), cast_i: _mm256_castpd_si256,
     cast_d: _mm256_castsi256_pd, set1_i: _mm256_set1_epi64x, or_i: _mm256_or_si256,
@@ -464,7 +473,7 @@ level!(
 level!(
     Avx512, Avx512Mask, __m512d, __mmask8, 8,
     set1: _mm512_set1_pd, add: _mm512_add_pd, sub: _mm512_sub_pd, mul: _mm512_mul_pd,
-    div: _mm512_div_pd, sqrt: _mm512_sqrt_pd, min: _mm512_min_pd, max: _mm512_max_pd,
+    div: _mm512_div_pd, sqrt: _mm512_sqrt_pd, fma: |a, b, c| _mm512_fmadd_pd(a, b, c), min: _mm512_min_pd, max: _mm512_max_pd,
     and: _mm512_and_pd, or: _mm512_or_pd, xor: _mm512_xor_pd, andnot: _mm512_andnot_pd,
     slli: |x| _mm512_slli_epi64::<52>(x), srli: |x| _mm512_srli_epi64::<52>(x), cast_i: _mm512_castpd_si512,
     cast_d: _mm512_castsi512_pd, set1_i: _mm512_set1_epi64, or_i: _mm512_or_si512,
@@ -496,6 +505,17 @@ level!(
 /// inlined, and out of line it would run without the level's instructions.
 mod sse2_ops {
     use std::arch::x86_64::*;
+
+    /// SSE2 has no fused multiply-add: libm's `fma` per lane, correctly rounded as the
+    /// instruction is (glibc runs the instruction where the processor has it).
+    #[inline(always)]
+    pub(super) unsafe fn fma(a: __m128d, b: __m128d, c: __m128d) -> __m128d {
+        let (mut x, mut y, mut z) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+        _mm_storeu_pd(x.as_mut_ptr(), a);
+        _mm_storeu_pd(y.as_mut_ptr(), b);
+        _mm_storeu_pd(z.as_mut_ptr(), c);
+        _mm_set_pd(x[1].mul_add(y[1], z[1]), x[0].mul_add(y[0], z[0]))
+    }
 
     #[inline(always)]
     pub(super) unsafe fn split(x: __m128d) -> (__m128d, __m128d) {
