@@ -758,6 +758,10 @@ fn over<R: Real>(x: &[f64], y: &[f64]) -> Vec<Vec<f64>> {
                 .min(R::splat(1000.0))
                 .max(R::splat(-1000.0)),
         ),
+        // against `f64::mul_add` (libm's or the processor's IEEE fusedMultiplyAdd), specials,
+        // subnormals and overflow included
+        a.mul_add(b, b * 0.75),
+        (a * 1e-3).mul_add(a, -b),
     ];
     outputs
         .iter()
@@ -826,5 +830,46 @@ fn lane_type_functions() {
                 }
             }
         }
+    }
+}
+
+/// `mul_add` rounds once at every level: `(1 + 2^-30)(1 - 2^-30) - 1` is `-2^-60` exactly when
+/// fused, and 0 when the product is rounded first (to 1). So a level that fell back to a
+/// multiply and an add would fail here, not only differ in the comparisons above.
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn mul_add_rounds_once_at_every_level() {
+    use landing_core::Level;
+    let (a, b, c) = (1.0 + 2f64.powi(-30), 1.0 - 2f64.powi(-30), -1.0);
+    let exact = -(2f64.powi(-60));
+    assert_eq!(a * b + c, 0.0, "the unfused form rounds the product to 1");
+    assert_eq!(Real::mul_add(a, b, c), exact);
+    let check = |level: &str, got: Vec<Vec<f64>>| {
+        for (i, v) in got[0].iter().enumerate() {
+            assert_eq!(*v, exact, "{level}, lane {i}");
+        }
+    };
+    fn fused<R: Real>(a: f64, b: f64, c: f64) -> Vec<Vec<f64>> {
+        let v = R::splat(a).mul_add(R::splat(b), R::splat(c));
+        vec![(0..R::LANES).map(|i| v.lane(i)).collect()]
+    }
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn fused_avx2(a: f64, b: f64, c: f64) -> Vec<Vec<f64>> {
+        fused::<landing_core::lanes::x86::Avx2<4>>(a, b, c)
+    }
+    #[target_feature(enable = "avx2,fma,avx512f,avx512cd,avx512bw,avx512dq,avx512vl")]
+    unsafe fn fused_avx512(a: f64, b: f64, c: f64) -> Vec<Vec<f64>> {
+        fused::<landing_core::lanes::x86::Avx512<4>>(a, b, c)
+    }
+    check("sse2", fused::<landing_core::lanes::x86::Sse2<4>>(a, b, c));
+    check("lanes", fused::<Lanes<8>>(a, b, c));
+    let levels = Level::supported();
+    if levels.contains(&Level::Avx2) {
+        // SAFETY: the level is supported
+        check("avx2", unsafe { fused_avx2(a, b, c) });
+    }
+    if levels.contains(&Level::Avx512) {
+        // SAFETY: the level is supported
+        check("avx512", unsafe { fused_avx512(a, b, c) });
     }
 }
