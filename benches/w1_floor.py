@@ -55,6 +55,7 @@ for _ in range(50):
     gdb.execute('continue', to_string=True)
 start = int(gdb.parse_and_eval('$pc'))
 gdb.execute('delete')
+WRAPPERS = ('lanes/x86.rs', 'lanes/mod.rs', 'lanes/axes.rs')
 mix = collections.Counter()
 n = 0
 while True:
@@ -65,7 +66,19 @@ while True:
     asm = frame.architecture().disassemble(pc)[0]['asm']
     name = frame.name() or ''
     part = 'law' if '::command' in name else 'period' if '::period' in name else 'loop'
-    mix[part + '\t' + asm] += 1
+    key = part + '\t' + asm
+    if os.environ.get('BY_SOURCE'):
+        # the innermost inlined frame in landing_core's own code, past the lane wrappers
+        f, loc = frame, '?'
+        while f is not None:
+            sal = f.find_sal()
+            path = sal.symtab.filename if sal.symtab else ''
+            if 'landing_core' in path and not path.endswith(WRAPPERS):
+                loc = path.split('src/')[-1] + ':' + str(sal.line)
+                break
+            f = f.older()
+        key += '\t' + loc
+    mix[key] += 1
     n += 1
     gdb.execute('stepi', to_string=True)
 json.dump(mix, open(os.environ['OUT'], 'w'))
@@ -73,8 +86,10 @@ gdb.execute('kill')
 """
 
 
-def count(level: str, profile: Path) -> collections.Counter[str]:
-    """Every instruction one block-period of W1 executes at `level`, by its text."""
+def count(level: str, profile: Path, by_source: bool = False) -> collections.Counter[str]:
+    """Every instruction one block-period of W1 executes at `level`, by its text (and, with
+    `by_source`, the line of landing_core's code it was inlined from: needs a build with line
+    tables)."""
     nm = subprocess.run(["nm", "-C", str(profile)], capture_output=True, text=True, check=True)
     cands = [
         line.split()[0] for line in nm.stdout.splitlines() if line.endswith(f"landing_core::kernel::{level}::command")
@@ -83,6 +98,8 @@ def count(level: str, profile: Path) -> collections.Counter[str]:
         script, out = Path(tmp) / "mix.py", Path(tmp) / "mix.json"
         script.write_text(GDB_SCRIPT)
         env = {"CANDS": ",".join(cands), "ARGS": f"{LANES} {level}", "OUT": str(out)}
+        if by_source:
+            env["BY_SOURCE"] = "1"
         subprocess.run(
             ["gdb", "-q", "-batch", "-x", str(script), str(profile)],
             env={**env, "PATH": "/usr/bin:/bin"},
@@ -370,11 +387,17 @@ def main() -> int:
     ap.add_argument("--profile", type=Path, default=PROFILE, help="the profile_w1 binary")
     ap.add_argument("--mix", help="reuse a count saved by --save")
     ap.add_argument("--save", help="save the count to this JSON file")
+    ap.add_argument(
+        "--by-source",
+        action="store_true",
+        help="also count the vector arithmetic by the source line it was inlined from (a build with "
+        "CARGO_PROFILE_RELEASE_DEBUG=line-tables-only; slower)",
+    )
     args = ap.parse_args()
     profile = args.profile
     if not profile.exists():
         sys.exit("build it first: cargo build --release -p landing_core --example profile_w1")
-    raw = json.loads(Path(args.mix).read_text()) if args.mix else count(args.level, profile)
+    raw = json.loads(Path(args.mix).read_text()) if args.mix else count(args.level, profile, args.by_source)
     if args.save:
         Path(args.save).write_text(json.dumps(raw, indent=0))
     # the law's call, and the rest of the period (plant, integrator, checks, statistics, loop)
@@ -383,9 +406,13 @@ def main() -> int:
         "law": collections.Counter(),
         "rest": collections.Counter(),
     }
+    sources: collections.Counter[str] = collections.Counter()
     for key, n in raw.items():
-        part, asm = key.split("\t", 1)
+        part, asm, *where = key.split("\t")
         cls = classify(asm)
+        op, width, kind = cls.split(".")
+        if where and width in ("zmm", "ymm") and not op.startswith(("vmov", "vbroadcast", "vpbroadcast")):
+            sources[where[0]] += n
         parts["whole"][cls] += n
         parts["law" if part == "law" else "rest"][cls] += n
     for name, mix in parts.items():
@@ -396,6 +423,17 @@ def main() -> int:
         )
         for g, n in groups_of(mix).most_common():
             print(f"  {n:6d}  {g}")
+    if sources:
+        vector = sum(sources.values())
+        files: collections.Counter[str] = collections.Counter()
+        for loc, n in sources.items():
+            files[loc.rsplit(":", 1)[0]] += n
+        print(f"vector arithmetic, logic and compares ({vector} per block-period) by source file:")
+        for f, n in files.most_common():
+            print(f"  {n:6d}  {100 * n / vector:5.1f} %  {f}")
+        print("  the busiest lines:")
+        for loc, n in sources.most_common(12):
+            print(f"  {n:6d}  {loc}")
     with tempfile.TemporaryDirectory() as tmp:
         exes = {}
         for name, mix in parts.items():
