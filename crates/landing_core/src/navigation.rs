@@ -284,6 +284,7 @@ impl<const D: usize, R: Real> Navigator<D, R> {
 
     /// The measurement at instant k of the coordinates and rates `(q, v)`; advances the walk
     /// to instant k + 1.
+    #[inline(always)]
     fn measure(&mut self, k: u64, q: &SVector<R, D>, v: &SVector<R, D>) -> [SVector<R, D>; 2] {
         // 4 D normals per instant: the white noise of [q, q'], then the walk's steps
         let mut white: [SVector<R, D>; 2] = [crate::lanes::zeros(); 2];
@@ -327,6 +328,7 @@ impl<const D: usize, R: Real> Navigator<D, R> {
     }
 
     /// Counts the navigation error at the instant just measured, in the lanes `live`.
+    #[inline(always)]
     fn count(&mut self, live: R::Mask, q: &SVector<R, D>, v: &SVector<R, D>) {
         let e = [sub(&self.estimate[0], q), sub(&self.estimate[1], v)];
         for (c, ec) in e.iter().enumerate() {
@@ -339,6 +341,7 @@ impl<const D: usize, R: Real> Navigator<D, R> {
     /// Control instant k, where the true coordinates and rates are `(q, v)`: the measurement,
     /// the filter's prediction and update (or the measurement as it is), and the error counted
     /// in the lanes `live`.
+    #[inline(always)]
     pub(crate) fn advance(
         &mut self,
         k: u64,

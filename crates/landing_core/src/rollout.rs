@@ -374,30 +374,55 @@ pub(crate) fn stage_disturbance<const D: usize, R: Real>(
 /// The command over a period's stages: held as it is, or the actuator's lag through the
 /// plant's limits. A type, not a branch in the stage: the held command's |u| is then computed
 /// once per period (a branch per stage kept the compiler from hoisting it: W1 25 % slower, BENCHMARKS.md).
+/// It returns the command rather than calling a closure with it: a closure is not always
+/// inlined, and the lag's was not, so that every lane operation of the plant's derivative ran
+/// out of line without the kernel's instruction set (BENCHMARKS.md).
 trait StageCommand<const D: usize, R: Real, P> {
-    fn with<T>(&self, plant: &P, time: f64, f: impl FnOnce(&SVector<R, D>) -> T) -> T;
+    /// The command at `time`: the held one, or one written into `room`.
+    fn command<'s>(
+        &'s self,
+        plant: &P,
+        time: f64,
+        room: &'s mut SVector<R, D>,
+    ) -> &'s SVector<R, D>;
 }
 
 struct Constant<'a, const D: usize, R: Real>(&'a SVector<R, D>);
 
 impl<const D: usize, R: Real, P, U: StageCommand<D, R, P>> StageCommand<D, R, P> for &U {
     #[inline(always)]
-    fn with<T>(&self, plant: &P, time: f64, f: impl FnOnce(&SVector<R, D>) -> T) -> T {
-        (**self).with(plant, time, f)
+    fn command<'s>(
+        &'s self,
+        plant: &P,
+        time: f64,
+        room: &'s mut SVector<R, D>,
+    ) -> &'s SVector<R, D> {
+        (**self).command(plant, time, room)
     }
 }
 
 impl<const D: usize, R: Real, P> StageCommand<D, R, P> for Constant<'_, D, R> {
     #[inline(always)]
-    fn with<T>(&self, _plant: &P, _time: f64, f: impl FnOnce(&SVector<R, D>) -> T) -> T {
-        f(self.0)
+    fn command<'s>(
+        &'s self,
+        _plant: &P,
+        _time: f64,
+        _room: &'s mut SVector<R, D>,
+    ) -> &'s SVector<R, D> {
+        self.0
     }
 }
 
 impl<const D: usize, R: Real, P: Plant<R, D>> StageCommand<D, R, P> for Lag<D, R> {
     #[inline(always)]
-    fn with<T>(&self, plant: &P, time: f64, f: impl FnOnce(&SVector<R, D>) -> T) -> T {
-        f(&plant.limit(&self.at(time)))
+    fn command<'s>(
+        &'s self,
+        plant: &P,
+        time: f64,
+        room: &'s mut SVector<R, D>,
+    ) -> &'s SVector<R, D> {
+        *room = plant.limit(&self.at(time));
+        room
     }
 }
 
@@ -448,9 +473,9 @@ impl<const D: usize, R: Real, P: Plant<R, D>, U: StageCommand<D, R, P>> StageDer
         } else {
             self.plant.modelled_acceleration(time, y)
         };
-        self.u.with(self.plant, time, |u| {
-            self.plant.derivative_into(time, y, u, &d, &drift, k)
-        })
+        let mut room = crate::lanes::zeros();
+        let u = self.u.command(self.plant, time, &mut room);
+        self.plant.derivative_into(time, y, u, &d, &drift, k)
     }
 }
 
@@ -489,6 +514,7 @@ struct Sensed<const D: usize, R: Real> {
 /// The law's input at (t, x) seen through the estimate `[q_hat, q'_hat]`: the input at the
 /// state with its coordinates replaced, so that the drift and inertia are the plant's there
 /// (the other components, a lander's mass, are known to the law).
+#[inline(always)]
 fn seen<const D: usize, R: Real, P: Plant<R, D>>(
     plant: &P,
     reference: &Reference<D, R>,
