@@ -31,7 +31,6 @@ from __future__ import annotations
 import argparse
 import collections
 import json
-import re
 import statistics
 import subprocess
 import sys
@@ -114,16 +113,13 @@ def classify(asm: str) -> str:
     op, _, args = asm.partition(" ")
     args = args.split("#")[0].strip()
     width = next((w for w in ("zmm", "ymm", "xmm") if w in args), "")
-    mem = "(" in args
-    if mem:
-        kind = "store" if re.search(r"\([^)]*\)\s*$", args) and not args.startswith("(") else "load"
-        # an instruction whose only memory operand is last writes memory (AT&T: destination last)
-        if "(" in args.rsplit(",", 1)[-1] and "," in args:
-            kind = "store" if op.startswith(("vmov", "mov", "kmov")) else "load"
-        else:
-            kind = "load"
-    else:
+    if "(" not in args:
         kind = "reg"
+    elif "," in args and "(" in args.rsplit(",", 1)[-1] and op.startswith(("vmov", "mov", "kmov", "vmaskmov")):
+        # a move whose memory operand is last writes memory (AT&T: destination last)
+        kind = "store"
+    else:
+        kind = "load"
     return f"{op}.{width or 'gpr'}.{kind}"
 
 
