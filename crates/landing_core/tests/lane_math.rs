@@ -873,3 +873,57 @@ fn mul_add_rounds_once_at_every_level() {
         check("avx512", unsafe { fused_avx512(a, b, c) });
     }
 }
+
+/// `Real::write_rows` writes lane `i` of value `c` at `out[i D + c]` for the lanes asked and
+/// nothing else, at every level, for whole registers (where AVX2 and AVX-512 interleave with
+/// shuffles at `D = 3`) and for fewer lanes.
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn write_rows_at_every_level() {
+    use landing_core::Level;
+    fn check<R: Real, const D: usize>(level: &str) {
+        let v: [R; D] = std::array::from_fn(|c| R::from_fn(|i| (100 * c + i) as f64 + 0.5));
+        for used in [R::LANES, R::LANES - 1, 1, 0] {
+            let mut out = vec![-1.0; R::LANES * D + 5];
+            R::write_rows(&v, &mut out, used);
+            for (j, got) in out.iter().enumerate() {
+                let (i, c) = (j / D, j % D);
+                let want = if i < used {
+                    (100 * c + i) as f64 + 0.5
+                } else {
+                    -1.0
+                };
+                assert_eq!(*got, want, "{level}, D = {D}, {used} lanes used: value {j}");
+            }
+        }
+    }
+    fn all<R: Real>(level: &str) {
+        check::<R, 1>(level);
+        check::<R, 2>(level);
+        check::<R, 3>(level);
+        check::<R, 4>(level);
+    }
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn avx2() {
+        all::<landing_core::lanes::x86::Avx2<1>>("avx2, 1 register");
+        all::<landing_core::lanes::x86::Avx2<4>>("avx2, 4 registers");
+    }
+    #[target_feature(enable = "avx2,fma,avx512f,avx512cd,avx512bw,avx512dq,avx512vl")]
+    unsafe fn avx512() {
+        all::<landing_core::lanes::x86::Avx512<1>>("avx512, 1 register");
+        all::<landing_core::lanes::x86::Avx512<2>>("avx512, 2 registers");
+    }
+    all::<f64>("f64");
+    all::<Lanes<8>>("lanes");
+    all::<landing_core::lanes::x86::Sse2<1>>("sse2, 1 register");
+    all::<landing_core::lanes::x86::Sse2<4>>("sse2, 4 registers");
+    let levels = Level::supported();
+    if levels.contains(&Level::Avx2) {
+        // SAFETY: the level is supported
+        unsafe { avx2() };
+    }
+    if levels.contains(&Level::Avx512) {
+        // SAFETY: the level is supported
+        unsafe { avx512() };
+    }
+}

@@ -171,14 +171,14 @@ impl<'a> InputRows<'a> {
     }
 
     /// Writes the first `used` lanes of `input`, field after field: the rows of each field are
-    /// `D` consecutive values per case, so each field's `used x D` values go out in one run.
+    /// `D` consecutive values per case, so each field's `used x D` values go out in one run
+    /// ([`Real::write_rows`]: for a whole block of three axes, shuffled whole registers). Inlined
+    /// into the period, so that it runs with the level's instructions: out of line, the values
+    /// went out one at a time, 13 % of a Python law's run (BENCHMARKS.md).
+    #[inline(always)]
     fn write<const D: usize, R: Real>(&mut self, input: &LawInput<D, R>, used: usize) {
         for (to, from) in self.0.iter_mut().zip(quantities(input)) {
-            for (i, row) in to.chunks_exact_mut(D).take(used).enumerate() {
-                for (value, lanes) in row.iter_mut().zip(from.iter()) {
-                    *value = lanes.lane(i);
-                }
-            }
+            R::write_rows(&from.data.0[0], to, used);
         }
     }
 }

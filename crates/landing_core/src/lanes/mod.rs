@@ -97,6 +97,13 @@ pub trait Real:
     fn from_fn(f: impl FnMut(usize) -> f64) -> Self;
     fn lane(&self, i: usize) -> f64;
     fn set_lane(&mut self, i: usize, value: f64);
+    /// Lanes `0..used` of the `D` values `v` written out as rows of `D` values each,
+    /// `out[i D + c] = v[c].lane(i)`: the layout of a law's `(n, D)` arrays. A level may
+    /// interleave whole registers with shuffles (the lanes' bits are copied, never computed).
+    #[inline(always)]
+    fn write_rows<const D: usize>(v: &[Self; D], out: &mut [f64], used: usize) {
+        write_rows_by_lane(v, out, used);
+    }
 
     fn abs(self) -> Self;
     fn sqrt(self) -> Self;
@@ -792,6 +799,16 @@ pub fn all_finite<R: Real, const N: usize>(v: &SVector<R, N>) -> R::Mask {
         m = m & v[i].is_finite();
     }
     m
+}
+
+/// [`Real::write_rows`] one value at a time.
+#[inline(always)]
+pub fn write_rows_by_lane<R: Real, const D: usize>(v: &[R; D], out: &mut [f64], used: usize) {
+    for (i, row) in out.chunks_exact_mut(D).take(used).enumerate() {
+        for (value, lanes) in row.iter_mut().zip(v) {
+            *value = lanes.lane(i);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -36,7 +36,7 @@ macro_rules! level {
         blend: $blend:expr, mand: $mand:expr, mor: $mor:expr, mxor: $mxor:expr, mnot: $mnot:expr,
         bits: $bits:expr, mtrue: $mtrue:expr, mfalse: $mfalse:expr,
         split: $split:path, scale2: $scale2:path, lookup16: $lookup16:path,
-        add_shl48: $add_shl48:path,
+        add_shl48: $add_shl48:path, rows3: $rows3:path,
         features: [$($features:literal)?] $(,)?
     ) => {
         /// N vector registers of lanes (see the module documentation).
@@ -265,6 +265,20 @@ macro_rules! level {
                 unsafe { *(self.0.as_ptr() as *const f64).add(i) }
             }
             #[inline(always)]
+            fn write_rows<const D: usize>(v: &[Self; D], out: &mut [f64], used: usize) {
+                if D == 3 && used == $width * N {
+                    let out = &mut out[..3 * $width * N];
+                    for k in 0..N {
+                        // SAFETY: `out` holds `3 WIDTH` values from `3 WIDTH k` on (the slice
+                        // above is of `3 WIDTH N`)
+                        let to = unsafe { out.as_mut_ptr().add(3 * $width * k) };
+                        unsafe { ($rows3)(v[0].0[k], v[1].0[k], v[2].0[k], to) }
+                    }
+                } else {
+                    super::write_rows_by_lane(v, out, used);
+                }
+            }
+            #[inline(always)]
             fn set_lane(&mut self, i: usize, value: f64) {
                 assert!(i < $width * N);
                 // SAFETY: as for `lane`, and i is in bounds
@@ -439,6 +453,7 @@ level!(
     scale2: sse2_ops::scale2,
     lookup16: sse2_ops::lookup16,
     add_shl48: sse2_ops::add_shl48,
+    rows3: sse2_ops::rows3,
     features: [],
 );
 
@@ -467,6 +482,7 @@ level!(
     scale2: avx2_ops::scale2,
     lookup16: avx2_ops::lookup16,
     add_shl48: avx2_ops::add_shl48,
+    rows3: avx2_ops::rows3,
     features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt"],
 );
 
@@ -498,6 +514,7 @@ level!(
     scale2: avx512_ops::scale2,
     lookup16: avx512_ops::lookup16,
     add_shl48: avx512_ops::add_shl48,
+    rows3: avx512_ops::rows3,
     features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"],
 );
 
@@ -505,6 +522,18 @@ level!(
 /// inlined, and out of line it would run without the level's instructions.
 mod sse2_ops {
     use std::arch::x86_64::*;
+
+    /// Two lanes of `x`, `y`, `z` as rows: `x0 y0 z0 x1 y1 z1` ([`Real::write_rows`]).
+    ///
+    /// # Safety
+    ///
+    /// `out` is valid for writes of 6 values.
+    #[inline(always)]
+    pub(super) unsafe fn rows3(x: __m128d, y: __m128d, z: __m128d, out: *mut f64) {
+        _mm_storeu_pd(out, _mm_unpacklo_pd(x, y));
+        _mm_storeu_pd(out.add(2), _mm_shuffle_pd::<0b10>(z, x));
+        _mm_storeu_pd(out.add(4), _mm_unpackhi_pd(y, z));
+    }
 
     /// SSE2 has no fused multiply-add: libm's `fma` per lane, correctly rounded as the
     /// instruction is (glibc runs the instruction where the processor has it).
@@ -563,6 +592,23 @@ mod sse2_ops {
 mod avx2_ops {
     use std::arch::x86_64::*;
 
+    /// Four lanes of `x`, `y`, `z` as rows, `x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3`
+    /// ([`Real::write_rows`]): three in-lane shuffles pair the values, a lane permute and a
+    /// blend put the pairs in place.
+    ///
+    /// # Safety
+    ///
+    /// `out` is valid for writes of 12 values.
+    #[inline(always)]
+    pub(super) unsafe fn rows3(x: __m256d, y: __m256d, z: __m256d, out: *mut f64) {
+        let xy = _mm256_shuffle_pd::<0b0000>(x, y); // x0 y0 x2 y2
+        let zx = _mm256_shuffle_pd::<0b1010>(z, x); // z0 x1 z2 x3
+        let yz = _mm256_shuffle_pd::<0b1111>(y, z); // y1 z1 y3 z3
+        _mm256_storeu_pd(out, _mm256_permute2f128_pd::<0x20>(xy, zx));
+        _mm256_storeu_pd(out.add(4), _mm256_blend_pd::<0b1100>(yz, xy));
+        _mm256_storeu_pd(out.add(8), _mm256_permute2f128_pd::<0x31>(zx, yz));
+    }
+
     #[inline(always)]
     pub(super) unsafe fn split(x: __m256d) -> (__m256d, __m256d) {
         let bits = _mm256_castpd_si256(x);
@@ -606,6 +652,31 @@ mod avx2_ops {
 /// inputs, normal results) they give the same values.
 mod avx512_ops {
     use std::arch::x86_64::*;
+
+    /// Eight lanes of `x`, `y`, `z` as rows, `x0 y0 z0 x1 y1 z1 x2 y2 | z2 x3 ... | ... y7 z7`
+    /// ([`Real::write_rows`]): each register of rows takes its `x` and `y` from one two-source
+    /// permute and its `z` from a masked permute.
+    ///
+    /// # Safety
+    ///
+    /// `out` is valid for writes of 24 values.
+    #[inline(always)]
+    pub(super) unsafe fn rows3(x: __m512d, y: __m512d, z: __m512d, out: *mut f64) {
+        // indices 0..8 pick from `x`, 8..16 from `y`; the lanes that take `z` are masked off
+        let xy0 = _mm512_permutex2var_pd(x, _mm512_setr_epi64(0, 8, 0, 1, 9, 0, 2, 10), y);
+        let xy1 = _mm512_permutex2var_pd(x, _mm512_setr_epi64(0, 3, 11, 0, 4, 12, 0, 5), y);
+        let xy2 = _mm512_permutex2var_pd(x, _mm512_setr_epi64(13, 0, 6, 14, 0, 7, 15, 0), y);
+        // z0 z1 into lanes 2 and 5; z2 z3 z4 into 0, 3 and 6; z5 z6 z7 into 1, 4 and 7
+        let z0 = _mm512_setr_epi64(0, 0, 0, 0, 0, 1, 0, 0);
+        let z1 = _mm512_setr_epi64(2, 0, 0, 3, 0, 0, 4, 0);
+        let z2 = _mm512_setr_epi64(0, 5, 0, 0, 6, 0, 0, 7);
+        let r0 = _mm512_mask_permutexvar_pd(xy0, 0b0010_0100, z0, z);
+        let r1 = _mm512_mask_permutexvar_pd(xy1, 0b0100_1001, z1, z);
+        let r2 = _mm512_mask_permutexvar_pd(xy2, 0b1001_0010, z2, z);
+        _mm512_storeu_pd(out, r0);
+        _mm512_storeu_pd(out.add(8), r1);
+        _mm512_storeu_pd(out.add(16), r2);
+    }
 
     #[inline(always)]
     pub(super) unsafe fn split(x: __m512d) -> (__m512d, __m512d) {
