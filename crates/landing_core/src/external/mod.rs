@@ -21,6 +21,7 @@ pub use plant::{ExternalPlant, Laws, MAX_EXTERNAL_STATE, StateLayout, run_extern
 use std::any::Any;
 use std::mem::MaybeUninit;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use crate::parallel::{self, Job};
 use nalgebra::SVector;
@@ -570,12 +571,26 @@ impl<const D: usize, P: PlantModel<D>> Driver<'_, '_, D, P> {
         buffers: &mut [BlockBuffers<'_, D>],
     ) -> Result<(), ExternalError<X::Error>> {
         let mut slice = Running::start(self, blocks, buffers, 0);
-        // a small slice of a sliced batch advances its blocks on the calling thread
-        let spread = !(self.sliced && slice.m < PARALLEL_SLICE);
+        // A small slice of a sliced batch advances its blocks on the calling thread. Any other
+        // runs its first two periods there too and spreads the rest over the pool only if the
+        // second (the first touches fresh memory) took at least `SPREAD_MIN`: handing a short
+        // period to the pool and waiting for it costs more than the period. The same bits
+        // either way.
+        let mut spread =
+            (self.threads == 1 || (self.sliced && slice.m < PARALLEL_SLICE)).then_some(false);
         while slice.live() {
             self.check()?;
             slice.call(law).map_err(ExternalError::Law)?;
-            slice.advance(spread);
+            match spread {
+                Some(spread) => slice.advance(spread),
+                None => {
+                    let (start, second) = (Instant::now(), slice.k == 1);
+                    slice.advance(false);
+                    if second {
+                        spread = Some(start.elapsed() >= SPREAD_MIN);
+                    }
+                }
+            }
         }
         Ok(())
     }
@@ -786,8 +801,17 @@ fn periods<'x, 'y, 'z: 'y, 'r, const D: usize, P: PlantModel<D>>(
 /// its blocks on the thread that calls the law: at 1024 cases per call, handing each instant's
 /// periods to the pool's other threads and waiting for them cost more than they saved (10^4
 /// Mars cases, 2 threads: 194 against 141 ns per case-step; BENCHMARKS.md). A batch run whole
-/// spreads its periods over the pool, as before.
+/// spreads its periods over the pool when they are long enough ([`SPREAD_MIN`]).
 const PARALLEL_SLICE: usize = 4096;
+
+/// A batch run whole on more than one thread spreads its periods over the pool when one
+/// period on the calling thread takes at least this long. On a 2-core virtual machine, handing
+/// a period to the pool and waiting for it cost about 20 us: under a law returning zeros, 10^2
+/// and 10^3 Mars cases (periods of about 2 and 19 us) took 16.9 and 60.6 us per instant with
+/// their periods spread, 8.0 and 37.4 on the calling thread (BENCHMARKS.md). Every batch run
+/// whole of 1024 cases or more runs interleaved instead ([`MIN_INTERLEAVED`]), so this decides
+/// for the small batches of expensive plants.
+const SPREAD_MIN: Duration = Duration::from_micros(60);
 
 /// Tasks per pool thread at each instant: enough that a thread whose blocks stop early finds
 /// others' work.
