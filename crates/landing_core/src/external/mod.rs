@@ -806,7 +806,7 @@ const PARALLEL_SLICE: usize = 4096;
 
 /// A batch run whole on more than one thread spreads its periods over the pool when one
 /// period on the calling thread takes at least this long. On a 2-core virtual machine, handing
-/// a period to the pool and waiting for it cost about 20 us: under a law returning zeros, 10^2
+/// a period to the pool and waiting for it cost 10 to 30 us: under a law returning zeros, 10^2
 /// and 10^3 Mars cases (periods of about 2 and 19 us) took 16.9 and 60.6 us per instant with
 /// their periods spread, 8.0 and 37.4 on the calling thread (BENCHMARKS.md). Every batch run
 /// whole of 1024 cases or more runs interleaved instead ([`MIN_INTERLEAVED`]), so this decides
