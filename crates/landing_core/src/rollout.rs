@@ -739,8 +739,8 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
         };
         let cfg = set.cfg;
         let ran = match &hold.lag {
-            None => self.substeps(set, k, &hold, Constant(&hold.u)),
-            Some(lag) => self.substeps(set, k, &hold, *lag),
+            None => self.substeps::<K, _>(set, k, &hold, Constant(&hold.u)),
+            Some(lag) => self.substeps::<K, _>(set, k, &hold, *lag),
         };
         if !ran {
             return false;
@@ -754,7 +754,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
 
     /// The substeps of period k under the command `u`. Returns whether any lane still runs.
     #[inline(always)]
-    fn substeps<U: StageCommand<D, R, P>>(
+    fn substeps<K: LawCalls<D, R>, U: StageCommand<D, R, P>>(
         &mut self,
         set: &Setting<'_, D, R, P>,
         k: u64,
@@ -778,7 +778,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             };
             cfg.integrator
                 .step_into(&f, &self.x, hold.h, &mut self.next);
-            if !self.end_substep(set, tj, hold.h) {
+            if !self.end_substep::<K>(set, tj, hold.h) {
                 return false;
             }
         }
@@ -886,24 +886,52 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
     /// of the ground is located, the lanes whose state is non-finite or out of the domain are
     /// stopped, the others take the new state. Returns whether any lane still runs.
     #[inline(always)]
-    pub(crate) fn end_substep(&mut self, set: &Setting<'_, D, R, P>, tj: f64, h: f64) -> bool {
+    pub(crate) fn end_substep<K: LawCalls<D, R>>(
+        &mut self,
+        set: &Setting<'_, D, R, P>,
+        tj: f64,
+        h: f64,
+    ) -> bool {
         let plant = set.plant;
         let zero = R::zero();
         if let (Some(z0), Some(z1)) = (plant.altitude(&self.x), plant.altitude(&self.next)) {
             let cross = self.live & !self.touched & z0.simd_gt(zero) & z1.simd_le(zero);
             if cross.any() {
-                return self.touch_down(set, tj, h, (z0, z1), cross);
+                return self.touch_down::<K>(set, tj, h, (z0, z1), cross);
             }
         }
         self.settle(set, tj, h, None)
     }
 
     /// [`Block::end_substep`] for a substep in which the lanes `cross` reach the ground, out of
-    /// the hot path (once per case): the crossing is located and, under the touchdown event,
-    /// those lanes are frozen there.
+    /// the hot path (once per case): [`Block::locate_touchdown`], through the level's
+    /// out-of-line trampoline. A generic function compiled on its own lacks the level's
+    /// instructions: every lane operation was a call (`_mm512_mul_pd` and the like, 1.4 % of a
+    /// Mars campaign's samples with the function's own; BENCHMARKS.md).
     #[cold]
     #[inline(never)]
-    fn touch_down(
+    fn touch_down<K: LawCalls<D, R>>(
+        &mut self,
+        set: &Setting<'_, D, R, P>,
+        tj: f64,
+        h: f64,
+        z: (R, R),
+        cross: R::Mask,
+    ) -> bool {
+        K::out_of_line(TouchDown {
+            block: self,
+            set,
+            tj,
+            h,
+            z,
+            cross,
+        })
+    }
+
+    /// The crossing of the lanes `cross` located and, under the touchdown event, those lanes
+    /// frozen there.
+    #[inline(always)]
+    fn locate_touchdown(
         &mut self,
         set: &Setting<'_, D, R, P>,
         tj: f64,
@@ -1099,6 +1127,28 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 m.fuel_used = m0.lane(i) - mf.lane(i);
             }
         }
+    }
+}
+
+/// A block's touchdown ([`Block::locate_touchdown`]), run out of line through
+/// [`LawCalls::out_of_line`] so that it is compiled with the level's instructions.
+struct TouchDown<'a, 'b, const D: usize, R: Real, P: Plant<R, D>> {
+    block: &'a mut Block<D, R, P>,
+    set: &'a Setting<'b, D, R, P>,
+    tj: f64,
+    h: f64,
+    z: (R, R),
+    cross: R::Mask,
+}
+
+impl<const D: usize, R: Real, P: Plant<R, D>> OutOfLine<D, R> for TouchDown<'_, '_, D, R, P> {
+    /// Whether any lane still runs.
+    type Output = bool;
+
+    #[inline(always)]
+    fn run<K: LawCalls<D, R>>(self) -> bool {
+        self.block
+            .locate_touchdown(self.set, self.tj, self.h, self.z, self.cross)
     }
 }
 

@@ -267,7 +267,7 @@ fn end_substep<const D: usize>(
     closes: Option<u64>,
 ) -> bool {
     *case.block.next_mut().1 = *next;
-    if !case.with(cfg, |b, set| b.end_substep(set, tj, h)) {
+    if !case.with(cfg, |b, set| b.end_substep::<BaselineLaws>(set, tj, h)) {
         case.with(cfg, |b, set| b.finish(set, None, out));
         return false;
     }
