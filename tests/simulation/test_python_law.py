@@ -7,7 +7,10 @@ for bit, where the core's own powers are involved to 1e-12.
 
 from __future__ import annotations
 
+import platform
 import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -490,3 +493,54 @@ def test_the_pd_sliding_law_agrees_bit_for_bit_on_the_tethered_satellite(fidelit
     a, b = run_both(plant, builtin, python, x0, **kw)
     assert not a.metrics["diverged"].any()
     assert_same_run(a, b, rtol=0)
+
+
+_MALLOC_PROBE = """
+import ctypes, sys
+import numpy as np
+import landing
+from landing import controllers as C, plants as P
+
+
+class MallInfo2(ctypes.Structure):
+    _fields_ = [(name, ctypes.c_size_t) for name in
+                ("arena", "ordblks", "smblks", "hblks", "hblkhd", "usmblks", "fsmblks", "uordblks",
+                 "fordblks", "keepcost")]
+
+
+libc = ctypes.CDLL(None)
+libc.malloc.restype = ctypes.c_void_p
+libc.free.argtypes = [ctypes.c_void_p]
+libc.mallinfo2.restype = MallInfo2
+
+
+def mapped(size):
+    # whether malloc serves a block of `size` bytes with a mapping of its own
+    before = libc.mallinfo2().hblks
+    block = libc.malloc(size)
+    after = libc.mallinfo2().hblks
+    libc.free(block)
+    return after > before
+
+
+# freeing a mapped block raises the threshold to its size: the probe before the run is smaller
+first = mapped(1 << 20)
+law = C.PythonLaw(lambda t, e, de, ref, drift, inertia, params, memory: np.zeros_like(e))
+landing.simulate_batch(P.DoubleIntegrator(), law, np.ones((4, 6)), t_final=0.01, dt=1e-3, record_every=0)
+print(first, mapped(4 << 20))
+"""
+
+
+@pytest.mark.skipif(platform.libc_ver()[0] != "glibc", reason="glibc's dynamic mmap threshold")
+def test_a_python_law_run_raises_the_c_heap_s_thresholds():
+    """Before a Python callee's first run the binding frees one 8 MB block, so that glibc's
+    dynamic mmap and trim thresholds are raised at once instead of after the process first
+    frees a large array: until then numpy's temporaries had their pages returned and faulted
+    in again at every call (BENCHMARKS.md). Seen through ``mallinfo2``, in a fresh process: a
+    1 MB block is mapped of its own before the run (which raises the threshold to 1 MB), and a
+    4 MB block comes from the heap after it."""
+    out = subprocess.run([sys.executable, "-c", _MALLOC_PROBE], capture_output=True, text=True, check=True)
+    before, after = out.stdout.split()
+    if before != "True":
+        pytest.skip("the C heap's thresholds were already raised when the probe began")
+    assert after == "False", "a 4 MB block is still mapped of its own after a Python law's run"

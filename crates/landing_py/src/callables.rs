@@ -9,6 +9,32 @@ use landing_core::external::{ExternalLaw, ExternalPlant, Inputs, Staging, StateL
 
 use crate::errors::invalid;
 
+/// Frees one 8 MB block from the C heap, once per process, before the first run of a Python
+/// callee. glibc's `malloc` serves blocks above its mmap threshold with fresh mappings and
+/// returns a heap's top to the system when more than its trim threshold is free there; both
+/// start low (128 and 256 kB) and rise only when a mapped block is freed, to its size and
+/// twice that (mallopt(3), "dynamic mmap threshold"). Until then a Python law's numpy
+/// temporaries (about 100 kB each for 4096 cases of three axes) had their pages returned and
+/// faulted in again at every call: a process's first run of the fixed-time MSS law in numpy,
+/// 10^4 Mars cases, took 2.8 times as long as its next on one thread (BENCHMARKS.md). Freeing
+/// this block raises the thresholds as any large array freed would (to 8 and 16 MB), at once.
+/// Other C libraries do not adjust thresholds this way; there it is one allocation.
+fn raise_malloc_thresholds() {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let layout = Layout::from_size_align(8 << 20, 16).expect("a valid layout");
+        // SAFETY: a non-zero size; the block is freed with the layout it was allocated with
+        // (`System` is the C library's malloc and free, which numpy's arrays use too)
+        unsafe {
+            let block = std::hint::black_box(System.alloc(layout));
+            if !block.is_null() {
+                System.dealloc(block, layout);
+            }
+        }
+    });
+}
+
 /// What the binding keeps for a Python callee between calls: the (N, width) arrays handed to
 /// it, reused (fresh ones fault their pages in at every call; one the callee kept is replaced);
 /// and, between a driver's two `on_thread` calls, the interpreter's record of the pool thread
@@ -24,6 +50,7 @@ impl Handed {
     // then restore and release on the same thread (the drivers make both calls there)
     fn on_thread(&mut self, entering: bool) {
         if entering {
+            raise_malloc_thresholds();
             let gil = unsafe { pyo3::ffi::PyGILState_Ensure() };
             self.thread = Some((gil, unsafe { pyo3::ffi::PyEval_SaveThread() } as usize));
         } else if let Some((gil, saved)) = self.thread.take() {
