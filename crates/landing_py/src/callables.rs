@@ -18,7 +18,9 @@ use crate::errors::invalid;
 /// faulted in again at every call: a process's first run of the fixed-time MSS law in numpy,
 /// 10^4 Mars cases, took 2.8 times as long as its next on one thread (BENCHMARKS.md). Freeing
 /// this block raises the thresholds as any large array freed would (to 8 and 16 MB), at once.
-/// Other C libraries do not adjust thresholds this way; there it is one allocation.
+/// Where `MALLOC_TRIM_THRESHOLD_` or `MALLOC_MMAP_THRESHOLD_` is set (Dask sets the first, to
+/// 64 kB, for its workers), glibc keeps the values given and this changes nothing; other C
+/// libraries do not adjust thresholds this way, and there it is one allocation.
 fn raise_malloc_thresholds() {
     use std::alloc::{GlobalAlloc, Layout, System};
     static ONCE: std::sync::Once = std::sync::Once::new();
