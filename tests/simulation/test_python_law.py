@@ -283,6 +283,22 @@ def test_inputs_a_law_keeps_are_never_overwritten():
     np.testing.assert_array_equal(np.stack(kept), res.states[:, :, :3].transpose(1, 0, 2))
 
 
+def test_the_inputs_are_read_only():
+    # made read-only once by the engine, on both tracks of two threads, whether kept or reused
+    flags = []
+
+    def law(t, e, de, ref, drift, inertia, params, memory):
+        flags.append([a.flags.writeable for a in (e, de, ref.position, ref.velocity, ref.acceleration, drift,
+                                                  inertia)])
+        if len(flags) % 3 == 0:
+            law.kept = e  # a kept array makes the engine hand a fresh one next time
+        return np.zeros_like(e)
+
+    landing.simulate_batch(P.MarsLander(), C.PythonLaw(law, cases_per_call=16), mars_x0(40), t_final=0.01,
+                           dt=1e-3, record_every=0, threads=2)
+    assert len(flags) > 20 and not any(any(f) for f in flags), flags
+
+
 @pytest.mark.parametrize("keep", [False, True], ids=["arrays-reused", "arrays-kept"])
 def test_cases_that_have_stopped_keep_their_last_inputs(keep):
     # the engine writes each instant's inputs of the cases still running into the arrays it

@@ -112,6 +112,22 @@ def test_states_a_plant_keeps_are_never_overwritten():
     np.testing.assert_array_equal(np.stack(kept), res.states[:, :-1].transpose(1, 0, 2))
 
 
+def test_the_arrays_a_plant_is_handed_are_read_only():
+    # made read-only once by the engine, at every call and stage, whether kept or reused
+    flags = []
+
+    def derivative(t, x, u, params):
+        flags.append((x.flags.writeable, u.flags.writeable))
+        if len(flags) % 3 == 0:
+            derivative.kept = x  # a kept array makes the engine hand a fresh one next time
+        return np.concatenate([x[:, 3:], u], axis=1)
+
+    plant = P.PythonPlant(derivative, 6, positions=(0, 1, 2), velocities=(3, 4, 5))
+    x0 = np.array([[1.0, -2.0, 0.5, 0.0, 0.0, 0.0], [0.0, 1.0, 2.0, 0.5, 0.0, 0.0]])
+    landing.simulate_batch(plant, C.PDSlidingMode(lambda_=1.0, k=2.0), x0, t_final=0.5, dt=0.1)
+    assert len(flags) == 20 and not any(w for pair in flags for w in pair), flags
+
+
 def test_the_mars_lander_in_python_agrees_with_the_built_in_one():
     x0 = mars_x0(30)
     x0[4] = [10.0, 0.0, 3.0, 0.0, 0.0, -40.0, 1900.0]  # touches down in the first tenth of a second

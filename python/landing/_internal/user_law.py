@@ -120,11 +120,13 @@ class _Slice:
     """The slice of cases a track of the core runs: its rows of the batch, its parameters and
     its memory."""
 
-    __slots__ = ("first", "m", "params", "memory")
+    __slots__ = ("first", "m", "params", "memory", "no_diagnostics")
 
     def __init__(self, first: int, m: int, params: dict[str, np.ndarray]) -> None:
         self.first, self.m, self.params = first, m, params
         self.memory: Optional[dict[str, np.ndarray]] = None
+        # the diagnostics of a law that declares none, made once per slice
+        self.no_diagnostics = np.empty((m, 0))
 
 
 class LawStep:
@@ -204,8 +206,7 @@ class LawStep:
     def __call__(self, t: float, k: int, first: int, track: int, e: np.ndarray, de: np.ndarray,
                  position: np.ndarray, velocity: np.ndarray, acceleration: np.ndarray, drift: np.ndarray,
                  inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        for a in (e, de, position, velocity, acceleration, drift, inertia):
-            a.setflags(write=False)
+        # the arrays come read-only from the core (made so once, not at every call)
         args = (t, e, de, ReferencePoint(position, velocity, acceleration), drift, inertia)
         s = self._start(t, first, track, args) if k == 0 else self._tracks[track]
         try:
@@ -232,9 +233,9 @@ class LawStep:
 
     def _diagnostics(self, value: Any, t: float, s: _Slice) -> np.ndarray:
         m = s.m
-        out = np.empty((m, self.width))
         if not self.layout:
-            return out
+            return s.no_diagnostics
+        out = np.empty((m, self.width))
         where = self._where(t, s)
         if not isinstance(value, Mapping):
             names = [name for name, _ in self.layout]

@@ -61,8 +61,7 @@ class PlantStep:
         self._layout: tuple[int, list[int], list[int], Optional[int], Optional[int]] = layout
 
     def _call(self, which: str, t: float, *arrays: np.ndarray) -> tuple[Any, str]:
-        for a in arrays:
-            a.setflags(write=False)
+        # the arrays come read-only from the core (made so once, not at every call)
         last = self.first_case + self.n - 1
         where = f"PythonPlant {self.name}: {which} at t = {t:.9g} s on cases {self.first_case}..{last}"
         function = self.functions[which]
