@@ -61,10 +61,10 @@ impl Handed {
         }
     }
 
-    /// Slot `slot`'s array, of shape (n, width), read-only to Python, only this slot's: kept, or new when the
-    /// callee kept the one before (its count is more than one: the new one is a copy, so that
-    /// memory lent to a driver still holds the last call's inputs, [`Staging`]) or the shape
-    /// changed (zeros).
+    /// Slot `slot`'s array, of shape (n, width), read-only to Python, only this slot's: kept,
+    /// or new when the callee kept the one before (its count is more than one: the new one is a
+    /// copy, so that memory lent to a driver still holds the last call's inputs, [`Staging`]) or
+    /// the shape changed (zeros).
     fn slot<'py>(
         &mut self,
         py: Python<'py>,
