@@ -60,25 +60,49 @@ crate::gather_struct!(TerminalSurface<const D: usize, R> {
     shared: [],
 });
 
+/// What the fast terminal laws derive from their gains, once per block
+/// ([`ControlLaw::Memory`]): divisions and powers of constants that an out-of-line law call
+/// would otherwise repeat at every control period (the same operations, so the same bits).
+#[derive(Clone, Copy, Debug)]
+pub struct TerminalConstants<const D: usize, R> {
+    /// The exponent r = p / q.
+    r: SVector<R, D>,
+    /// e_floor^(r - 1), the slope |e|^(r - 1) where |e| is below the floor.
+    floor_slope: SVector<R, D>,
+}
+
 impl<const D: usize, R: Real> TerminalSurface<D, R> {
+    /// The constants of [`TerminalSurface::evaluate`].
+    #[inline(always)]
+    pub fn constants(&self) -> TerminalConstants<D, R> {
+        let r = Axes::of(&self.p) / Axes::of(&self.q);
+        TerminalConstants {
+            r: r.vector(),
+            floor_slope: Axes([self.e_floor; D]).powf(r - 1.0).vector(),
+        }
+    }
+
     /// (s, u_eq) at this instant, the axes side by side ([`Axes`], as the MSS law: each
     /// step of the chain issues every axis's instructions together).
     #[inline(always)]
-    pub fn evaluate(&self, input: &LawInput<D, R>) -> (SVector<R, D>, SVector<R, D>) {
+    pub fn evaluate(
+        &self,
+        k: &TerminalConstants<D, R>,
+        input: &LawInput<D, R>,
+    ) -> (SVector<R, D>, SVector<R, D>) {
         let e = Axes::of(&input.e);
         let de = Axes::of(&input.de);
         let (alpha, beta) = (Axes::of(&self.alpha), Axes::of(&self.beta));
-        let r = Axes::of(&self.p) / Axes::of(&self.q);
+        let r = Axes::of(&k.r);
         let abs = e.abs();
         // |e|^r once (0 at e = 0); |e|^(r-1) = |e|^r / |e| away from the floor
         let pow = abs.powf(r);
         let s = de + alpha * e + beta * sgn(e) * pow;
-        let floor = Axes([self.e_floor; D]);
-        let above = abs.simd_ge(floor);
+        let above = abs.simd_ge(Axes([self.e_floor; D]));
         let slope = if above.all() {
             pow / abs
         } else {
-            Real::select(above, pow / abs, floor.powf(r - 1.0))
+            Real::select(above, pow / abs, Axes::of(&k.floor_slope))
         };
         let eq = Axes::of(&sub(&input.reference.acceleration, &input.drift))
             - (alpha + beta * r * slope) * de;
@@ -111,15 +135,18 @@ crate::gather_struct!(FastTerminalSmc<const D: usize, R> {
 });
 
 impl<const D: usize, R: Real> ControlLaw<R, D> for FastTerminalSmc<D, R> {
-    type Memory = ();
+    type Memory = TerminalConstants<D, R>;
+    const ADVANCES: bool = false;
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
 
     #[inline(always)]
-    fn start(&self, _input: &LawInput<D, R>) {}
+    fn start(&self, _input: &LawInput<D, R>) -> TerminalConstants<D, R> {
+        self.surface.constants()
+    }
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
-        let (s, eq) = self.surface.evaluate(input);
+    fn command(&self, k: &TerminalConstants<D, R>, input: &LawInput<D, R>) -> SVector<R, D> {
+        let (s, eq) = self.surface.evaluate(k, input);
         let mut a = eq;
         for i in 0..D {
             a[i] = eq[i] - self.k[i] * self.switch.apply(s[i]);
@@ -128,8 +155,8 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FastTerminalSmc<D, R> {
     }
 
     #[inline(always)]
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
-        out[..D].copy_from_slice(self.surface.evaluate(input).0.as_slice());
+    fn diagnostics(&self, k: &TerminalConstants<D, R>, input: &LawInput<D, R>, out: &mut [R]) {
+        out[..D].copy_from_slice(self.surface.evaluate(k, input).0.as_slice());
     }
 }
 

@@ -11,7 +11,7 @@
 
 use nalgebra::SVector;
 
-use super::fast_terminal::{ALPHA, BETA, E_FLOOR, K, P, Q, TerminalSurface};
+use super::fast_terminal::{ALPHA, BETA, E_FLOOR, K, P, Q, TerminalConstants, TerminalSurface};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, ReadError, Validate, check, check_axes};
 use crate::lanes::{Real, norm};
@@ -43,13 +43,21 @@ crate::gather_struct!(FuzzyFastTerminalSmc<const D: usize, R> {
     shared: [],
 });
 
+/// What the law derives from its gains, once per block ([`ControlLaw::Memory`]): the
+/// surface's constants and each axis's distance scale sqrt(1 + alpha_i^2) of eq. 21.
+#[derive(Clone, Copy, Debug)]
+pub struct FuzzyTerminalConstants<const D: usize, R> {
+    surface: TerminalConstants<D, R>,
+    scale: SVector<R, D>,
+}
+
 impl<const D: usize, R: Real> FuzzyFastTerminalSmc<D, R> {
     /// (a, b, D) at this distance vector.
     #[inline(always)]
-    pub fn blend(&self, s: &SVector<R, D>) -> (R, R, R) {
+    pub fn blend(&self, k: &FuzzyTerminalConstants<D, R>, s: &SVector<R, D>) -> (R, R, R) {
         let mut scaled = *s;
         for i in 0..D {
-            scaled[i] = s[i] / (R::one() + self.surface.alpha[i] * self.surface.alpha[i]).sqrt();
+            scaled[i] = s[i] / k.scale[i];
         }
         let dist = norm(&scaled);
         (
@@ -61,17 +69,28 @@ impl<const D: usize, R: Real> FuzzyFastTerminalSmc<D, R> {
 }
 
 impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyFastTerminalSmc<D, R> {
-    type Memory = ();
+    type Memory = FuzzyTerminalConstants<D, R>;
+    const ADVANCES: bool = false;
     const DIAGNOSTICS: &'static [&'static str] = &["s"];
     const SCALAR_DIAGNOSTICS: &'static [&'static str] = &["a", "b", "distance"];
 
     #[inline(always)]
-    fn start(&self, _input: &LawInput<D, R>) {}
+    fn start(&self, _input: &LawInput<D, R>) -> FuzzyTerminalConstants<D, R> {
+        let mut scale = self.surface.alpha;
+        for i in 0..D {
+            let alpha = self.surface.alpha[i];
+            scale[i] = (R::one() + alpha * alpha).sqrt();
+        }
+        FuzzyTerminalConstants {
+            surface: self.surface.constants(),
+            scale,
+        }
+    }
 
     #[inline(always)]
-    fn command(&self, _memory: &(), input: &LawInput<D, R>) -> SVector<R, D> {
-        let (s, eq) = self.surface.evaluate(input);
-        let (a, b, _) = self.blend(&s);
+    fn command(&self, k: &FuzzyTerminalConstants<D, R>, input: &LawInput<D, R>) -> SVector<R, D> {
+        let (s, eq) = self.surface.evaluate(&k.surface, input);
+        let (a, b, _) = self.blend(k, &s);
         let mut u = eq;
         for i in 0..D {
             u[i] = a * eq[i] - b * self.k[i] * self.switch.apply(s[i]);
@@ -80,9 +99,9 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FuzzyFastTerminalSmc<D, R> {
     }
 
     #[inline(always)]
-    fn diagnostics(&self, _memory: &(), input: &LawInput<D, R>, out: &mut [R]) {
-        let (s, _) = self.surface.evaluate(input);
-        let (a, b, dist) = self.blend(&s);
+    fn diagnostics(&self, k: &FuzzyTerminalConstants<D, R>, input: &LawInput<D, R>, out: &mut [R]) {
+        let (s, _) = self.surface.evaluate(&k.surface, input);
+        let (a, b, dist) = self.blend(k, &s);
         out[..D].copy_from_slice(s.as_slice());
         out[D..D + 3].copy_from_slice(&[a, b, dist]);
     }

@@ -25,10 +25,10 @@ pub mod rbf;
 mod super_twisting;
 mod tabulated;
 
-pub use fast_terminal::{FastTerminalSmc, TerminalSurface};
+pub use fast_terminal::{FastTerminalSmc, TerminalConstants, TerminalSurface};
 pub use fixed_time_mss::{FixedTimeMss, MssVariant};
 pub use fixed_time_ntsmc::{FixedTimeNtsmc, zeta, zeta_slope};
-pub use fuzzy_fast_terminal::FuzzyFastTerminalSmc;
+pub use fuzzy_fast_terminal::{FuzzyFastTerminalSmc, FuzzyTerminalConstants};
 pub use fuzzy_variable_rate::{FuzzyVariableRate, VariableRateMemory};
 pub use integral_reaching::{IntegralExponentialReaching, IntegralSurface};
 pub use ntsmc::Ntsmc;
