@@ -103,7 +103,8 @@ impl IntegratorKind {
     }
 
     /// One step of length `h` from `x` into `next`, with `f(stage, y)` the derivative at that
-    /// stage.
+    /// stage. `scratch` may hold anything on entry: a large state's stage point and stage
+    /// derivative are written there (see below).
     ///
     /// Both methods run through one loop over their tableau's stages, so the derivative (the
     /// bulk of the code) is inlined once, whatever the method: the choice of method is a
@@ -112,6 +113,15 @@ impl IntegratorKind {
     /// computes the derivatives elsewhere (a plant written in Python, one call per stage for
     /// every case) runs the same step stage by stage: [`Self::accumulate`] for each stage, then
     /// [`Self::combine`].
+    ///
+    /// A state that fits the vector registers (a lander's block) keeps its stage point and
+    /// derivative in locals, copies of `x` the compiler leaves in registers. A larger one
+    /// (the flexible tether's 38 components, 2.4 kB a block) would pay a `memcpy` for each
+    /// of those copies and one more for the first stage's `sum = k`: it uses the caller's
+    /// `scratch` instead, and its first stage of weight 1 (both methods') is evaluated
+    /// straight into the sum. The same operations either way, so the same bits. Measured
+    /// (BENCHMARKS.md): the large path makes W6 7 % faster, and W1 (896 bytes a block) 20 %
+    /// slower, its stage values sent through memory.
     #[inline(always)]
     pub fn step_into<R: Real, S: State<R>>(
         self,
@@ -119,14 +129,31 @@ impl IntegratorKind {
         x: &S,
         h: f64,
         next: &mut S,
+        scratch: &mut [S; 2],
     ) {
-        // `next` holds the weighted sum of the stage derivatives until the last line; `k` each
-        // stage's derivative, written in place
-        let mut y = *x;
-        let mut k = *x;
-        for i in 0..self.tableau().stages {
-            f.at_into(self.stage(i), if i == 0 { x } else { &y }, &mut k);
-            self.accumulate(i, x, &k, h, next, &mut y);
+        // `next` holds the weighted sum of the stage derivatives until the last line
+        let tab = self.tableau();
+        if const { std::mem::size_of::<S>() <= IN_REGISTERS } {
+            let mut y = *x;
+            let mut k = *x;
+            for i in 0..tab.stages {
+                f.at_into(self.stage(i), if i == 0 { x } else { &y }, &mut k);
+                self.accumulate(i, x, &k, h, next, &mut y);
+            }
+        } else {
+            let [y, k] = scratch;
+            for i in 0..tab.stages {
+                if i == 0 && tab.weight[0] == 1.0 {
+                    // `sum = 1 k0` is `k0`, bit for bit (as `accumulate` makes it)
+                    f.at_into(self.stage(0), x, next);
+                    if tab.stages > 1 {
+                        y.set_add_scaled(x, next, R::splat(tab.next[0] * h));
+                    }
+                } else {
+                    f.at_into(self.stage(i), if i == 0 { x } else { y }, k);
+                    self.accumulate(i, x, k, h, next, y);
+                }
+            }
         }
         self.combine(x, h, next);
     }
@@ -184,10 +211,14 @@ impl IntegratorKind {
     #[inline(always)]
     pub fn step<R: Real, S: State<R>>(self, f: &impl StageDerivative<R, S>, x: &S, h: f64) -> S {
         let mut next = *x;
-        self.step_into(f, x, h, &mut next);
+        self.step_into(f, x, h, &mut next, &mut [*x; 2]);
         next
     }
 }
+
+/// The largest state (in bytes, a block's) that [`IntegratorKind::step_into`] keeps in locals:
+/// half of AVX-512's 32 registers, so that the step's other values fit beside it.
+const IN_REGISTERS: usize = 16 * 64;
 
 /// An explicit Runge-Kutta method whose stage i evaluates at `x + next[i-1] h k_(i-1)` (a
 /// diagonal tableau, as Euler's and the classic RK4's are) and whose step is
@@ -270,6 +301,60 @@ mod tests {
             for w in e.windows(2) {
                 let p = observed_order(w[0], w[1]);
                 assert!((p - 1.0).abs() < 0.05, "observed order {p}, errors {e:?}");
+            }
+        }
+    }
+
+    /// A state too large for the registers (40 components of 4 lanes, 1280 bytes) steps by
+    /// the other path of `step_into` (the caller's scratch, the first stage into the sum):
+    /// each of its 20 pairs must come out bit for bit as the same pair stepped alone (2
+    /// components, the path of the small states), whatever the scratch held (NaN here).
+    #[test]
+    fn a_large_state_steps_as_its_parts_alone() {
+        type Big = SVector<Lanes<4>, 40>;
+        type Pair = SVector<Lanes<4>, 2>;
+        assert!(std::mem::size_of::<Big>() > IN_REGISTERS);
+        assert!(std::mem::size_of::<Pair>() <= IN_REGISTERS);
+        let (h, t0) = (0.01, 0.3);
+        // x'' = -x^2 + cos t per pair, each pair with its own start
+        let stage_big = |s: Stage, x: &Big| {
+            let mut k = *x;
+            for p in 0..20 {
+                k[2 * p] = x[2 * p + 1];
+                k[2 * p + 1] = -x[2 * p] * x[2 * p] + Lanes::splat(s.time(t0, h).cos());
+            }
+            k
+        };
+        let stage_pair =
+            |s: Stage, x: &Pair| Pair::new(x[1], -x[0] * x[0] + Lanes::splat(s.time(t0, h).cos()));
+        let start = |p: usize, i: usize| (p as f64 - 9.5) * 0.1 + i as f64 * 0.01;
+        for integ in [IntegratorKind::Rk4, IntegratorKind::Euler] {
+            let mut big = Big::from_fn(|c, _| Lanes(std::array::from_fn(|i| start(c / 2, i))));
+            let mut pairs: Vec<Pair> = (0..20)
+                .map(|p| Pair::new(Lanes(std::array::from_fn(|i| start(p, i))), Lanes([0.5; 4])))
+                .collect();
+            for p in 0..20 {
+                big[2 * p + 1] = Lanes([0.5; 4]);
+            }
+            for _ in 0..50 {
+                let mut next = big;
+                let mut scratch = [Big::repeat(Lanes::splat(f64::NAN)); 2];
+                integ.step_into(&stage_big, &big, h, &mut next, &mut scratch);
+                big = next;
+                for x in pairs.iter_mut() {
+                    *x = integ.step(&stage_pair, x, h);
+                }
+            }
+            for (p, x) in pairs.iter().enumerate() {
+                for c in 0..2 {
+                    for i in 0..4 {
+                        assert_eq!(
+                            big[2 * p + c].0[i].to_bits(),
+                            x[c].0[i].to_bits(),
+                            "{integ:?}, pair {p}, component {c}, lane {i}"
+                        );
+                    }
+                }
             }
         }
     }

@@ -601,8 +601,10 @@ pub(crate) struct Block<const D: usize, R: Real, P: Plant<R, D>> {
     rng: Vec<NoiseStreams>,
     stats: CommandStats<D, R>,
     x: P::State,
-    // the step's result, kept in the block so that the integrator writes it in place
+    // the step's result and the integrator's stage point and derivative, kept in the block
+    // so that the integrator writes them in place
     next: P::State,
+    scratch: [P::State; 2],
     m0: Option<R>,
     input: LawInput<D, R>,
     live: R::Mask,
@@ -667,6 +669,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
             stats: CommandStats::<D, R>::new(cfg.chatter_filter()),
             x: *x0,
             next: *x0,
+            scratch: [*x0; 2],
             m0,
             input,
             live: R::Mask::splat(true),
@@ -777,7 +780,7 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Block<D, R, P> {
                 drift: &self.input.drift,
             };
             cfg.integrator
-                .step_into(&f, &self.x, hold.h, &mut self.next);
+                .step_into(&f, &self.x, hold.h, &mut self.next, &mut self.scratch);
             if !self.end_substep::<K>(set, tj, hold.h) {
                 return false;
             }
