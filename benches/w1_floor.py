@@ -23,6 +23,12 @@ that both times are also given in cycles per block-period.
     cargo build --release -p landing_core --example profile_w1
     python benches/w1_floor.py --level avx512 --rounds 10
 
+W3 and W5 (the small-body workloads, blocks of the same 16 cases) are counted and run the same
+way from ``profile_small_body``:
+
+    cargo build --release -p landing_core --example profile_small_body
+    python benches/w1_floor.py --workload W3 --profile target/release/examples/profile_small_body
+
 Needs gdb and gcc. Linux, x86-64 only. See BENCHMARKS.md, "W1's floor".
 """
 
@@ -39,7 +45,14 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 PROFILE = ROOT / "target" / "release" / "examples" / "profile_w1"
-LANES = 16  # a Mars block at avx2 and avx512 (`Level::lanes`)
+LANES = 16  # a Mars or small-body block at avx2 and avx512 (`Level::lanes`)
+
+
+def prefix(workload: str) -> list[str]:
+    """The profile binary's leading arguments: W1's ``profile_w1`` takes none, the small-body
+    workloads' ``profile_small_body`` the workload's name."""
+    return [] if workload == "W1" else [workload]
+
 
 GDB_SCRIPT = r"""
 import gdb, collections, json, os
@@ -85,7 +98,7 @@ gdb.execute('kill')
 """
 
 
-def count(level: str, profile: Path, by_source: bool = False) -> collections.Counter[str]:
+def count(level: str, profile: Path, by_source: bool = False, workload: str = "W1") -> collections.Counter[str]:
     """Every instruction one block-period of W1 executes at `level`, by its text (and, with
     `by_source`, the line of landing_core's code it was inlined from: needs a build with line
     tables)."""
@@ -96,7 +109,7 @@ def count(level: str, profile: Path, by_source: bool = False) -> collections.Cou
     with tempfile.TemporaryDirectory() as tmp:
         script, out = Path(tmp) / "mix.py", Path(tmp) / "mix.json"
         script.write_text(GDB_SCRIPT)
-        env = {"CANDS": ",".join(cands), "ARGS": f"{LANES} {level}", "OUT": str(out)}
+        env = {"CANDS": ",".join(cands), "ARGS": " ".join([*prefix(workload), str(LANES), level]), "OUT": str(out)}
         if by_source:
             env["BY_SOURCE"] = "1"
         subprocess.run(
@@ -378,6 +391,12 @@ def groups_of(mix: collections.Counter[str]) -> collections.Counter[str]:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--level", default="avx512", choices=["avx2", "avx512"])
+    ap.add_argument(
+        "--workload",
+        default="W1",
+        choices=["W1", "W3", "W5"],
+        help="W3 or W5 count and time profile_small_body (give its path with --profile)",
+    )
     ap.add_argument("--rounds", type=int, default=10)
     ap.add_argument("--cases", type=int, default=960, help="W1's cases for its timed runs")
     ap.add_argument("--profile", type=Path, default=PROFILE, help="the profile_w1 binary")
@@ -393,7 +412,11 @@ def main() -> int:
     profile = args.profile
     if not profile.exists():
         sys.exit("build it first: cargo build --release -p landing_core --example profile_w1")
-    raw = json.loads(Path(args.mix).read_text()) if args.mix else count(args.level, profile, args.by_source)
+    raw = (
+        json.loads(Path(args.mix).read_text())
+        if args.mix
+        else count(args.level, profile, args.by_source, args.workload)
+    )
     if args.save:
         Path(args.save).write_text(json.dumps(raw, indent=0))
     # the law's call, and the rest of the period (plant, integrator, checks, statistics, loop)
@@ -414,7 +437,7 @@ def main() -> int:
     for name, mix in parts.items():
         total = sum(mix.values())
         print(
-            f"W1 at {args.level}, {name}: {total} instructions per block-period ({LANES} cases), "
+            f"{args.workload} at {args.level}, {name}: {total} instructions per block-period ({LANES} cases), "
             f"{total / LANES:.1f} per case-step"
         )
         for g, n in groups_of(mix).most_common():
@@ -442,7 +465,10 @@ def main() -> int:
         ghz: list[float] = []
         for _ in range(args.rounds):
             r = subprocess.run(
-                [str(profile), str(args.cases), args.level], capture_output=True, text=True, check=True
+                [str(profile), *prefix(args.workload), str(args.cases), args.level],
+                capture_output=True,
+                text=True,
+                check=True,
             ).stdout
             w1.append(float(r.split()[0]))
             for name, exe in exes.items():
@@ -452,7 +478,9 @@ def main() -> int:
     g = statistics.median(ghz)
     w = statistics.median(w1)
     print(f"clock {g:.2f} GHz (median of {len(ghz)})")
-    print(f"W1 measured:                      {w:6.2f} ns per case-step, {w * g * LANES:7.0f} cycles per block-period")
+    print(
+        f"{args.workload} measured:                      {w:6.2f} ns per case-step, {w * g * LANES:7.0f} cycles per block-period"
+    )
     for name in parts:
         f = statistics.median(floor[name])
         print(
@@ -460,7 +488,7 @@ def main() -> int:
             f"{f * g * LANES:7.0f} cycles per block-period"
         )
     ratio = statistics.median(a / b for a, b in zip(w1, floor["whole"]))
-    print(f"W1 / floor: {ratio:.2f} (median of the rounds' ratios)")
+    print(f"{args.workload} / floor: {ratio:.2f} (median of the rounds' ratios)")
     return 0
 
 
