@@ -40,7 +40,7 @@ use crate::error::{ParamError, ReadError};
 use crate::lanes::{Mask, Real, add, div, dot, scale, sub};
 use crate::metrics::NavigationMetrics;
 use crate::params::{Layout, Param, ParamSource, Schema};
-use crate::rng::{CaseStream, streams};
+use crate::rng::{CaseStream, LanePairs, streams};
 
 const STD: Param = Param::components("std")
     .per_case()
@@ -286,21 +286,30 @@ impl<const D: usize, R: Real> Navigator<D, R> {
     /// to instant k + 1.
     #[inline(always)]
     fn measure(&mut self, k: u64, q: &SVector<R, D>, v: &SVector<R, D>) -> [SVector<R, D>; 2] {
-        // 4 D normals per instant: the white noise of [q, q'], then the walk's steps
+        // 4 D normals per instant: the white noise of [q, q'], then the walk's steps; each
+        // lane's D blocks of four words (counters k D .. k D + D - 1), Box-Muller on every
+        // lane at once (the lanes past the block's cases stay at 0)
+        let mut pairs = [[LanePairs::<R>::new(); 2]; D];
+        for (lane, s) in self.streams.iter().enumerate().take(R::LANES) {
+            for (j, p) in pairs.iter_mut().enumerate() {
+                let w = s.block(k * D as u64 + j as u64);
+                p[0].set(lane, w[0], w[1]);
+                p[1].set(lane, w[2], w[3]);
+            }
+        }
+        let mut one = [[R::zero(); 4]; D];
+        for (block, p) in one.iter_mut().zip(&pairs) {
+            let ((z0, z1), (z2, z3)) = (p[0].normals(), p[1].normals());
+            *block = [z0, z1, z2, z3];
+        }
+        let z = |c: usize| one[c / 4][c % 4];
         let mut white: [SVector<R, D>; 2] = [crate::lanes::zeros(); 2];
         let mut steps = white;
-        let mut one = [[0.0f64; 4]; D];
-        for (lane, s) in self.streams.iter().enumerate().take(R::LANES) {
-            for (j, block) in one.iter_mut().enumerate() {
-                *block = s.normals(k * D as u64 + j as u64);
-            }
-            let z = |c: usize| one[c / 4][c % 4];
-            for i in 0..D {
-                white[0][i].set_lane(lane, z(i));
-                white[1][i].set_lane(lane, z(D + i));
-                steps[0][i].set_lane(lane, z(2 * D + i));
-                steps[1][i].set_lane(lane, z(3 * D + i));
-            }
+        for i in 0..D {
+            white[0][i] = z(i);
+            white[1][i] = z(D + i);
+            steps[0][i] = z(2 * D + i);
+            steps[1][i] = z(3 * D + i);
         }
         let truth = [*q, *v];
         let mut y = truth;

@@ -7,6 +7,8 @@
 //! re-run alone with the same bits. It is the generator numpy ships as `numpy.random.Philox`,
 //! which the Python tests use as the independent reference.
 
+use crate::lanes::Real;
+
 const M0: u64 = 0xD2E7_470E_E14C_6C93;
 const M1: u64 = 0xCA5A_8263_9512_1157;
 const W0: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -122,6 +124,44 @@ fn box_muller(a: u64, b: u64) -> (f64, f64) {
     (r * c, r * s)
 }
 
+/// Box-Muller over a block's lanes: lane i holds one case's pair of words, as
+/// [`CaseStream::normals`] takes them (a lane not set gives the normals 0 and 0, as the
+/// padding lanes of a block had before). The logarithm and the sine and cosine are the lane types' own ([`crate::lanes`]), the
+/// same bits at every instruction-set level and within a few ulp of libm's (the test below);
+/// libm, one lane at a time, cost a realistic campaign more than half its time (the sensor's
+/// twelve normals per case and period; BENCHMARKS.md).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LanePairs<R> {
+    below: R,
+    above: R,
+}
+
+impl<R: Real> LanePairs<R> {
+    /// Every lane unset: a uniform of 1 below (its logarithm 0, so a radius of 0).
+    #[inline(always)]
+    pub(crate) fn new() -> Self {
+        Self {
+            below: R::one(),
+            above: R::zero(),
+        }
+    }
+
+    /// Lane `lane` at the words `(a, b)`.
+    #[inline(always)]
+    pub(crate) fn set(&mut self, lane: usize, a: u64, b: u64) {
+        self.below.set_lane(lane, unit_open_below(a));
+        self.above.set_lane(lane, unit_open_above(b));
+    }
+
+    /// The two normals of every lane.
+    #[inline(always)]
+    pub(crate) fn normals(self) -> (R, R) {
+        let r = (R::splat(-2.0) * self.below.ln()).sqrt();
+        let (s, c) = (R::splat(std::f64::consts::TAU) * self.above).sin_cos();
+        (r * c, r * s)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -192,6 +232,46 @@ mod tests {
         assert!(mean.abs() < 0.025, "{mean}");
         assert!((var - 1.0).abs() < 0.035, "{var}");
         assert!((kurt - 3.0).abs() < 0.15, "{kurt}");
+    }
+
+    /// The lanes' Box-Muller against libm's, one lane at a time (`normals`): within 4 ulp of
+    /// the pair's radius, for 4000 pairs, at lanes of every width the portable type has; and
+    /// the lanes left unset give 0.
+    #[test]
+    fn lane_normals_agree_with_libm() {
+        use crate::lanes::Lanes;
+        fn check<const N: usize>() {
+            let s = CaseStream::new(5, streams::SENSOR, 9);
+            let mut worst = 0.0f64;
+            for counter in 0..(4000 / N as u64) {
+                let mut pairs = [LanePairs::<Lanes<N>>::new(); 2];
+                let mut want = [[0.0; 4]; N];
+                for lane in 0..N {
+                    let c = counter * N as u64 + lane as u64;
+                    let w = s.block(c);
+                    pairs[0].set(lane, w[0], w[1]);
+                    pairs[1].set(lane, w[2], w[3]);
+                    want[lane] = s.normals(c);
+                }
+                let ((z0, z1), (z2, z3)) = (pairs[0].normals(), pairs[1].normals());
+                for (lane, want) in want.iter().enumerate() {
+                    let got = [z0.0[lane], z1.0[lane], z2.0[lane], z3.0[lane]];
+                    for p in 0..2 {
+                        let radius = want[2 * p].hypot(want[2 * p + 1]);
+                        for z in 2 * p..2 * p + 2 {
+                            let ulps = (got[z] - want[z]).abs() / (radius * f64::EPSILON);
+                            worst = worst.max(ulps);
+                        }
+                    }
+                }
+            }
+            assert!(worst <= 4.0, "{N} lanes: {worst} ulp of the radius");
+            let (a, b) = LanePairs::<Lanes<N>>::new().normals();
+            assert!(a.0.iter().chain(&b.0).all(|&z| z == 0.0));
+        }
+        check::<1>();
+        check::<4>();
+        check::<8>();
     }
 
     #[test]
