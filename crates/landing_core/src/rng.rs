@@ -246,12 +246,12 @@ mod tests {
             for counter in 0..(4000 / N as u64) {
                 let mut pairs = [LanePairs::<Lanes<N>>::new(); 2];
                 let mut want = [[0.0; 4]; N];
-                for lane in 0..N {
+                for (lane, want) in want.iter_mut().enumerate() {
                     let c = counter * N as u64 + lane as u64;
                     let w = s.block(c);
                     pairs[0].set(lane, w[0], w[1]);
                     pairs[1].set(lane, w[2], w[3]);
-                    want[lane] = s.normals(c);
+                    *want = s.normals(c);
                 }
                 let ((z0, z1), (z2, z3)) = (pairs[0].normals(), pairs[1].normals());
                 for (lane, want) in want.iter().enumerate() {
