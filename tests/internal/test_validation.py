@@ -39,7 +39,11 @@ CONSTRUCTION = [
     (lambda: controllers.FixedTimeMSS(**gains(), s1_floor=0.0), "s1_floor > 0"),
     (lambda: controllers.FixedTimeMSS(**gains(), variant="exactly"), "variant = \"exactly\" is not one of"),
     (lambda: controllers.FixedTimeMSS(**gains(alpha1=[0.9, 0.8, 0.7, 0.6, 0.5], alpha2=[0.5, 0.4, 0.3, 0.2])),
-     r"alpha2 has 4 values: one per axis takes 3 \(the plant's axes\), one per case 5 \(the batch's cases\)"),
+     r"alpha2 has 4 values: one per axis takes 3 \(the plant's axes\), one per case 5 \(the batch's cases\); "
+     r"alpha1 gave 5 per case"),
+    # the two-axis law's per-axis default meets rows of three: the message names the parameter
+    # that made them cases too
+    (lambda: controllers.NTSMC(alpha=np.ones((3, 3))), r"beta has 2 values: .*; alpha gave 3 per case"),
     (lambda: controllers.SuperTwisting(b1=0.0), "b1 > 0"),
     (lambda: controllers.SuperTwisting(b2=-1.0), "b2 > 0"),
     (lambda: controllers.SuperTwisting(c=0.0), "c > 0"),

@@ -324,7 +324,8 @@ impl<'t> Reader<'t> {
     fn claim(&mut self, key: &str, len: usize) -> Result<(), ReadError> {
         match self.cases {
             Some(n) if n != len => Err(ReadError::value(format!(
-                "{key} has {len} values per case but the batch has {n} cases"
+                "{key} has {len} values per case but the batch has {n} cases{}",
+                self.set_by()
             ))),
             _ => {
                 self.cases = Some(len);
@@ -333,6 +334,16 @@ impl<'t> Reader<'t> {
                 }
                 Ok(())
             }
+        }
+    }
+
+    /// Which parameter set the case count, for an error about it: a mismatch may be the
+    /// other parameter's mistake (a per-axis parameter of a three-axis plant given to a
+    /// two-axis law reads as three cases), so the message names both.
+    fn set_by(&self) -> String {
+        match &self.per_case_key {
+            Some(k) => format!("; {k} gave {} per case", self.cases.unwrap_or(1)),
+            None => String::new(),
         }
     }
 
@@ -420,7 +431,8 @@ impl<'t> Reader<'t> {
                 // sized for another plant read as per case otherwise)
                 if let Some(n) = self.cases.filter(|n| n != len) {
                     return Err(ReadError::value(format!(
-                        "{key} has {len} values: one per axis takes {d} (the plant's axes), one per case {n} (the batch's cases)"
+                        "{key} has {len} values: one per axis takes {d} (the plant's axes), one per case {n} (the batch's cases){}",
+                        self.set_by()
                     )));
                 }
                 self.claim(key, *len)?;
