@@ -182,6 +182,12 @@ class Cubic(Reference):
             raise ParameterError(
                 f"Cubic: coefficients has shape {c.shape}; it takes (axes, 4) or (N, axes, 4)"
             )
+        bad = np.argwhere(~np.isfinite(c))
+        if bad.size:
+            # the core reads the columns as c0..c3: refused here, the message names the argument
+            where = tuple(int(i) for i in bad[0])
+            value = "NaN" if np.isnan(c[where]) else f"{c[where]:g}"
+            raise ParameterError(f"Cubic: coefficients = {value} violates finite values (entry {list(where)})")
         table: dict[str, Any] = {"kind": self.kind, "t_end": as_float_array("Cubic", "t_end", self.t_end),
                                  "after": self.after}
         for j in range(4):

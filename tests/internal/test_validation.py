@@ -52,6 +52,8 @@ CONSTRUCTION = [
     (lambda: controllers.OpenLoop(acceleration=np.inf), "acceleration = inf violates finite values"),
     (lambda: reference.Cubic.from_boundary([0, 0, 0], [0, 0, 0], [1, 1, 1], [0, 0, 0], -5.0), "T = -5 violates T > 0"),
     (lambda: reference.Cubic(coefficients=np.zeros((3, 3)), t_end=1.0), "coefficients has shape"),
+    (lambda: reference.Cubic(coefficients=[[0.0, 1.0, np.nan, 0.0]], t_end=1.0).evaluate(0.0, axes=1),
+     r"coefficients = NaN violates finite values \(entry \[0, 2\]\)"),
     (lambda: reference.Constant(position=(0.0, np.nan, 0.0)), "position"),
     (lambda: disturbances.UniformNoise(bound=-1.0), "bound >= 0"),
     (lambda: disturbances.Sinusoid(amplitude=1.0, omega=np.inf), "omega"),
