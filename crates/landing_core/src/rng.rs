@@ -126,10 +126,10 @@ fn box_muller(a: u64, b: u64) -> (f64, f64) {
 
 /// Box-Muller over a block's lanes: lane i holds one case's pair of words, as
 /// [`CaseStream::normals`] takes them (a lane not set gives the normals 0 and 0, as the
-/// padding lanes of a block had before). The logarithm and the sine and cosine are the lane types' own ([`crate::lanes`]), the
-/// same bits at every instruction-set level and within a few ulp of libm's (the test below);
-/// libm, one lane at a time, cost a realistic campaign more than half its time (the sensor's
-/// twelve normals per case and period; BENCHMARKS.md).
+/// padding lanes of a block had before). The logarithm and the sine and cosine are the lane
+/// types' own ([`crate::lanes`]): the same bits at every instruction-set level, and within a
+/// few ulp of libm's (the test below). libm, one lane at a time, cost a realistic campaign
+/// more than half its time (the sensor's twelve normals per case and period; BENCHMARKS.md).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LanePairs<R> {
     below: R,
