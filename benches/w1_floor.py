@@ -10,8 +10,9 @@ measured throughput of the kernel's instruction mix". This script does both halv
    count instructions; callgrind can, but only up to AVX2. At ``avx2`` this count agrees with
    callgrind's.)
 2. **Run without dependencies.** It writes a loop of the same instructions, as many of each, in
-   which no instruction waits for another (destinations rotate over 24 vector and 7 mask
-   registers, sources are fixed, memory operands hit a 4 kB buffer), compiles it with gcc, and
+   which no instruction waits for another (destinations rotate over 20 vector and 7 mask
+   registers, divisions and square roots write 4 registers nothing reads, sources are fixed,
+   memory operands hit a 4 kB buffer), compiles it with gcc, and
    times it. The loop's time is what this processor needs to issue and execute W1's
    instructions when nothing but their number and kind limits it: the floor of this code. Its
    distance from W1's measured time is what dependencies (latency chains), the front end and
@@ -28,6 +29,11 @@ way from ``profile_small_body``:
 
     cargo build --release -p landing_core --example profile_small_body
     python benches/w1_floor.py --workload W3 --profile target/release/examples/profile_small_body
+
+``--kinds`` also times the loop with each kind of instruction alone and without it. Read it with
+care: the loop's order changes with its content, and on Intel a loop without a kind sometimes
+ran longer than the whole (its front end moves with its layout; BENCHMARKS.md, "The Intel
+machine again").
 
 Needs gdb and gcc. Linux, x86-64 only. See BENCHMARKS.md, "W1's floor".
 """
@@ -270,7 +276,11 @@ GREGS = ["r8", "r9", "r10", "r11", "r12", "r13", "r14", "r15"]
 def loop_body(mix: dict[str, int], level: str) -> tuple[str, collections.Counter[str]]:
     """The loop's instructions, interleaved (so that no kind runs in a burst), and what was left
     out."""
-    nvec = VREGS if level == "avx512" else 8
+    # Fused multiply-adds and two-table permutes read their destination, so a register's next
+    # reader waits for its last writer; divisions and square roots (16 cycles and more per zmm
+    # on Intel's divider) write registers of their own, which nothing reads, so that no reader
+    # waits on the divider's queue.
+    nvec, nslow = (VREGS - 4, 4) if level == "avx512" else (6, 2)
     lines: list[list[str]] = []
     left = collections.Counter()
     for cls, n in sorted(mix.items()):
@@ -283,9 +293,12 @@ def loop_body(mix: dict[str, int], level: str) -> tuple[str, collections.Counter
     total = sum(len(x) for x in lines)
     order = sorted(((i + 0.5) / len(x), j, i) for j, x in enumerate(lines) for i in range(len(x)))
     out = []
+    slow = 0
     for idx, (_, j, i) in enumerate(order):
         t = lines[j][i]
         d = 8 + idx % nvec
+        if t.startswith(("vdiv", "vsqrt")):
+            d, slow = 8 + nvec + slow % nslow, slow + 1
         out.append(
             t.replace("{d2}", str(8 + (idx + nvec // 2) % nvec))
             .replace("{d}", str(d))
@@ -414,6 +427,12 @@ def main() -> int:
         help="also count the vector arithmetic by the source line it was inlined from (a build with "
         "CARGO_PROFILE_RELEASE_DEBUG=line-tables-only; slower)",
     )
+    ap.add_argument(
+        "--kinds",
+        action="store_true",
+        help="also time the whole loop with each kind of instruction alone and without it (which "
+        "kind bounds the floor)",
+    )
     args = ap.parse_args()
     profile = args.profile
     if not profile.exists():
@@ -495,7 +514,31 @@ def main() -> int:
         )
     ratio = statistics.median(a / b for a, b in zip(w1, floor["whole"]))
     print(f"{args.workload} / floor: {ratio:.2f} (median of the rounds' ratios)")
+    if args.kinds:
+        kinds(parts["whole"], args.level)
     return 0
+
+
+def kinds(mix: collections.Counter[str], level: str) -> None:
+    """The whole loop with each kind of instruction alone and without it, fastest of three runs
+    each, ns per block-period: a kind whose removal leaves the time unchanged is not what
+    bounds the floor."""
+
+    def time_of(sub: collections.Counter[str]) -> float:
+        with tempfile.TemporaryDirectory() as tmp:
+            body, _ = loop_body(sub, level)
+            exe = build(body, Path(tmp))
+            runs = [subprocess.run([str(exe), "100000"], capture_output=True, text=True, check=True) for _ in range(3)]
+            return min(float(r.stdout.split()[1]) for r in runs) * 1e9
+
+    def kind(cls: str) -> str:
+        return next(iter(groups_of(collections.Counter({cls: 1}))))
+
+    print(f"the loop by kind of instruction, ns per block-period (all: {time_of(mix):.1f})")
+    for g in sorted({kind(c) for c in mix if template(c)}):
+        alone = collections.Counter({c: n for c, n in mix.items() if kind(c) == g})
+        rest = collections.Counter({c: n for c, n in mix.items() if kind(c) != g})
+        print(f"  {g:48s} {sum(alone.values()):5d}   alone {time_of(alone):7.1f}   without {time_of(rest):7.1f}")
 
 
 if __name__ == "__main__":
