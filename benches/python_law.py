@@ -13,7 +13,8 @@ Three tables:
    ``--threads``: the ratio is the cost of writing the law in Python (the law at its default
    ``cases_per_call``).
 2. The same at each ``--threads`` for ``cases_per_call`` from 256 to the whole batch
-   (``None``): what running a slice of cases at a time buys.
+   (``None``): what running a slice of cases at a time buys (``--sweep careful zeros``: for
+   the careful function and the zeros law of table 4 too).
 3. Where the time of the default goes, at each ``--threads``: the function alone (timed
    inside the run), the built-in open-loop law on the same cases (the plant's periods without
    a law), and the rest (the engine's round trip). On one thread the function and the open
@@ -154,6 +155,8 @@ def main() -> None:
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--t-final", type=float, default=2.0)
     ap.add_argument("--tables", type=int, nargs="+", default=[1, 2, 3, 4, 5], help="which tables to print")
+    ap.add_argument("--sweep", nargs="+", choices=["printed", "careful", "zeros"], default=["printed"],
+                    help="table 2's functions (zeros: the engine's own cost)")
     args = ap.parse_args()
     plant = P.MarsLander(thrust_limit=50_000.0)
     dt, t_final = 1e-3, args.t_final
@@ -217,8 +220,12 @@ def table2(args, plant, builtin, python, x0, kw, steps) -> None:
         print(f"\n2. cases per call, {args.cases} Mars cases, {threads} thread(s); median of {args.repeat}, "
               "ns per case-step")
         sweep = {"built-in": builtin}
-        for per_call in (256, 512, 1024, 2048, 4096, None):
-            sweep[f"cases_per_call={per_call}"] = python.replace(cases_per_call=per_call)
+        functions = {"printed": python, "careful": python.replace(function=mss_lean),
+                     "zeros": python.replace(function=zeros)}
+        for label in args.sweep:
+            for per_call in (256, 512, 1024, 2048, 4096, None):
+                name = f"cases_per_call={per_call}" + (f", {label}" if args.sweep != ["printed"] else "")
+                sweep[name] = functions[label].replace(cases_per_call=per_call)
         times = {name: [] for name in sweep}
         for r in range(args.repeat):
             names = list(sweep)
