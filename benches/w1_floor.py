@@ -337,8 +337,9 @@ int main(int argc, char **argv) {
     /* denormals read as and flushed to zero: the loop's operands are whatever its instructions
        leave in the rotating registers, and on Intel cores an operation that reads or makes a
        denormal takes a microcode assist (the mix ran 2.7x slower), which W1, whose values are
-       normal, does not; this costs nothing on normal operands */
-    __builtin_ia32_ldmxcsr(__builtin_ia32_stmxcsr() | 0x8040);
+       normal, does not; this costs nothing on normal operands (a second argument keeps them,
+       --keep-denormals) */
+    if (argc < 3) __builtin_ia32_ldmxcsr(__builtin_ia32_stmxcsr() | 0x8040);
     long m = iters;
     double *src = buf, *dst = buf + 1280;
     t0 = now();
@@ -428,6 +429,11 @@ def main() -> int:
         "CARGO_PROFILE_RELEASE_DEBUG=line-tables-only; slower)",
     )
     ap.add_argument(
+        "--keep-denormals",
+        action="store_true",
+        help="run the loop without flushing denormals (on Intel its operands' denormals then cost assists)",
+    )
+    ap.add_argument(
         "--kinds",
         action="store_true",
         help="also time the loop with each kind of instruction alone and without it",
@@ -496,7 +502,12 @@ def main() -> int:
             ).stdout
             w1.append(float(r.split()[0]))
             for name, exe in exes.items():
-                g, t = subprocess.run([str(exe), "200000"], capture_output=True, text=True, check=True).stdout.split()
+                g, t = subprocess.run(
+                    [str(exe), "200000", *(["denormals"] if args.keep_denormals else [])],
+                    capture_output=True,
+                    text=True,
+                    check=True,
+                ).stdout.split()
                 ghz.append(float(g))
                 floor[name].append(float(t) * 1e9 / LANES)
     g = statistics.median(ghz)
