@@ -1,13 +1,17 @@
-"""What the peer benches (`peers_small_body.py`, `peers_tether.py`) share: a timed run after
-numba's workers have gone to sleep, and the machine and package versions for the header."""
+"""What the benches share: a timed run after numba's workers have gone to sleep, the machine and
+package versions for the header, and the ``--json`` file through which `targets.py` reads the
+numbers a bench printed."""
 
 from __future__ import annotations
 
+import argparse
+import json
 import os
 import platform
 import time
 from collections.abc import Callable
 from importlib import metadata
+from pathlib import Path
 
 # numba's OpenMP workers spin for a while after a parallel region (libgomp's default wait
 # policy): measured, 8 ms of CPU taken from a 19 ms landing run that followed a two-thread
@@ -62,3 +66,14 @@ def numba_fma() -> Callable[[float, float, float], float]:
         return _fma(a, b, c)
 
     return fma
+
+
+def json_option(ap: argparse.ArgumentParser) -> None:
+    """``--json FILE``: also write the numbers the bench prints to FILE (`targets.py` reads them)."""
+    ap.add_argument("--json", type=Path, default=None, help="also write the printed numbers to this JSON file")
+
+
+def write_json(path: Path | None, numbers: dict) -> None:
+    """The bench's numbers, with the machine they were measured on, to ``path`` (if given)."""
+    if path is not None:
+        path.write_text(json.dumps({"machine": machine(), **numbers}, indent=1))

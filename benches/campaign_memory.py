@@ -10,7 +10,7 @@ after the import, after the campaign and after reading the signals back (``mc.ba
 over blocks of instants, ``report()``); then, with ``--load``, the same for ``landing.load``
 in a fresh process.
 
-    python benches/campaign_memory.py --cases 100000 [--threads 2] [--store DIR] [--load] [--in-memory]
+    python benches/campaign_memory.py --cases 100000 [--threads 2] [--store DIR] [--load] [--in-memory] [--json FILE]
 
 ``--in-memory`` runs the same campaign without a store (the trajectories in memory), for
 comparison.
@@ -30,6 +30,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from _harness import json_option, write_json
 
 
 def peak_mib() -> float:
@@ -76,6 +78,7 @@ def main() -> None:
     ap.add_argument("--store", default=None, help="the store's directory (default: a temporary one, deleted)")
     ap.add_argument("--load", action="store_true", help="then landing.load the store in a fresh process")
     ap.add_argument("--in-memory", action="store_true", help="the same campaign without a store, for comparison")
+    json_option(ap)
     ap.add_argument("--load-only", default=None, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.load_only:
@@ -104,6 +107,9 @@ def main() -> None:
         where = "in memory" if args.in_memory else f"store {size / 2**30:.2f} GiB on disk, states read on demand"
         print(f"campaign: {wall:.1f} s ({wall / n * 1e3:.3f} ms a case), peak RSS {after_run:.0f} MiB "
               f"(after import {base:.0f} MiB); {where}")
+        write_json(args.json, {"cases": n, "threads": args.threads, "stored": not args.in_memory,
+                               "case_steps": n * round(scenario.t_final / scenario.dt), "wall_s": wall,
+                               "peak_rss_mib": after_run, "bytes_on_disk": size})
         t0 = time.perf_counter()
         bands = mc.bands("rz")
         mc.report()

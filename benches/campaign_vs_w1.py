@@ -9,7 +9,7 @@ shared machine the load moves between minutes, and the median of the rounds' pai
 what this prints.
 
     cargo build --release -p landing_core --example profile_w1
-    python benches/campaign_vs_w1.py [--rounds 16] [--threads 2] [--w1-cases 2400] [--campaign-cases 1600]
+    python benches/campaign_vs_w1.py [--rounds 16] [--threads 2] [--w1-cases 2400] [--campaign-cases 1600] [--json FILE]
 """
 
 from __future__ import annotations
@@ -19,6 +19,8 @@ import statistics
 import subprocess
 import time
 from pathlib import Path
+
+from _harness import json_option, write_json
 
 import landing
 
@@ -31,6 +33,7 @@ def main() -> None:
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--w1-cases", type=int, default=2400)
     ap.add_argument("--campaign-cases", type=int, default=1600)
+    json_option(ap)
     ap.add_argument("--profile", type=Path, default=ROOT / "target" / "release" / "examples" / "profile_w1")
     args = ap.parse_args()
     scenario = landing.scenarios.preset("mars_monte_carlo")
@@ -55,6 +58,8 @@ def main() -> None:
         f"{args.threads} thread(s), medians: W1 {statistics.median(w1):.2f}, campaign {statistics.median(campaign):.2f}; "
         f"campaign / W1 {ratio:.3f} (median of the rounds' ratios)"
     )
+    write_json(args.json, {"threads": args.threads, "rounds": args.rounds, "w1_ns": statistics.median(w1),
+                           "campaign_ns": statistics.median(campaign), "ratio": ratio})
 
 
 if __name__ == "__main__":

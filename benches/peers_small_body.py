@@ -61,7 +61,7 @@ Every timed run starts 50 ms after the last (SETTLE_S): numba's OpenMP workers s
 parallel region and, unpaused, took 8 ms of CPU from a 19 ms landing run that followed.
 
     pip install -r benches/requirements.txt   # numba
-    python benches/peers_small_body.py [--cases 300] [--repeat 5] [--threads 1 2] [--only W3,W5]
+    python benches/peers_small_body.py [--cases 300] [--repeat 5] [--threads 1 2] [--only W3,W5] [--json FILE]
 """
 
 from __future__ import annotations
@@ -76,7 +76,7 @@ import sys
 import time
 
 import numpy as np
-from _harness import machine, measure, numba_fma, version
+from _harness import json_option, machine, measure, numba_fma, version, write_json
 
 # --- W3 ------------------------------------------------------------------------------------------
 
@@ -515,6 +515,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--cases", type=int, default=300)
     ap.add_argument("--repeat", type=int, default=5, help="timed runs per row (best and median of these)")
+    json_option(ap)
     ap.add_argument("--threads", type=int, nargs="+", default=None,
                     help="thread counts (default: 1 and the number of cores)")
     ap.add_argument("--only", default=",".join(WORKLOADS), help="comma-separated subset of " + ",".join(WORKLOADS))
@@ -638,6 +639,11 @@ def main() -> None:
     print("\nNotes:")
     for note in notes:
         print(f"  {note}")
+    write_json(args.json, {"cases": args.cases, "rows": [
+        {"workload": w, "implementation": impl, "threads": n,
+         "best_ns": stats(i)[0] * 1e9 / (args.cases * specs[w]["steps"]),
+         "median_ns": stats(i)[1] * 1e9 / (args.cases * specs[w]["steps"])}
+        for i, (w, impl, n, _) in enumerate(rows)]})
 
 
 if __name__ == "__main__":

@@ -94,7 +94,7 @@ process's CPU time (all its threads) over the wall time of a run. Every timed ru
 after the last (SETTLE_S): numba's OpenMP workers spin after a parallel region.
 
     pip install -r benches/requirements.txt   # numba
-    python benches/peers_tether.py [--cases 300] [--repeat 5] [--threads 1 2]
+    python benches/peers_tether.py [--cases 300] [--repeat 5] [--threads 1 2] [--json FILE]
 """
 
 from __future__ import annotations
@@ -110,7 +110,7 @@ import sys
 import time
 
 import numpy as np
-from _harness import machine, measure, numba_fma, version
+from _harness import json_option, machine, measure, numba_fma, version, write_json
 
 # --- W6 ------------------------------------------------------------------------------------------
 
@@ -515,6 +515,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--cases", type=int, default=300)
     ap.add_argument("--repeat", type=int, default=5, help="timed runs per row (best and median of these)")
+    json_option(ap)
     ap.add_argument("--threads", type=int, nargs="+", default=None,
                     help="thread counts (default: 1 and the number of cores)")
     args = ap.parse_args()
@@ -642,6 +643,9 @@ def main() -> None:
     print("\nNotes:")
     for note in notes:
         print(f"  {note}")
+    write_json(args.json, {"cases": args.cases, "rows": [
+        {"workload": "W6", "implementation": impl, "threads": n, "best_ns": stats(i)[0] * 1e9 / case_steps,
+         "median_ns": stats(i)[1] * 1e9 / case_steps} for i, (impl, n, _) in enumerate(rows)]})
 
 
 if __name__ == "__main__":

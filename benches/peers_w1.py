@@ -10,6 +10,8 @@ time, final states only.
 
 The peers:
 
+- landing itself with the AVX2 kernel forced (``simulate_batch(..., kernel="avx2")``, one thread),
+  where the CPU has AVX2: the level a CPU without AVX-512 runs.
 - numpy, vectorised over cases (one thread); it is the accuracy reference.
 - numba, one case per ``prange`` iteration, written two ways: the law as printed, seven
   ``abs(x)**a`` per axis, and with the powers shared as landing shares them (one ``log`` and two
@@ -30,7 +32,7 @@ one thread and on the same thread count. CPU/wall is the process's CPU time (all
 over the wall time of a run: it shows whether a row used the cores it was given.
 
     pip install -r benches/requirements.txt   # numba, jax (CPU)
-    python benches/peers_w1.py [--cases 300] [--repeat 5] [--threads 1 2] [--only landing,jax]
+    python benches/peers_w1.py [--cases 300] [--repeat 5] [--threads 1 2] [--only landing,jax] [--json FILE]
 """
 
 from __future__ import annotations
@@ -49,6 +51,7 @@ import time
 from importlib import metadata
 
 import numpy as np
+from _harness import json_option, write_json
 
 G_MARS, G0, ISP, KD, HD, FMAX = 3.7114, 9.807, 225.0, 0.699, 0.0009, 50_000.0
 AREA = np.array([6.0, 7.5, 8.7])
@@ -56,7 +59,13 @@ B1, B2, Q1, Q2, A1, A2, G1, G2 = 0.8, 0.4, 0.95, 1.05, 0.9, 0.5, 0.9, 1.1
 T_FINAL, DT = 10.0, 1e-3
 STEPS = int(round(T_FINAL / DT))
 TOLERANCE = 1e-9  # largest relative difference from the numpy peer on any final state
-IMPLEMENTATIONS = ("landing", "numpy", "numba-printed", "numba-shared", "jax", "jax-sharded")
+IMPLEMENTATIONS = ("landing", "landing-avx2", "numpy", "numba-printed", "numba-shared", "jax", "jax-sharded")
+
+
+def landing_levels() -> list[str]:
+    import landing
+
+    return landing.kernel_levels()
 
 
 def initial_states(n: int) -> np.ndarray:
@@ -67,14 +76,14 @@ def initial_states(n: int) -> np.ndarray:
     return landing.dispersions.Normal(mean=mean, std=sd).sample(n, seed=2024)
 
 
-def run_landing(x0: np.ndarray, threads: int | None) -> np.ndarray:
+def run_landing(x0: np.ndarray, threads: int | None, kernel: str | None = None) -> np.ndarray:
     import landing
 
     law = landing.controllers.FixedTimeMSS(beta1=B1, beta2=B2, q1=Q1, q2=Q2, alpha1=A1, alpha2=A2, gamma1=G1,
                                            gamma2=G2)
     res = landing.simulate_batch(landing.plants.MarsLander(thrust_limit=FMAX), law, x0, t_final=T_FINAL, dt=DT,
                                  disturbance=landing.disturbances.Sinusoid(amplitude=20.0, omega=1.0),
-                                 record_every=0, threads=threads)
+                                 record_every=0, threads=threads, kernel=kernel)
     return res.final_state
 
 
@@ -379,6 +388,7 @@ def main() -> None:
                     help="thread counts for the threaded rows (default: 1 and the number of cores)")
     ap.add_argument("--only", default=",".join(IMPLEMENTATIONS),
                     help="comma-separated subset of " + ",".join(IMPLEMENTATIONS))
+    json_option(ap)
     ap.add_argument("--jax-child", choices=("jax", "jax-sharded"), help=argparse.SUPPRESS)
     ap.add_argument("--x0", help=argparse.SUPPRESS)
     ap.add_argument("--out", help=argparse.SUPPRESS)
@@ -416,6 +426,13 @@ def main() -> None:
         finals["landing"] = run_landing(x0, None)
         for n in thread_counts:
             rows.append(("landing (simulate_batch)", "landing", n, lambda n=n: measure(lambda: run_landing(x0, n))))
+    if "landing-avx2" in only:
+        if "avx2" in landing_levels():
+            finals["landing-avx2"] = run_landing(x0, 1, "avx2")
+            rows.append(("landing, AVX2 kernel forced", "landing-avx2", 1,
+                         lambda: measure(lambda: run_landing(x0, 1, "avx2"))))
+        else:
+            notes.append("landing-avx2: skipped, this CPU has no AVX2")
     numba = None
     for key in ("numba-printed", "numba-shared"):
         if key in only:
@@ -530,6 +547,9 @@ def main() -> None:
     print("\nNotes:")
     for note in notes:
         print(f"  {note}")
+    write_json(args.json, {"cases": args.cases, "steps": STEPS, "rows": [
+        {"implementation": key, "threads": n, "best_ns": stats(i)[0] * 1e9 / steps,
+         "median_ns": stats(i)[1] * 1e9 / steps} for i, (_label, key, n, _) in enumerate(rows)]})
 
 
 if __name__ == "__main__":

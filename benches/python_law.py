@@ -35,7 +35,9 @@ Three tables:
 
 The timed runs go round-robin over the rows; the tables give the median of ``--repeat`` runs.
 
-    python benches/python_law.py [--cases 10000] [--repeat 5] [--threads 1 2]
+    python benches/python_law.py [--cases 10000] [--repeat 5] [--threads 1 2] [--json FILE]
+
+``--json`` writes tables 1 and 4 (those that ran).
 """
 
 from __future__ import annotations
@@ -50,6 +52,7 @@ import time
 import types
 
 import numpy as np
+from _harness import json_option, write_json
 
 import landing
 from landing import controllers as C
@@ -157,6 +160,7 @@ def main() -> None:
     ap.add_argument("--tables", type=int, nargs="+", default=[1, 2, 3, 4, 5], help="which tables to print")
     ap.add_argument("--sweep", nargs="+", choices=["printed", "careful", "zeros"], default=["printed"],
                     help="table 2's functions (zeros: the engine's own cost)")
+    json_option(ap)
     args = ap.parse_args()
     plant = P.MarsLander(thrust_limit=50_000.0)
     dt, t_final = 1e-3, args.t_final
@@ -178,19 +182,21 @@ def main() -> None:
     print(f"# {datetime.date.today()}  {platform.processor() or platform.machine()}  "
           f"{os.cpu_count()} cores  landing {landing.__version__}  numpy {np.__version__}")
     print(f"# accuracy: max relative difference of the final states {err:.2g}")
+    numbers: dict = {"cases": args.cases}
     if 1 in args.tables:
-        table1(args, plant, builtin, python, careful, x0, kw, steps)
+        numbers["table1"] = table1(args, plant, builtin, python, careful, x0, kw, steps)
     if 2 in args.tables:
         table2(args, plant, builtin, python, x0, kw, steps)
     if 3 in args.tables:
         table3(args, plant, builtin, python, x0, kw, steps)
     if 4 in args.tables:
-        table4(args, plant, kw, steps)
+        numbers["table4"] = table4(args, plant, kw, steps)
     if 5 in args.tables:
         table5(args)
+    write_json(args.json, numbers)
 
 
-def table1(args, plant, builtin, python, careful, x0, kw, steps) -> None:
+def table1(args, plant, builtin, python, careful, x0, kw, steps) -> list[dict]:
     t_final, dt = kw["t_final"], kw["dt"]
     print(f"\n1. fixed-time MSS, {args.cases} Mars cases, {t_final} s at dt = {dt} s ({steps} control instants); "
           f"median of {args.repeat}, ns per case-step")
@@ -208,11 +214,14 @@ def table1(args, plant, builtin, python, careful, x0, kw, steps) -> None:
         for name in names[r % len(names):] + names[:r % len(names)]:
             times[name].append(timed(rows[name]))
     per = {name: statistics.median(v) / (args.cases * steps) * 1e9 for name, v in times.items()}
+    rows = []
     for threads in args.threads:
         bi, py = per[f"built-in, {threads} thread(s)"], per[f"PythonLaw, {threads} thread(s)"]
         ca = per[f"careful, {threads} thread(s)"]
         print(f"   {threads} thread(s): built-in {bi:8.1f}   PythonLaw {py:8.1f}   ratio {py / bi:5.2f}   "
               f"careful numpy {ca:8.1f}   ratio {ca / bi:5.2f}")
+        rows.append({"threads": threads, "builtin_ns": bi, "printed_ns": py, "careful_ns": ca})
+    return rows
 
 
 def table2(args, plant, builtin, python, x0, kw, steps) -> None:
@@ -276,9 +285,10 @@ def table3(args, plant, builtin, python, x0, kw, steps) -> None:
                       f"function / built-in = {med['function'] / med['built-in']:.2f}")
 
 
-def table4(args, plant, kw, steps) -> None:
+def table4(args, plant, kw, steps) -> list[dict]:
     t_final, dt = kw["t_final"], kw["dt"]
     zero = C.PythonLaw(zeros)
+    table = []
     for threads in args.threads:
         print(f"\n4. per-call overhead: a law returning zeros against the built-in OpenLoop, {t_final} s at dt = "
               f"{dt} s, {threads} thread(s); median of {args.repeat}, microseconds per control instant")
@@ -293,6 +303,8 @@ def table4(args, plant, kw, steps) -> None:
             o, p = (statistics.median(t[k]) / (steps + 1) * 1e6 for k in ("open", "python"))
             print(f"   {n:>7} cases: OpenLoop {o:9.1f}   PythonLaw {p:9.1f}   overhead {p - o:9.1f} "
                   f"({(p - o) / n * 1e3:6.1f} ns per case)")
+            table.append({"threads": threads, "cases": n, "open_loop_us": o, "python_us": p})
+    return table
 
 
 def table5(args) -> None:

@@ -5,7 +5,7 @@ before 2026-12-06) and the progress bar's default chunks, and these chunks as be
 2026-12-07: each chunk's recording in arrays of its own, copied into the campaign's output,
 instead of written into it), medians of alternated repeats in one run.
 
-    python benches/recording_cost.py [--cases 2000] [--repeat 3] [--threads 2] [--paths NAME ...]
+    python benches/recording_cost.py [--cases 2000] [--repeat 3] [--threads 2] [--paths NAME ...] [--json FILE]
 
 Accuracy first: every path's final states equal simulate_batch's bit for bit.
 """
@@ -17,6 +17,7 @@ import statistics
 import time
 
 import numpy as np
+from _harness import json_option, write_json
 
 import landing
 from landing.campaign._assembly import Assembly
@@ -27,6 +28,7 @@ def main() -> None:
     ap.add_argument("--cases", type=int, default=2000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--threads", type=int, default=2)
+    json_option(ap)
     ap.add_argument("--paths", nargs="+", help="only these paths (names as printed, e.g. 'monte_carlo, progress bar')")
     args = ap.parse_args()
     s = landing.scenarios.preset("mars_monte_carlo")
@@ -76,10 +78,13 @@ def main() -> None:
             out.append(time.perf_counter() - t0)
     print(f"{n} cases x {steps} steps, {threads} threads; ns of wall time per case-step, median of {args.repeat}")
     print(f"{'path':<30} {'metrics only':>13} {'every 50 ms':>12} {'cost':>7}")
+    rows = []
     for name in runs:
         a = statistics.median(times[(name, 0)]) / (n * steps) * 1e9
         b = statistics.median(times[(name, 50)]) / (n * steps) * 1e9
         print(f"{name:<30} {a:>13.2f} {b:>12.2f} {100 * (b / a - 1):>6.1f}%")
+        rows.append({"path": name, "metrics_only_ns": a, "every_50ms_ns": b, "cost": b / a - 1})
+    write_json(args.json, {"cases": n, "threads": threads, "repeat": args.repeat, "rows": rows})
 
 
 if __name__ == "__main__":

@@ -1,0 +1,183 @@
+"""The speed targets of issue 27 and of the Python law (issue 21, item 6), measured in one run.
+
+Runs the benches below one after another on this machine, each with ``--json``, each checking
+its accuracy before it times anything, then prints one table: every target, what it asks,
+what this run measured, and whether it holds here. The numbers of one run on one machine are
+what to compare: on a shared machine the load moves absolute times between minutes, so the
+table holds ratios taken inside one bench wherever a target is a ratio.
+
+- ``peers_w1.py``: W1 on one thread, against numba (the law as printed, and with the powers
+  shared) and JAX; one thread to all cores; the AVX2 kernel forced.
+- ``peers_small_body.py``, ``peers_tether.py``: W3, W5, W6 against numba, one thread.
+- ``campaign_vs_w1.py``: the main job's campaign (metrics only) against W1's kernel on the
+  same threads (needs ``profile_w1``, built by the first command below; skipped without it).
+- ``recording_cost.py``: the campaign recording every 50 ms against metrics only.
+- ``campaign_memory.py``: the main job's campaign into a store, recording every second. The
+  target is 10^6 cases in 10 minutes; by default this runs ``--campaign-cases`` (2 x 10^4) and
+  projects linearly to 10^6 (the table says so); ``--million`` runs all 10^6 (about 20
+  minutes on a 2-core machine).
+- ``python_law.py``: tables 1 and 4, the FixedTimeMSS law written in numpy (as printed, and as
+  a careful numpy user writes it) against the built-in law on 10^4 Mars cases, and the
+  per-call overhead of a Python law.
+
+W1's floor (``w1_floor.py``) is not run here: it needs gdb and gcc, and counts one binary.
+
+    cargo build --release -p landing_core --example profile_w1
+    pip install -r benches/requirements.txt
+    python benches/targets.py [--repeat 3] [--million] [--out DIR]
+
+About 25 minutes on a 2-core machine without ``--million``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+
+from _harness import machine
+
+HERE = Path(__file__).resolve().parent
+PROFILE_W1 = HERE.parent / "target" / "release" / "examples" / "profile_w1"
+MILLION = 1_000_000
+
+
+def run(name: str, args: list[str], out: Path) -> dict | None:
+    """``benches/NAME.py ARGS --json``, its output shown and kept in ``out/NAME.log``; its
+    numbers, or None if it failed (its accuracy check, or a missing peer)."""
+    numbers, log = out / f"{name}.json", out / f"{name}.log"
+    command = [sys.executable, str(HERE / f"{name}.py"), *args, "--json", str(numbers)]
+    print(f"\n$ {' '.join(command[1:])}", flush=True)
+    with open(log, "w") as fh:
+        proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        assert proc.stdout is not None
+        for line in proc.stdout:
+            print(line, end="", flush=True)
+            fh.write(line)
+        code = proc.wait()
+    if code != 0 or not numbers.exists():
+        print(f"{name}: exited with {code}; its targets are left unmeasured (log: {log})")
+        return None
+    return json.loads(numbers.read_text())
+
+
+def best(rows: list[dict], **match: object) -> float | None:
+    """The best ns per case-step of the row matching ``match``."""
+    for row in rows:
+        if all(row.get(k) == v for k, v in match.items()):
+            return row["best_ns"]
+    return None
+
+
+class Table:
+    """The targets: name, what it asks, the measured value, and whether it holds."""
+
+    def __init__(self) -> None:
+        self.rows: list[dict] = []
+
+    def add(self, name: str, asks: str, value: float | None, holds: Callable[[float], bool] | None,
+            shown: str, note: str = "") -> None:
+        met = None if value is None or holds is None else bool(holds(value))
+        self.rows.append({"target": name, "asks": asks, "measured": None if value is None else shown.format(value),
+                          "value": value, "met": met, "note": note})
+
+    def print(self) -> None:
+        head = f"| {'target':<54} | {'asks':<12} | {'measured':<14} | {'here':<9} |"
+        print(head)
+        print("|" + "|".join("-" * len(c) for c in head.split("|")[1:-1]) + "|")
+        for r in self.rows:
+            here = {True: "met", False: "not met", None: "-"}[r["met"]]
+            measured = r["measured"] if r["measured"] is not None else "not measured"
+            print(f"| {r['target']:<54} | {r['asks']:<12} | {measured:<14} | {here:<9} |")
+        notes = [f"{r['target']}: {r['note']}" for r in self.rows if r["note"]]
+        if notes:
+            print("\n" + "\n".join(notes))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=3, help="timed runs per row in each bench")
+    ap.add_argument("--campaign-cases", type=int, default=20_000, help="the stored campaign's cases, projected to 10^6")
+    ap.add_argument("--million", action="store_true", help="run the stored campaign on all 10^6 cases")
+    ap.add_argument("--out", type=Path, default=None, help="keep each bench's log and numbers here")
+    args = ap.parse_args()
+    out = args.out or Path(tempfile.mkdtemp(prefix="targets_"))
+    out.mkdir(parents=True, exist_ok=True)
+    cores = len(os.sched_getaffinity(0))
+    repeat = ["--repeat", str(args.repeat)]
+    started = datetime.datetime.now().astimezone()
+    print(f"targets, {started.isoformat(timespec='seconds')}; {machine()}; logs and numbers in {out}")
+
+    w1 = run("peers_w1", [*repeat, "--threads", *sorted({"1", str(cores)})], out)
+    small = run("peers_small_body", [*repeat, "--threads", "1"], out)
+    tether = run("peers_tether", [*repeat, "--threads", "1"], out)
+    versus = None
+    if PROFILE_W1.exists():
+        versus = run("campaign_vs_w1", ["--rounds", str(4 * args.repeat), "--threads", str(cores)], out)
+    else:
+        print(f"\ncampaign_vs_w1: skipped, {PROFILE_W1} not built")
+    recording = run("recording_cost", ["--cases", "20000", "--repeat", str(max(2, args.repeat - 1)), "--paths",
+                                       "monte_carlo, progress bar"], out)
+    cases = MILLION if args.million else args.campaign_cases
+    stored = run("campaign_memory", ["--cases", str(cases)], out)
+    python = run("python_law", [*repeat, "--tables", "1", "4", "--threads", *sorted({"1", str(cores)})], out)
+
+    t = Table()
+    if stored:
+        projected = stored["wall_s"] * MILLION / stored["cases"]
+        how = "" if stored["cases"] == MILLION else f"projected from {stored['cases']} cases"
+        t.add("10^6 Mars cases, 60 s, stored, recording every second", "<= 600 s", projected,
+              lambda v: v <= 600, "{:.0f} s", how)
+    else:
+        t.add("10^6 Mars cases, 60 s, stored, recording every second", "<= 600 s", None, None, "")
+    cost = recording["rows"][0]["cost"] if recording else None
+    t.add("recording every 50 ms, over metrics only", "<= 15 %", None if cost is None else 100 * cost,
+          lambda v: v <= 15, "{:.1f} %")
+    rows = w1["rows"] if w1 else []
+    one = best(rows, implementation="landing", threads=1)
+    t.add("W1, one thread, ns per case-step", "<= 18", one, lambda v: v <= 18, "{:.1f}")
+    for key, label in (("numba-printed", "numba, law as printed"), ("numba-shared", "numba, powers shared")):
+        peer = best(rows, implementation=key, threads=1)
+        t.add(f"W1 against {label}, one thread", ">= 14x", None if not (one and peer) else peer / one,
+              lambda v: v >= 14, "{:.1f}x")
+    jax = best(rows, implementation="jax", threads=1)
+    t.add("W1 against JAX, one thread", ">= 7x", None if not (one and jax) else jax / one, lambda v: v >= 7, "{:.1f}x")
+    many = best(rows, implementation="landing", threads=cores)
+    t.add(f"W1, one thread to {cores}", ">= 1.9x", None if cores < 2 or not (one and many) else one / many,
+          lambda v: v >= 1.9, "{:.2f}x", "" if cores >= 2 else "one core: not measured")
+    t.add("W1, the AVX2 kernel forced, ns per case-step", "<= 40", best(rows, implementation="landing-avx2", threads=1),
+          lambda v: v <= 40, "{:.1f}")
+    t.add(f"the campaign against W1, {cores} thread(s)", "<= 1.1", versus["ratio"] if versus else None,
+          lambda v: v <= 1.1, "{:.3f}")
+    for workload, source in (("W3", small), ("W5", small), ("W6", tether)):
+        peer_rows = source["rows"] if source else []
+        ours = best(peer_rows, workload=workload, implementation="landing", threads=1)
+        peer = best(peer_rows, workload=workload, implementation="numba", threads=1)
+        t.add(f"{workload} against numba, one thread", ">= 8x", None if not (ours and peer) else peer / ours,
+              lambda v: v >= 8, "{:.1f}x")
+    n = (python or {}).get("cases")
+    for row in (python or {}).get("table1", []):
+        for key, label in (("printed_ns", "as printed"), ("careful_ns", "careful")):
+            t.add(f"Python law ({label}) / built-in, {n} cases, {row['threads']} thr", "<= 3x",
+                  row[key] / row["builtin_ns"], lambda v: v <= 3, "{:.2f}x")
+    for row in (python or {}).get("table4", []):
+        if row["cases"] in (100, 10_000):
+            per_case = (row["python_us"] - row["open_loop_us"]) * 1e3 / row["cases"]
+            t.add(f"Python law's call, {row['cases']} cases, {row['threads']} thr, ns a case", "(measured)",
+                  per_case, None, "{:.1f}")
+
+    print(f"\nThe targets on this machine, {started.date()} ({machine()}):\n")
+    t.print()
+    summary = {"started": started.isoformat(timespec="seconds"), "machine": machine(), "targets": t.rows}
+    (out / "targets.json").write_text(json.dumps(summary, indent=1))
+    print(f"\n{out / 'targets.json'}")
+
+
+if __name__ == "__main__":
+    main()
