@@ -677,7 +677,7 @@ class PythonLaw(Controller):
         stay in the processor's caches between calls; with the whole batch at every call they
         stream through memory, and numpy's temporaries of a few hundred kilobytes each are
         mapped and unmapped at every operation (BENCHMARKS.md, "A law written in Python"). The
-        slices hold whole blocks of the kernel's lanes (a multiple of 8 cases at most). The
+        slices hold whole blocks of the kernel's lanes (4 to 16 cases, by instruction set). The
         results do not depend on it for a function that treats each case on its own, as a law
         does; each slice's memory is its own. On one thread the slices run one after another;
         on more, two at once, the function called on one while the other threads advance the

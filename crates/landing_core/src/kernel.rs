@@ -150,8 +150,12 @@ impl Level {
 /// to the copies (W6: 262 ms at 8 lanes, 551 ms at 32). Once the exponential was shortened
 /// and the statistics moved out of line, 16 AVX-512 lanes ran W1 as fast as 32 and W3 11 %
 /// faster (17.2 against 19.4 ms at 24 lanes), with less padding in a last, partial block and
-/// finer shares between threads (BENCHMARKS.md). Each plant picks [`Wide`] or
-/// [`Narrow`] blocks ([`crate::plant::PlantModel::Blocks`]); a case's bits do not depend on it.
+/// finer shares between threads (BENCHMARKS.md). The narrower levels have 16 registers, not
+/// 32, and twice the instructions per case: at 16 lanes their period spilled and its code
+/// outgrew the instruction cache, and 4 SSE2 and 8 AVX2 lanes ran W1 10 % and 22 to 30 %
+/// faster on Intel (Emerald Rapids; W3 14 and 19 %; AVX2 unchanged on AMD Zen 4). Each plant
+/// picks [`Wide`] or [`Narrow`] blocks ([`crate::plant::PlantModel::Blocks`]); a case's bits
+/// do not depend on it.
 /// Every law is compiled once per axis count and lane type, so the plants of one axis count
 /// share a choice: the three-axis plants are wide, the two-axis (tether) plants narrow.
 pub trait Blocks: Send + Sync + 'static {
@@ -162,7 +166,7 @@ pub trait Blocks: Send + Sync + 'static {
     type Avx512: Real;
 }
 
-/// Blocks of 8 cases in SSE2 registers, 16 in AVX2 and AVX-512.
+/// Blocks of 4 cases in SSE2 registers, 8 in AVX2, 16 in AVX-512.
 pub struct Wide;
 
 /// Blocks of 8 cases at every level.
@@ -170,8 +174,8 @@ pub struct Narrow;
 
 #[cfg(target_arch = "x86_64")]
 impl Blocks for Wide {
-    type Baseline = crate::lanes::x86::Sse2<4>;
-    type Avx2 = crate::lanes::x86::Avx2<4>;
+    type Baseline = crate::lanes::x86::Sse2<2>;
+    type Avx2 = crate::lanes::x86::Avx2<2>;
     type Avx512 = crate::lanes::x86::Avx512<2>;
 }
 

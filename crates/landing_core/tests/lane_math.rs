@@ -906,6 +906,7 @@ fn write_rows_at_every_level() {
     #[target_feature(enable = "avx2,fma")]
     unsafe fn avx2() {
         all::<landing_core::lanes::x86::Avx2<1>>("avx2, 1 register");
+        all::<landing_core::lanes::x86::Avx2<2>>("avx2, 2 registers");
         all::<landing_core::lanes::x86::Avx2<4>>("avx2, 4 registers");
     }
     #[target_feature(enable = "avx2,fma,avx512f,avx512cd,avx512bw,avx512dq,avx512vl")]
@@ -916,6 +917,7 @@ fn write_rows_at_every_level() {
     all::<f64>("f64");
     all::<Lanes<8>>("lanes");
     all::<landing_core::lanes::x86::Sse2<1>>("sse2, 1 register");
+    all::<landing_core::lanes::x86::Sse2<2>>("sse2, 2 registers");
     all::<landing_core::lanes::x86::Sse2<4>>("sse2, 4 registers");
     let levels = Level::supported();
     if levels.contains(&Level::Avx2) {
