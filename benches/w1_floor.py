@@ -3,12 +3,12 @@
 Issue 27 asks for a floor for W1 "established by a counted-operation model checked against a
 measured throughput of the kernel's instruction mix". This script does both halves:
 
-1. **Counted.** It runs ``profile_w1`` (one block of 16 cases) under gdb, stops at the law's
-   call of one control period (the 50th, in steady state) and single-steps one whole period of
-   the block, law, plant and integrator, to the next call: every instruction executed is
-   counted by mnemonic, operand width and whether it touches memory. (A sampling profile cannot
-   count instructions; callgrind can, but only up to AVX2. At ``avx2`` this count agrees with
-   callgrind's.)
+1. **Counted.** It runs ``profile_w1`` (one block: 16 cases at avx512, 8 at avx2) under gdb,
+   stops at the law's call of one control period (the 50th, in steady state) and single-steps
+   one whole period of the block, law, plant and integrator, to the next call: every
+   instruction executed is counted by mnemonic, operand width and whether it touches memory.
+   (A sampling profile cannot count instructions; callgrind can, but only up to AVX2. At
+   ``avx2`` this count agrees with callgrind's.)
 2. **Run without dependencies.** It writes a loop of the same instructions, as many of each, in
    which no instruction waits for another (destinations rotate over 20 vector and 7 mask
    registers, divisions and square roots write 4 registers nothing reads, sources are fixed,
@@ -24,7 +24,7 @@ that both times are also given in cycles per block-period.
     cargo build --release -p landing_core --example profile_w1
     python benches/w1_floor.py --level avx512 --rounds 10
 
-W3 and W5 (the small-body workloads, blocks of the same 16 cases) are counted and run the same
+W3 and W5 (the small-body workloads, blocks of the same size) are counted and run the same
 way from ``profile_small_body``:
 
     cargo build --release -p landing_core --example profile_small_body
@@ -51,7 +51,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 PROFILE = ROOT / "target" / "release" / "examples" / "profile_w1"
-LANES = 16  # a Mars or small-body block at avx2 and avx512 (`Level::lanes`)
+# cases in a Mars or small-body block at each level (`Blocks for Wide` in kernel.rs)
+LANES = {"avx2": 8, "avx512": 16}
 
 
 def prefix(workload: str) -> list[str]:
@@ -115,7 +116,7 @@ def count(level: str, profile: Path, by_source: bool = False, workload: str = "W
     with tempfile.TemporaryDirectory() as tmp:
         script, out = Path(tmp) / "mix.py", Path(tmp) / "mix.json"
         script.write_text(GDB_SCRIPT)
-        env = {"CANDS": ",".join(cands), "ARGS": " ".join([*prefix(workload), str(LANES), level]), "OUT": str(out)}
+        env = {"CANDS": ",".join(cands), "ARGS": " ".join([*prefix(workload), str(LANES[level]), level]), "OUT": str(out)}
         if by_source:
             env["BY_SOURCE"] = "1"
         subprocess.run(
@@ -467,8 +468,8 @@ def main() -> int:
     for name, mix in parts.items():
         total = sum(mix.values())
         print(
-            f"{args.workload} at {args.level}, {name}: {total} instructions per block-period ({LANES} cases), "
-            f"{total / LANES:.1f} per case-step"
+            f"{args.workload} at {args.level}, {name}: {total} instructions per block-period ({LANES[args.level]} cases), "
+            f"{total / LANES[args.level]:.1f} per case-step"
         )
         for g, n in groups_of(mix).most_common():
             print(f"  {n:6d}  {g}")
@@ -509,18 +510,18 @@ def main() -> int:
                     check=True,
                 ).stdout.split()
                 ghz.append(float(g))
-                floor[name].append(float(t) * 1e9 / LANES)
+                floor[name].append(float(t) * 1e9 / LANES[args.level])
     g = statistics.median(ghz)
     w = statistics.median(w1)
     print(f"clock {g:.2f} GHz (median of {len(ghz)})")
     print(
-        f"{args.workload} measured:                      {w:6.2f} ns per case-step, {w * g * LANES:7.0f} cycles per block-period"
+        f"{args.workload} measured:                      {w:6.2f} ns per case-step, {w * g * LANES[args.level]:7.0f} cycles per block-period"
     )
     for name in parts:
         f = statistics.median(floor[name])
         print(
             f"its mix, no dependency ({name:5s}): {f:6.2f} ns per case-step, "
-            f"{f * g * LANES:7.0f} cycles per block-period"
+            f"{f * g * LANES[args.level]:7.0f} cycles per block-period"
         )
     ratio = statistics.median(a / b for a, b in zip(w1, floor["whole"]))
     print(f"{args.workload} / floor: {ratio:.2f} (median of the rounds' ratios)")
