@@ -26,7 +26,7 @@ W1's floor (``w1_floor.py``) is not run here: it needs gdb and gcc, and counts o
     pip install -r benches/requirements.txt
     python benches/targets.py [--repeat 3] [--million] [--out DIR]
 
-About 25 minutes on a 2-core machine without ``--million``.
+About 11 minutes on the 2-core Intel machine of BENCHMARKS.md without ``--million``.
 """
 
 from __future__ import annotations
