@@ -48,10 +48,9 @@ import subprocess
 import sys
 import tempfile
 import time
-from importlib import metadata
 
 import numpy as np
-from _harness import json_option, write_json
+from _harness import json_option, machine, version, write_json
 
 G_MARS, G0, ISP, KD, HD, FMAX = 3.7114, 9.807, 225.0, 0.699, 0.0009, 50_000.0
 AREA = np.array([6.0, 7.5, 8.7])
@@ -60,12 +59,6 @@ T_FINAL, DT = 10.0, 1e-3
 STEPS = int(round(T_FINAL / DT))
 TOLERANCE = 1e-9  # largest relative difference from the numpy peer on any final state
 IMPLEMENTATIONS = ("landing", "landing-avx2", "numpy", "numba-printed", "numba-shared", "jax", "jax-sharded")
-
-
-def landing_levels() -> list[str]:
-    import landing
-
-    return landing.kernel_levels()
 
 
 def initial_states(n: int) -> np.ndarray:
@@ -363,23 +356,6 @@ def threads_label(n: int) -> str:
     return f"{n} thread{'s' if n != 1 else ''}"
 
 
-def machine() -> str:
-    model = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo") as fh:
-            model = next(line.split(":", 1)[1].strip() for line in fh if line.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    return f"{model}, {len(os.sched_getaffinity(0))} cores, Linux {platform.release()}"
-
-
-def version(name: str) -> str:
-    try:
-        return metadata.version(name)
-    except metadata.PackageNotFoundError:
-        return "not installed"
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--cases", type=int, default=300)
@@ -427,7 +403,9 @@ def main() -> None:
         for n in thread_counts:
             rows.append(("landing (simulate_batch)", "landing", n, lambda n=n: measure(lambda: run_landing(x0, n))))
     if "landing-avx2" in only:
-        if "avx2" in landing_levels():
+        import landing
+
+        if "avx2" in landing.kernel_levels():
             finals["landing-avx2"] = run_landing(x0, 1, "avx2")
             rows.append(("landing, AVX2 kernel forced", "landing-avx2", 1,
                          lambda: measure(lambda: run_landing(x0, 1, "avx2"))))
