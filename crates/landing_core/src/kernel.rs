@@ -3,10 +3,13 @@
 //! The same generic rollout ([`crate::rollout`]) is instantiated once per level inside a
 //! function compiled with that level's target features, so the lane operations become the
 //! widest vector instructions the CPU has: SSE2 at the x86-64 baseline, AVX2 (x86-64-v3), or
-//! AVX-512 (x86-64-v4). Every level runs the same IEEE operations in the same order (no fused
-//! multiply-add anywhere, no libm in the step), so a case gives the same bits at every level of
-//! one machine architecture; only the speed differs. Other architectures build the portable
-//! instance only (no x86 intrinsics anywhere).
+//! AVX-512 (x86-64-v4). Every level runs the same IEEE operations in the same order, so a case
+//! gives the same bits at every level of one machine architecture; only the speed differs. A
+//! fused multiply-add happens only where the code writes `Real::mul_add` (one instruction at
+//! AVX2 and AVX-512, libm's correctly rounded `fma` per lane at the baseline, which has none),
+//! and libm is called nowhere else but on `sin_cos`'s cold path for arguments beyond 2^20 pi/2
+//! (`lanes/math.rs`). Other architectures build the portable instance only (no x86 intrinsics
+//! anywhere).
 //!
 //! The best level the CPU supports is used unless the environment variable `LANDING_KERNEL`
 //! (`baseline`, `avx2`, `avx512`) or the caller forces one, for testing and benchmarking.
@@ -26,7 +29,7 @@ crate::named! {
     pub enum Level {
         /// The architecture's baseline (SSE2 on x86-64; the portable build elsewhere).
         Baseline => "baseline",
-        /// x86-64-v3: AVX2, FMA (unused), BMI1/2.
+        /// x86-64-v3: AVX2, FMA, BMI1/2.
         Avx2 => "avx2",
         /// x86-64-v4: AVX-512 F, CD, BW, DQ, VL.
         Avx512 => "avx512",
