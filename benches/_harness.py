@@ -18,6 +18,11 @@ from pathlib import Path
 # numba run at once. Every timed run starts after this pause, when they have gone to sleep.
 SETTLE_S = 0.05
 
+# Cases in one block of the three-axis plants (Mars, small body, double integrator) at each
+# instruction-set level on x86-64 (`Blocks for Wide` in crates/landing_core/src/kernel.rs). A
+# block costs the same whether its lanes are all used or not.
+WIDE_LANES = {"baseline": 4, "avx2": 8, "avx512": 16}
+
 
 def measure(fn: Callable[[], object]) -> dict:
     """Wall time and CPU time of this process (all its threads) over one run, after SETTLE_S."""

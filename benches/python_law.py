@@ -37,7 +37,7 @@ The timed runs go round-robin over the rows; the tables give the median of ``--r
 
     python benches/python_law.py [--cases 10000] [--repeat 5] [--threads 1 2] [--json FILE]
 
-``--json`` writes tables 1 and 4 (those that ran).
+``--json`` writes tables 1, 3 and 4 (those that ran).
 """
 
 from __future__ import annotations
@@ -188,7 +188,7 @@ def main() -> None:
     if 2 in args.tables:
         table2(args, plant, builtin, python, x0, kw, steps)
     if 3 in args.tables:
-        table3(args, plant, builtin, python, x0, kw, steps)
+        numbers["table3"] = table3(args, plant, builtin, python, x0, kw, steps)
     if 4 in args.tables:
         numbers["table4"] = table4(args, plant, kw, steps)
     if 5 in args.tables:
@@ -247,8 +247,9 @@ def table2(args, plant, builtin, python, x0, kw, steps) -> None:
                   f"ratio {statistics.median(v) / base:5.2f}")
 
 
-def table3(args, plant, builtin, python, x0, kw, steps) -> None:
+def table3(args, plant, builtin, python, x0, kw, steps) -> list[dict]:
     inside = [0.0]
+    table = []
     for threads in args.threads:
         print(f"\n3. where the time goes, cases_per_call={python.cases_per_call}, {threads} thread(s); median of "
               f"{args.repeat}, ns per case-step")
@@ -276,13 +277,19 @@ def table3(args, plant, builtin, python, x0, kw, steps) -> None:
                   f"{med['total'] - med['function']:.1f}; open loop built-in {med['open loop']:.1f}; "
                   f"built-in law {med['built-in']:.1f}; ratio {med['total'] / med['built-in']:.2f}")
             if threads == 1:
+                bound = (med["function"] + med["open loop"]) / med["built-in"]
                 print(f"   {label}: bound on the ratio with no engine overhead: (function + open loop) / built-in "
-                      f"= {(med['function'] + med['open loop']) / med['built-in']:.2f}")
+                      f"= {bound:.2f}")
             else:
                 # the calls hold the interpreter, so they run one at a time whatever the engine
                 # overlaps with them (table 5: two calls at once are not faster than in turn)
+                bound = med["function"] / med["built-in"]
                 print(f"   {label}: bound on the ratio with the plant fully overlapped and no engine overhead: "
-                      f"function / built-in = {med['function'] / med['built-in']:.2f}")
+                      f"function / built-in = {bound:.2f}")
+            table.append({"threads": threads, "function": label, "total_ns": med["total"],
+                          "function_ns": med["function"], "open_loop_ns": med["open loop"],
+                          "builtin_ns": med["built-in"], "bound": bound})
+    return table
 
 
 def table4(args, plant, kw, steps) -> list[dict]:

@@ -35,6 +35,9 @@ care: the loop's order changes with its content, and on Intel a loop without a k
 ran longer than the whole (its front end moves with its layout; BENCHMARKS.md, "The Intel
 machine again").
 
+``--json FILE`` also writes the counts per case-step, the clock, W1's time, the floors and W1 /
+floor (``targets.py --floor`` reads them).
+
 Needs gdb and gcc. Linux, x86-64 only. See BENCHMARKS.md, "W1's floor".
 """
 
@@ -49,10 +52,11 @@ import sys
 import tempfile
 from pathlib import Path
 
+from _harness import WIDE_LANES as LANES
+from _harness import json_option, write_json
+
 ROOT = Path(__file__).resolve().parents[1]
 PROFILE = ROOT / "target" / "release" / "examples" / "profile_w1"
-# cases in a Mars or small-body block at each level (`Blocks for Wide` in kernel.rs)
-LANES = {"avx2": 8, "avx512": 16}
 
 
 def prefix(workload: str) -> list[str]:
@@ -439,6 +443,7 @@ def main() -> int:
         action="store_true",
         help="also time the loop with each kind of instruction alone and without it",
     )
+    json_option(ap)
     args = ap.parse_args()
     profile = args.profile
     if not profile.exists():
@@ -525,6 +530,12 @@ def main() -> int:
         )
     ratio = statistics.median(a / b for a, b in zip(w1, floor["whole"]))
     print(f"{args.workload} / floor: {ratio:.2f} (median of the rounds' ratios)")
+    lanes = LANES[args.level]
+    write_json(args.json, {
+        "workload": args.workload, "level": args.level, "lanes": lanes, "clock_ghz": g,
+        "instructions_per_case_step": {name: sum(mix.values()) / lanes for name, mix in parts.items()},
+        "measured_ns": w, "floor_ns": {name: statistics.median(v) for name, v in floor.items()}, "ratio": ratio,
+    })
     if args.kinds:
         kinds(parts["whole"], args.level)
     return 0
