@@ -43,6 +43,7 @@ apart from one that cannot be met here without other arithmetic:
     cargo build --release -p landing_core --example profile_w1
     pip install -r benches/requirements.txt
     python benches/targets.py [--repeat 3] [--million] [--floor] [--out DIR]
+    python benches/targets.py --tabulate DIR    # the table of a kept run again, measuring nothing
 
 About 11 minutes on the 2-core Intel machine of BENCHMARKS.md without ``--million``, and
 some 5 more with ``--floor``.
@@ -136,15 +137,21 @@ def main() -> None:
     ap.add_argument("--tabulate", type=Path, default=None, metavar="DIR",
                     help="measure nothing: print the table of the numbers an earlier run kept in DIR (its --out)")
     args = ap.parse_args()
+    if args.tabulate and not args.tabulate.is_dir():
+        ap.error(f"--tabulate: {args.tabulate} is not a directory (the --out of an earlier run)")
     out = args.tabulate or args.out or Path(tempfile.mkdtemp(prefix="targets_"))
     out.mkdir(parents=True, exist_ok=True)
     cores = len(os.sched_getaffinity(0))
     repeat = ["--repeat", str(args.repeat)]
     started = datetime.datetime.now().astimezone()
+    levels = landing.kernel_levels()
+    default = os.environ.get("LANDING_KERNEL") or levels[-1]
     if args.tabulate:
         kept = out / "targets.json"
         if kept.exists():
-            started = datetime.datetime.fromisoformat(json.loads(kept.read_text())["started"])
+            summary = json.loads(kept.read_text())
+            started = datetime.datetime.fromisoformat(summary["started"])
+            default = summary.get("kernel_level", default)
         print(f"targets of the run kept in {out}, {started.isoformat(timespec='seconds')}")
     else:
         print(f"targets, {started.isoformat(timespec='seconds')}; {machine()}; logs and numbers in {out}")
@@ -168,12 +175,10 @@ def main() -> None:
     cases = MILLION if args.million else args.campaign_cases
     stored = run("campaign_memory", ["--cases", str(cases)], out)
     python = run("python_law", [*repeat, "--tables", "1", "3", "4", "--threads", *sorted({"1", str(cores)})], out)
-    levels = landing.kernel_levels()
-    default = os.environ.get("LANDING_KERNEL") or levels[-1]
     floors: dict[str, dict] = {}
     if args.floor or args.tabulate:
         for level in ("avx512", "avx2"):
-            if level in levels and (PROFILE_W1.exists() or args.tabulate):
+            if args.tabulate or (level in levels and PROFILE_W1.exists()):
                 got = run("w1_floor", ["--level", level, "--rounds", str(2 * args.repeat)], out, tag=level)
                 if got:
                     floors[level] = got
@@ -238,7 +243,8 @@ def main() -> None:
     where = next((b["machine"] for b in (w1, python, stored) if b and "machine" in b), machine())
     print(f"\nThe targets on this machine, {started.date()} ({where}; kernel level {default}):\n")
     t.print()
-    summary = {"started": started.isoformat(timespec="seconds"), "machine": where, "targets": t.rows}
+    summary = {"started": started.isoformat(timespec="seconds"), "machine": where, "kernel_level": default,
+               "targets": t.rows}
     (out / "targets.json").write_text(json.dumps(summary, indent=1))
     print(f"\n{out / 'targets.json'}")
 
