@@ -237,14 +237,19 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
 
     /// Tension of a segment `d` of length `l` (`inv_l = 1/l` where it is taut) whose ends
     /// separate at `dv`, `T = EA (l - h)/h + c_A l'/h`, and the unit vector `d / l`; zero
-    /// (and a zero vector) where the segment is slack, and `T >= 0` always.
+    /// (and a zero vector) where the segment is slack, and `T >= 0` always. `h` and `inv_h =
+    /// 1/h` come from the caller ([`Prepared`] keeps them).
     #[inline(always)]
-    fn pull(&self, d: &Vector2<R>, dv: &Vector2<R>, l: R, inv_l: R) -> (R, Vector2<R>) {
-        let h = self.segment_length();
+    fn pull(
+        &self,
+        (h, inv_h): (R, R),
+        d: &Vector2<R>,
+        dv: &Vector2<R>,
+        l: R,
+        inv_l: R,
+    ) -> (R, Vector2<R>) {
         let taut = l.simd_gt(h);
         let u = scale_by(d, inv_l);
-        // 1/h depends on the parameters only: computed once per block, not per segment
-        let inv_h = R::one() / h;
         let strain = (l - h) * inv_h;
         let rate = (u[0] * dv[0] + u[1] * dv[1]) * inv_h;
         let t = self.axial_stiffness * strain + self.axial_damping * rate;
@@ -253,6 +258,45 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
             R::select(taut, t.max(zero), zero),
             Vector2::new(R::select(taut, u[0], zero), R::select(taut, u[1], zero)),
         )
+    }
+}
+
+/// A flexible tether with the figures its derivative divides by, computed once when a block is
+/// gathered: the segment's rest length `h` and `1/h`, `1/(rho_t h)`, the sub-satellite's
+/// translational mass `m` and `1/m`, `1/J_s`, and the controller's inertia. Computed in the
+/// derivative, as they were, they ran at every RK4 stage (LLVM did not hoist them out of the
+/// step loop), 16 of a stage's 23 vector divisions, on the divider that the segments' square
+/// roots and reciprocals keep busy (BENCHMARKS.md). They are the same operations on the same
+/// values, computed once: the bits do not change.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Prepared<const N: usize, const S: usize, R> {
+    tether: TetheredFlexible<N, S, R>,
+    h: R,
+    inv_h: R,
+    inv_node: R,
+    end_mass: R,
+    inv_end_mass: R,
+    inv_moment: R,
+    inertia: Vector2<R>,
+}
+
+impl<const N: usize, const S: usize, R: Real> Prepared<N, S, R> {
+    #[inline(always)]
+    pub fn new(tether: &TetheredFlexible<N, S, R>) -> Self {
+        let () = TetheredFlexible::<N, S, R>::LAYOUT;
+        let one = R::one();
+        let h = tether.segment_length();
+        let end_mass = tether.end_mass();
+        Self {
+            tether: *tether,
+            h,
+            inv_h: one / h,
+            inv_node: one / tether.node_mass(),
+            end_mass,
+            inv_end_mass: one / end_mass,
+            inv_moment: one / tether.body.moment_of_inertia(),
+            inertia: tether.body.inertia(),
+        }
     }
 
     /// `x'` of the chain and the sub-satellite (see the module documentation), written into
@@ -267,14 +311,13 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         d: &Vector2<R>,
         dx: &mut SVector<R, S>,
     ) {
-        let () = Self::LAYOUT;
-        let b = &self.body;
+        let tether = &self.tether;
+        let b = &tether.body;
         let n = b.orbital_rate;
         let n2 = n * n;
-        let inv_node = R::one() / self.node_mass();
-        let h = self.segment_length();
+        let (h, inv_node) = (self.h, self.inv_node);
         let (s, c) = x[2].sin_cos();
-        let attachment = self.attachment_at(x, s, c);
+        let attachment = tether.attachment_at(x, s, c);
         // Hill-frame field on every point mass; spring forces are added below
         for k in 0..N {
             let i = 6 + 4 * k;
@@ -285,6 +328,7 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
             dx[i + 3] = ay;
         }
         let mut pull_on_attachment = zeros();
+        let rest = (h, self.inv_h);
         // Segments two at a time, their lengths' reciprocals from one division,
         // `1/a = b / (a b)`: the divider, shared with the square roots, bounds the step. A
         // slack segment needs no reciprocal; 1 in its place keeps the product in range (a
@@ -292,13 +336,13 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let one = R::one();
         let mut j = 0;
         while j < N {
-            let (d0, dv0, l0) = Self::segment(x, j, &attachment);
-            let (d1, dv1, l1) = Self::segment(x, j + 1, &attachment);
+            let (d0, dv0, l0) = TetheredFlexible::<N, S, R>::segment(x, j, &attachment);
+            let (d1, dv1, l1) = TetheredFlexible::<N, S, R>::segment(x, j + 1, &attachment);
             let a0 = R::select(l0.simd_gt(h), l0, one);
             let a1 = R::select(l1.simd_gt(h), l1, one);
             let inv = one / (a0 * a1);
-            let (t0, u0) = self.pull(&d0, &dv0, l0, inv * a1);
-            let (t1, u1) = self.pull(&d1, &dv1, l1, inv * a0);
+            let (t0, u0) = tether.pull(rest, &d0, &dv0, l0, inv * a1);
+            let (t1, u1) = tether.pull(rest, &d1, &dv1, l1, inv * a0);
             apply_pull::<N, S, R>(dx, &mut pull_on_attachment, inv_node, j, &scale_by(&u0, t0));
             apply_pull::<N, S, R>(
                 dx,
@@ -310,14 +354,14 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
             j += 2;
         }
         if j == N {
-            let (d0, dv0, l0) = Self::segment(x, j, &attachment);
-            let (t0, u0) = self.pull(&d0, &dv0, l0, one / l0);
+            let (d0, dv0, l0) = TetheredFlexible::<N, S, R>::segment(x, j, &attachment);
+            let (t0, u0) = tether.pull(rest, &d0, &dv0, l0, one / l0);
             apply_pull::<N, S, R>(dx, &mut pull_on_attachment, inv_node, j, &scale_by(&u0, t0));
         }
         // the sub-satellite: thrust perpendicular to the main-to-centre line, through the centre
         let rho = (x[0] * x[0] + x[1] * x[1]).sqrt();
         let along = Vector2::new(-x[1], x[0]) / rho;
-        let m = self.end_mass();
+        let m = self.end_mass;
         let force = add(
             &pull_on_attachment,
             &scale_by(&along, u[0] + m * rho * d[0]),
@@ -325,15 +369,89 @@ impl<const N: usize, const S: usize, R: Real> TetheredFlexible<N, S, R> {
         let (ax, ay) = hill_field(n, n2, x[0], x[3], x[4]);
         let half = R::splat(0.5) * b.side;
         let arm = Vector2::new(half * c, half * s);
-        let j_s = b.moment_of_inertia();
         dx[0] = x[3];
         dx[1] = x[4];
         dx[2] = x[5];
-        // reciprocals of parameters: computed once per block
-        let inv_m = R::one() / m;
-        dx[3] = ax + force[0] * inv_m;
-        dx[4] = ay + force[1] * inv_m;
-        dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) * (R::one() / j_s) + d[1];
+        dx[3] = ax + force[0] * self.inv_end_mass;
+        dx[4] = ay + force[1] * self.inv_end_mass;
+        dx[5] = (cross(&arm, &pull_on_attachment) + u[1]) * self.inv_moment + d[1];
+    }
+}
+
+impl<const N: usize, const S: usize, R: Real> Gather<R> for Prepared<N, S, R> {
+    type Case = TetheredFlexible<N, S>;
+
+    #[inline]
+    fn gather<'a>(case: &dyn Fn(usize) -> &'a TetheredFlexible<N, S>) -> Self {
+        Self::new(&TetheredFlexible::<N, S, R>::gather(case))
+    }
+
+    fn same_shape(a: &TetheredFlexible<N, S>, b: &TetheredFlexible<N, S>) -> bool {
+        <TetheredFlexible<N, S, R> as Gather<R>>::same_shape(a, b)
+    }
+}
+
+impl<const N: usize, const S: usize, R: Real> Plant<R, 2> for Prepared<N, S, R> {
+    type State = SVector<R, S>;
+
+    #[inline(always)]
+    fn coordinates(&self, x: &SVector<R, S>) -> (Vector2<R>, Vector2<R>) {
+        let (px, py, vx, vy) = (x[0], x[1], x[3], x[4]);
+        let phi = (-py).atan2(-px);
+        let dphi = (px * vy - py * vx) / (px * px + py * py);
+        (Vector2::new(phi, x[2]), Vector2::new(dphi, x[5]))
+    }
+
+    /// Nothing: the controller knows the inertia only (seed section 3.1.3).
+    #[inline(always)]
+    fn modelled_acceleration(&self, _t: f64, _x: &SVector<R, S>) -> Vector2<R> {
+        zeros()
+    }
+
+    /// The simplified model's M: the controller does not know the flexible dynamics.
+    #[inline(always)]
+    fn inertia(&self, _x: &SVector<R, S>) -> Vector2<R> {
+        self.inertia
+    }
+
+    #[inline(always)]
+    fn actuate(&self, _x: &SVector<R, S>, acceleration: &Vector2<R>) -> Vector2<R> {
+        self.tether.body.actuate_with(&self.inertia, acceleration)
+    }
+
+    #[inline(always)]
+    fn derivative(
+        &self,
+        _t: f64,
+        x: &SVector<R, S>,
+        u: &Vector2<R>,
+        d: &Vector2<R>,
+    ) -> SVector<R, S> {
+        let mut dx = zeros();
+        self.chain_into(x, u, d, &mut dx);
+        dx
+    }
+
+    /// `derivative`, written in place (the modelled acceleration is zero: no drift to reuse).
+    #[inline(always)]
+    fn derivative_into(
+        &self,
+        _t: f64,
+        x: &SVector<R, S>,
+        u: &Vector2<R>,
+        d: &Vector2<R>,
+        _drift: &Vector2<R>,
+        dx: &mut SVector<R, S>,
+    ) {
+        self.chain_into(x, u, d, dx);
+    }
+
+    /// The first node must not sit on the main satellite: the tether's direction (the pitch
+    /// angle the laws control) is undefined there.
+    #[inline(always)]
+    fn in_domain(&self, x: &SVector<R, S>) -> R::Mask {
+        let zero = R::zero();
+        !(x[0].simd_eq(zero) & x[1].simd_eq(zero))
     }
 }
 
@@ -342,7 +460,8 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
     pub fn tension(&self, x: &SVector<f64, S>, j: usize) -> f64 {
         assert!(j <= N, "segment {j} of {}", N + 1);
         let (d, dv, l) = Self::segment(x, j, &self.attachment(x));
-        self.pull(&d, &dv, l, 1.0 / l).0
+        let h = self.segment_length();
+        self.pull((h, 1.0 / h), &d, &dv, l, 1.0 / l).0
     }
 
     /// The Jacobi integral of the Hill frame, the energy-like constant of the motion without
@@ -439,72 +558,43 @@ impl<const N: usize, const S: usize> TetheredFlexible<N, S> {
     }
 }
 
+/// The one-case plant is its prepared form, the reciprocals computed per call.
 impl<const N: usize, const S: usize, R: Real> Plant<R, 2> for TetheredFlexible<N, S, R> {
     type State = SVector<R, S>;
 
-    #[inline(always)]
     fn coordinates(&self, x: &SVector<R, S>) -> (Vector2<R>, Vector2<R>) {
-        let (px, py, vx, vy) = (x[0], x[1], x[3], x[4]);
-        let phi = (-py).atan2(-px);
-        let dphi = (px * vy - py * vx) / (px * px + py * py);
-        (Vector2::new(phi, x[2]), Vector2::new(dphi, x[5]))
+        Prepared::new(self).coordinates(x)
     }
 
-    /// Nothing: the controller knows the inertia only (seed section 3.1.3).
-    #[inline(always)]
-    fn modelled_acceleration(&self, _t: f64, _x: &SVector<R, S>) -> Vector2<R> {
-        zeros()
+    fn modelled_acceleration(&self, t: f64, x: &SVector<R, S>) -> Vector2<R> {
+        Prepared::new(self).modelled_acceleration(t, x)
     }
 
-    /// The simplified model's M: the controller does not know the flexible dynamics.
-    #[inline(always)]
-    fn inertia(&self, _x: &SVector<R, S>) -> Vector2<R> {
-        self.body.inertia()
+    fn inertia(&self, x: &SVector<R, S>) -> Vector2<R> {
+        Prepared::new(self).inertia(x)
     }
 
-    #[inline(always)]
-    fn actuate(&self, _x: &SVector<R, S>, acceleration: &Vector2<R>) -> Vector2<R> {
-        self.body.actuate(acceleration)
+    fn actuate(&self, x: &SVector<R, S>, acceleration: &Vector2<R>) -> Vector2<R> {
+        Prepared::new(self).actuate(x, acceleration)
     }
 
-    #[inline(always)]
     fn derivative(
         &self,
-        _t: f64,
+        t: f64,
         x: &SVector<R, S>,
         u: &Vector2<R>,
         d: &Vector2<R>,
     ) -> SVector<R, S> {
-        let mut dx = zeros();
-        self.chain_into(x, u, d, &mut dx);
-        dx
+        Prepared::new(self).derivative(t, x, u, d)
     }
 
-    /// `derivative`, written in place (the modelled acceleration is zero: no drift to reuse).
-    #[inline(always)]
-    fn derivative_into(
-        &self,
-        _t: f64,
-        x: &SVector<R, S>,
-        u: &Vector2<R>,
-        d: &Vector2<R>,
-        _drift: &Vector2<R>,
-        dx: &mut SVector<R, S>,
-    ) {
-        self.chain_into(x, u, d, dx);
-    }
-
-    /// The first node must not sit on the main satellite: the tether's direction (the pitch
-    /// angle the laws control) is undefined there.
-    #[inline(always)]
     fn in_domain(&self, x: &SVector<R, S>) -> R::Mask {
-        let zero = R::zero();
-        !(x[0].simd_eq(zero) & x[1].simd_eq(zero))
+        Prepared::new(self).in_domain(x)
     }
 }
 
 impl<const N: usize, const S: usize> PlantModel<2> for TetheredFlexible<N, S> {
-    type At<R: Real> = TetheredFlexible<N, S, R>;
+    type At<R: Real> = Prepared<N, S, R>;
     type Blocks = crate::kernel::Narrow;
     const STATE_NAMES: &'static [&'static str] = NAMES.split_at(S).0;
     const CONTROL_NAMES: &'static [&'static str] = &["thrust", "torque"];

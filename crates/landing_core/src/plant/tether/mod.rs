@@ -182,7 +182,13 @@ impl<R: Real> TetherBody<R> {
     /// Thrust and torque for a commanded generalized acceleration, saturated.
     #[inline(always)]
     pub fn actuate(&self, acceleration: &Vector2<R>) -> Vector2<R> {
-        let m = self.inertia();
+        self.actuate_with(&self.inertia(), acceleration)
+    }
+
+    /// [`Self::actuate`] with the inertia [`Self::inertia`] computed beforehand (the flexible
+    /// tether's prepared block keeps it).
+    #[inline(always)]
+    pub(crate) fn actuate_with(&self, m: &Vector2<R>, acceleration: &Vector2<R>) -> Vector2<R> {
         Vector2::new(
             (acceleration[0] * m[0]).clamp(-self.thrust_limit, self.thrust_limit),
             (acceleration[1] * m[1]).clamp(-self.torque_limit, self.torque_limit),
