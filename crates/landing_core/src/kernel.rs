@@ -211,6 +211,13 @@ pub(crate) trait LawCalls<const D: usize, R: Real> {
         input: &LawInput<D, R>,
     ) -> SVector<R, D>;
     fn advance(law: &AnyLaw<D, R>, memory: &mut AnyMemory<D, R>, input: &LawInput<D, R>);
+    /// [`ControlLaw::command_and_advance`]: the command, and the memory advanced over the
+    /// period.
+    fn command_and_advance(
+        law: &AnyLaw<D, R>,
+        memory: &mut AnyMemory<D, R>,
+        input: &LawInput<D, R>,
+    ) -> SVector<R, D>;
     fn diagnostics(
         law: &AnyLaw<D, R>,
         memory: &AnyMemory<D, R>,
@@ -280,6 +287,16 @@ macro_rules! level_laws {
                 law.advance(memory, input)
             }
 
+            $(#[target_feature(enable = $features)])?
+            #[inline(never)]
+            unsafe fn command_and_advance<const D: usize, L: Real, C: ControlLaw<L, D>>(
+                law: &C,
+                memory: &mut C::Memory,
+                input: &LawInput<D, L>,
+            ) -> SVector<L, D> {
+                law.command_and_advance(memory, input)
+            }
+
             struct Command<'a, const D: usize, L: Real>(&'a LawInput<D, L>);
 
             impl<const D: usize, L: Real> LawVisitor<D, L> for Command<'_, D, L> {
@@ -299,6 +316,30 @@ macro_rules! level_laws {
                 fn visit<C: ControlLaw<L, D>>(self, law: &C, memory: &mut C::Memory) {
                     // SAFETY: as for `LawCalls` below
                     unsafe { advance(law, memory, self.0) }
+                }
+            }
+
+            struct CommandAndAdvance<'a, const D: usize, L: Real>(&'a LawInput<D, L>);
+
+            impl<const D: usize, L: Real> LawVisitorMut<D, L> for CommandAndAdvance<'_, D, L> {
+                type Output = SVector<L, D>;
+                #[inline(always)]
+                fn visit<C: ControlLaw<L, D>>(self, law: &C, memory: &mut C::Memory) -> SVector<L, D> {
+                    // SAFETY: as for `LawCalls` below
+                    unsafe {
+                        // one call where the law makes it one; two otherwise, as before: LLVM
+                        // inlines a law's call that has a single call site into the period's
+                        // loop, `#[inline(never)]` or not (the memory updates were), and a law
+                        // made one function with its update would be compiled into every plant's
+                        // loop. The branch is on a constant: the other function is not compiled.
+                        if C::COMMANDS_AND_ADVANCES {
+                            command_and_advance(law, memory, self.0)
+                        } else {
+                            let a = command(law, memory, self.0);
+                            advance(law, memory, self.0);
+                            a
+                        }
+                    }
                 }
             }
 
@@ -355,6 +396,14 @@ macro_rules! level_laws {
                 #[inline(always)]
                 fn advance(law: &AnyLaw<D, L>, memory: &mut AnyMemory<D, L>, input: &LawInput<D, L>) {
                     law.visit_mut(memory, Advance(input))
+                }
+                #[inline(always)]
+                fn command_and_advance(
+                    law: &AnyLaw<D, L>,
+                    memory: &mut AnyMemory<D, L>,
+                    input: &LawInput<D, L>,
+                ) -> SVector<L, D> {
+                    law.visit_mut(memory, CommandAndAdvance(input))
                 }
                 #[inline(always)]
                 fn diagnostics(

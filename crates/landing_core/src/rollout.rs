@@ -1201,15 +1201,16 @@ pub(crate) fn rollout_block<const D: usize, R: Real, P: Plant<R, D>, K: LawCalls
         if k % poll_every == 0 && cancel.load(Ordering::Relaxed) {
             return Err(Cancelled);
         }
-        let a = K::command(law, &memory, block.input());
-        // the diagnostics read the memory the command read; the memory is then advanced over
+        // the diagnostics read the memory the command reads; the memory is then advanced over
         // the period (it plays no part in the plant's step)
         if block.records(cfg, k) {
             K::diagnostics(law, &memory, block.input(), &mut diag[..nd]);
         }
-        if advances {
-            K::advance(law, &mut memory, block.input());
-        }
+        let a = if advances {
+            K::command_and_advance(law, &mut memory, block.input())
+        } else {
+            K::command(law, &memory, block.input())
+        };
         let period = Period {
             block: &mut block,
             set,

@@ -165,6 +165,56 @@ fn one_period_of_adaptation_is_gamma_n_phi() {
     }
 }
 
+/// The rollout's one call per period (the surfaces and the basis computed once) gives what the
+/// command and then the weights' update give, bit for bit, period after period; with one axis
+/// adapting and the other not, and through s = 0.
+#[test]
+fn command_and_advance_is_the_command_then_the_update() {
+    let mut law = fntsmc(250.0);
+    law.gamma[1] = 0.0;
+    let dt = 0.01;
+    let mut apart = law.start(&input([0.0; 2], [0.0; 2], dt));
+    let mut together = apart;
+    for k in 0..40 {
+        let t = k as f64;
+        // e swings through zero on both axes; at k = 20 the first surface is exactly 0
+        let e = if k == 20 {
+            [0.0, 0.0]
+        } else {
+            [0.02 * (0.37 * t).sin(), -0.01 * (0.23 * t).cos()]
+        };
+        let de = if k == 20 {
+            [0.0, 0.0]
+        } else {
+            [1e-3 * (0.51 * t).cos(), 0.02 * (0.17 * t).sin()]
+        };
+        let inp = input(e, de, dt);
+        let a = law.command(&apart, &inp);
+        law.advance(&mut apart, &inp);
+        let b = law.command_and_advance(&mut together, &inp);
+        for i in 0..2 {
+            assert_eq!(
+                a[i].to_bits(),
+                b[i].to_bits(),
+                "period {k}, axis {i}: {} vs {}",
+                a[i],
+                b[i]
+            );
+        }
+        for (x, y) in apart.iter().zip(together.iter()) {
+            assert_eq!(x.to_bits(), y.to_bits(), "period {k}: weights {x} vs {y}");
+        }
+    }
+    assert!(
+        apart.column(0).iter().any(|w| *w != 0.0),
+        "the first axis adapted"
+    );
+    assert!(
+        apart.column(1).iter().all(|w| *w == 0.0),
+        "the second did not"
+    );
+}
+
 #[test]
 fn the_command_is_eq_22() {
     let law = fntsmc(0.0);

@@ -257,21 +257,15 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
         }
         Axes(sum)
     }
-}
 
-impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
-    /// The network weights, one column per axis (rows past rbf_nodes^2 stay zero).
-    type Memory = SMatrix<R, MAX_NODES, D>;
-    const DIAGNOSTICS: &'static [&'static str] = &["s", "rbf"];
-
+    /// The command (eq. 22, 23) with the weights before this period's update.
     #[inline(always)]
-    fn start(&self, _input: &LawInput<D, R>) -> Self::Memory {
-        zeros()
-    }
-
-    #[inline(always)]
-    fn command(&self, weights: &Self::Memory, input: &LawInput<D, R>) -> SVector<R, D> {
-        let sf = self.surfaces(input);
+    fn command_at(
+        &self,
+        weights: &SMatrix<R, MAX_NODES, D>,
+        input: &LawInput<D, R>,
+        sf: &Surfaces<D, R>,
+    ) -> SVector<R, D> {
         let reach = Axes::of(&self.k3)
             * (sig_from_ln(sf.s, sf.ln_abs_s, Axes::of(&self.alpha_s))
                 + sig_from_ln(sf.s, sf.ln_abs_s, Axes::of(&self.beta_s)));
@@ -280,14 +274,21 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
         (a - (sf.surface_rate + reach + compensation / Axes::of(&input.inertia))).vector()
     }
 
+    /// Whether some axis adapts its weights in some lane (Gamma != 0).
     #[inline(always)]
-    fn advance(&self, weights: &mut Self::Memory, input: &LawInput<D, R>) {
-        // Gamma = 0 leaves the weights where they are (w + 0 phi = w): skip the work
-        if (0..D).all(|i| self.gamma[i].simd_eq(R::zero()).all()) {
-            return;
-        }
+    fn adapts(&self) -> bool {
+        !(0..D).all(|i| self.gamma[i].simd_eq(R::zero()).all())
+    }
+
+    /// The weights' update over one period (eq. 24, forward Euler).
+    #[inline(always)]
+    fn adapt(
+        &self,
+        weights: &mut SMatrix<R, MAX_NODES, D>,
+        input: &LawInput<D, R>,
+        sf: &Surfaces<D, R>,
+    ) {
         let n = self.rbf_nodes * self.rbf_nodes;
-        let sf = self.surfaces(input);
         // 2 as - 1 > 0 and 2 bs - 1 > 1: both powers are finite at s = 0
         let two = <Axes<R, D> as Real>::splat(2.0);
         let big_n = Axes::of(&self.k3)
@@ -303,6 +304,47 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
                 weights[(j, i)] += step * sf.phi[j].0[i];
             }
         }
+    }
+}
+
+impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
+    /// The network weights, one column per axis (rows past rbf_nodes^2 stay zero).
+    type Memory = SMatrix<R, MAX_NODES, D>;
+    const DIAGNOSTICS: &'static [&'static str] = &["s", "rbf"];
+    const COMMANDS_AND_ADVANCES: bool = true;
+
+    #[inline(always)]
+    fn start(&self, _input: &LawInput<D, R>) -> Self::Memory {
+        zeros()
+    }
+
+    #[inline(always)]
+    fn command(&self, weights: &Self::Memory, input: &LawInput<D, R>) -> SVector<R, D> {
+        self.command_at(weights, input, &self.surfaces(input))
+    }
+
+    #[inline(always)]
+    fn advance(&self, weights: &mut Self::Memory, input: &LawInput<D, R>) {
+        // Gamma = 0 leaves the weights where they are (w + 0 phi = w): skip the work
+        if self.adapts() {
+            self.adapt(weights, input, &self.surfaces(input));
+        }
+    }
+
+    /// The surfaces and the network's basis once for both (they were a third of the law's
+    /// work, computed twice: BENCHMARKS.md).
+    #[inline(always)]
+    fn command_and_advance(
+        &self,
+        weights: &mut Self::Memory,
+        input: &LawInput<D, R>,
+    ) -> SVector<R, D> {
+        let sf = self.surfaces(input);
+        let u = self.command_at(weights, input, &sf);
+        if self.adapts() {
+            self.adapt(weights, input, &sf);
+        }
+        u
     }
 
     #[inline(always)]

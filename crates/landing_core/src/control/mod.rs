@@ -104,6 +104,25 @@ pub trait ControlLaw<R: Real, const D: usize>: Send + Sync {
     #[inline(always)]
     fn advance(&self, _memory: &mut Self::Memory, _input: &LawInput<D, R>) {}
 
+    /// Whether the law overrides [`Self::command_and_advance`]: its rollout then makes that one
+    /// call per period where the other laws make two, `command` and `advance`.
+    const COMMANDS_AND_ADVANCES: bool = false;
+
+    /// `command`, then `advance` over the period, in one call, for a law whose update needs
+    /// what its command computed (the fixed-time NTSMC's surfaces and network basis), to
+    /// compute that once; such a law sets [`Self::COMMANDS_AND_ADVANCES`]. It must give what
+    /// the two calls give, bit for bit.
+    #[inline(always)]
+    fn command_and_advance(
+        &self,
+        memory: &mut Self::Memory,
+        input: &LawInput<D, R>,
+    ) -> SVector<R, D> {
+        let u = self.command(memory, input);
+        self.advance(memory, input);
+        u
+    }
+
     /// Write `DIAGNOSTICS.len() * D + SCALAR_DIAGNOSTICS.len()` values into `out`, signal by
     /// signal.
     #[inline(always)]
