@@ -31,7 +31,9 @@ apart from one that cannot be met here without other arithmetic:
   other benches, taken minutes apart on a shared machine, are scaled by that ratio: W1's
   one-thread time and the AVX2 kernel's at their floors; the ratios to numba and JAX with W1
   at its floor; and the stored campaign with W1's kernel at its floor (the campaign runs at
-  W1's kernel speed per thread: "the campaign against W1" row).
+  W1's kernel speed per thread: "the campaign against W1" row). W3, W5 and W6 the same way at
+  the default level, where ``profile_small_body`` and ``profile_w6`` are built: their ratios
+  to numba with landing at its floor.
 - one thread to many: a block of lanes costs the same however many of its cases are used, so
   W1's cases in blocks of the default level's width bound the speed-up of more threads (at
   ``avx512``, 300 cases are 19 blocks of 16, and two threads take at least 10 of one thread's
@@ -40,7 +42,7 @@ apart from one that cannot be met here without other arithmetic:
   the open-loop plant's) over the built-in law's, the ratio no engine could go under with this
   function on this machine.
 
-    cargo build --release -p landing_core --example profile_w1
+    cargo build --release -p landing_core --example profile_w1   # and profile_small_body, profile_w6 for --floor
     pip install -r benches/requirements.txt
     python benches/targets.py [--repeat 3] [--million] [--floor] [--out DIR]
     python benches/targets.py --tabulate DIR    # the table of a kept run again, measuring nothing
@@ -67,7 +69,11 @@ from _harness import WIDE_LANES, machine
 import landing
 
 HERE = Path(__file__).resolve().parent
-PROFILE_W1 = HERE.parent / "target" / "release" / "examples" / "profile_w1"
+EXAMPLES = HERE.parent / "target" / "release" / "examples"
+PROFILE_W1 = EXAMPLES / "profile_w1"
+# the profile binary of each workload whose floor ``--floor`` takes
+PROFILES = {"W1": PROFILE_W1, "W3": EXAMPLES / "profile_small_body", "W5": EXAMPLES / "profile_small_body",
+            "W6": EXAMPLES / "profile_w6"}
 MILLION = 1_000_000
 
 
@@ -182,6 +188,12 @@ def main() -> None:
                 got = run("w1_floor", ["--level", level, "--rounds", str(2 * args.repeat)], out, tag=level)
                 if got:
                     floors[level] = got
+        for workload in ("W3", "W5", "W6"):
+            if args.tabulate or (default in ("avx512", "avx2") and PROFILES[workload].exists()):
+                got = run("w1_floor", ["--workload", workload, "--profile", str(PROFILES[workload]), "--level", default,
+                                       "--rounds", str(2 * args.repeat)], out, tag=f"{workload}_{default}")
+                if got:
+                    floors[workload] = got
     # W1's time over its floor's, the median of w1_floor's alternated rounds: a ratio taken in
     # one run, so that it can scale the other benches' times, taken minutes apart
     above = floors[default]["ratio"] if default in floors else None
@@ -225,8 +237,9 @@ def main() -> None:
         peer_rows = source["rows"] if source else []
         ours = best(peer_rows, workload=workload, implementation="landing", threads=1)
         peer = best(peer_rows, workload=workload, implementation="numba", threads=1)
+        ratio = floors[workload]["ratio"] if workload in floors else None
         t.add(f"{workload} against numba, one thread", ">= 8x", None if not (ours and peer) else peer / ours,
-              lambda v: v >= 8, "{:.1f}x")
+              lambda v: v >= 8, "{:.1f}x", best=peer * ratio / ours if ours and peer and ratio else None)
     n = (python or {}).get("cases")
     bounds = {(r["threads"], r["function"]): r["bound"] for r in (python or {}).get("table3", [])}
     for row in (python or {}).get("table1", []):

@@ -4,8 +4,8 @@ Issue 27 asks for a floor for W1 "established by a counted-operation model check
 measured throughput of the kernel's instruction mix". This script does both halves:
 
 1. **Counted.** It runs ``profile_w1`` (one block: 16 cases at avx512, 8 at avx2) under gdb,
-   stops at the law's call of one control period (the 50th, in steady state) and single-steps
-   one whole period of the block, law, plant and integrator, to the next call: every
+   stops at the plant's period of one control period (the 50th, in steady state) and
+   single-steps one whole period of the block, plant, integrator and law, to the next: every
    instruction executed is counted by mnemonic, operand width and whether it touches memory.
    (A sampling profile cannot count instructions; callgrind can, but only up to AVX2. At
    ``avx2`` this count agrees with callgrind's.)
@@ -25,10 +25,12 @@ that both times are also given in cycles per block-period.
     python benches/w1_floor.py --level avx512 --rounds 10
 
 W3 and W5 (the small-body workloads, blocks of the same size) are counted and run the same
-way from ``profile_small_body``:
+way from ``profile_small_body``, and W6 (the tethered satellite: blocks of 8 cases at every
+level, one control period of six RK4 substeps) from ``profile_w6``:
 
-    cargo build --release -p landing_core --example profile_small_body
+    cargo build --release -p landing_core --example profile_small_body --example profile_w6
     python benches/w1_floor.py --workload W3 --profile target/release/examples/profile_small_body
+    python benches/w1_floor.py --workload W6 --profile target/release/examples/profile_w6
 
 ``--kinds`` also times the loop with each kind of instruction alone and without it. Read it with
 care: the loop's order changes with its content, and on Intel a loop without a kind sometimes
@@ -52,17 +54,22 @@ import sys
 import tempfile
 from pathlib import Path
 
-from _harness import WIDE_LANES as LANES
-from _harness import json_option, write_json
+from _harness import WIDE_LANES, json_option, write_json
 
 ROOT = Path(__file__).resolve().parents[1]
 PROFILE = ROOT / "target" / "release" / "examples" / "profile_w1"
 
 
 def prefix(workload: str) -> list[str]:
-    """The profile binary's leading arguments: W1's ``profile_w1`` takes none, the small-body
-    workloads' ``profile_small_body`` the workload's name."""
-    return [] if workload == "W1" else [workload]
+    """The profile binary's leading arguments: ``profile_w1`` and ``profile_w6`` take none, the
+    small-body workloads' ``profile_small_body`` the workload's name."""
+    return [] if workload in ("W1", "W6") else [workload]
+
+
+def lanes(workload: str, level: str) -> int:
+    """The cases of one block: the three-axis plants' wide blocks, or the tether's 8 at every
+    level (``Wide`` and ``Narrow`` in ``kernel.rs``)."""
+    return 8 if workload == "W6" else WIDE_LANES[level]
 
 
 GDB_SCRIPT = r"""
@@ -114,13 +121,17 @@ def count(level: str, profile: Path, by_source: bool = False, workload: str = "W
     `by_source`, the line of landing_core's code it was inlined from: needs a build with line
     tables)."""
     nm = subprocess.run(["nm", "-C", str(profile)], capture_output=True, text=True, check=True)
+    # one control period to the next: the period's call, out of line once per plant and level (the
+    # law's call is not always a call: a law with a memory may be inlined into the block's loop)
     cands = [
-        line.split()[0] for line in nm.stdout.splitlines() if line.endswith(f"landing_core::kernel::{level}::command")
+        line.split()[0]
+        for line in nm.stdout.splitlines()
+        if line.endswith(f"landing_core::kernel::{level}::period::out_of_line")
     ]
     with tempfile.TemporaryDirectory() as tmp:
         script, out = Path(tmp) / "mix.py", Path(tmp) / "mix.json"
         script.write_text(GDB_SCRIPT)
-        env = {"CANDS": ",".join(cands), "ARGS": " ".join([*prefix(workload), str(LANES[level]), level]), "OUT": str(out)}
+        env = {"CANDS": ",".join(cands), "ARGS": " ".join([*prefix(workload), str(lanes(workload, level)), level]), "OUT": str(out)}
         if by_source:
             env["BY_SOURCE"] = "1"
         subprocess.run(
@@ -419,11 +430,11 @@ def main() -> int:
     ap.add_argument(
         "--workload",
         default="W1",
-        choices=["W1", "W3", "W5"],
-        help="W3 or W5 count and time profile_small_body (give its path with --profile)",
+        choices=["W1", "W3", "W5", "W6"],
+        help="W3 or W5 count and time profile_small_body, W6 profile_w6 (give its path with --profile)",
     )
     ap.add_argument("--rounds", type=int, default=10)
-    ap.add_argument("--cases", type=int, default=960, help="W1's cases for its timed runs")
+    ap.add_argument("--cases", type=int, default=None, help="the timed runs' cases (W1 960, W3 and W5 480, W6 96)")
     ap.add_argument("--profile", type=Path, default=PROFILE, help="the profile_w1 binary")
     ap.add_argument("--mix", help="reuse a count saved by --save")
     ap.add_argument("--save", help="save the count to this JSON file")
@@ -446,6 +457,9 @@ def main() -> int:
     json_option(ap)
     args = ap.parse_args()
     profile = args.profile
+    if args.cases is None:
+        args.cases = {"W1": 960, "W6": 96}.get(args.workload, 480)
+    LANES = {level: lanes(args.workload, level) for level in WIDE_LANES}
     if not profile.exists():
         sys.exit("build it first: cargo build --release -p landing_core --example profile_w1")
     raw = (
@@ -455,7 +469,8 @@ def main() -> int:
     )
     if args.save:
         Path(args.save).write_text(json.dumps(raw, indent=0))
-    # the law's call, and the rest of the period (plant, integrator, checks, statistics, loop)
+    # the law's call, and the rest of the period (plant, integrator, checks, statistics, loop);
+    # a law inlined into the block's loop (one with a memory may be) counts in the rest
     parts: dict[str, collections.Counter[str]] = {
         "whole": collections.Counter(),
         "law": collections.Counter(),
@@ -530,10 +545,10 @@ def main() -> int:
         )
     ratio = statistics.median(a / b for a, b in zip(w1, floor["whole"]))
     print(f"{args.workload} / floor: {ratio:.2f} (median of the rounds' ratios)")
-    lanes = LANES[args.level]
+    width = LANES[args.level]
     write_json(args.json, {
-        "workload": args.workload, "level": args.level, "lanes": lanes, "clock_ghz": g,
-        "instructions_per_case_step": {name: sum(mix.values()) / lanes for name, mix in parts.items()},
+        "workload": args.workload, "level": args.level, "lanes": width, "clock_ghz": g,
+        "instructions_per_case_step": {name: sum(mix.values()) / width for name, mix in parts.items()},
         "measured_ns": w, "floor_ns": {name: statistics.median(v) for name, v in floor.items()}, "ratio": ratio,
     })
     if args.kinds:
