@@ -327,11 +327,12 @@ macro_rules! level_laws {
                 fn visit<C: ControlLaw<L, D>>(self, law: &C, memory: &mut C::Memory) -> SVector<L, D> {
                     // SAFETY: as for `LawCalls` below
                     unsafe {
-                        // one call where the law makes it one; two otherwise, as before: LLVM
-                        // inlines a law's call that has a single call site into the period's
-                        // loop, `#[inline(never)]` or not (the memory updates were), and a law
-                        // made one function with its update would be compiled into every plant's
-                        // loop. The branch is on a constant: the other function is not compiled.
+                        // one call where the law makes it one; two otherwise, as before: at AVX2
+                        // and AVX-512 LLVM inlines the memory updates' trampolines into the block
+                        // loops, `#[inline(never)]` notwithstanding (their symbols are not in the
+                        // binary), and every law made one function with its update would be
+                        // compiled into every plant's loop. The branch is on a constant: the other
+                        // function is not compiled.
                         if C::COMMANDS_AND_ADVANCES {
                             command_and_advance(law, memory, self.0)
                         } else {
