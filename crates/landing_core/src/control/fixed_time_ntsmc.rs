@@ -40,6 +40,7 @@ use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, ReadError, Validate, check, check_axes};
 use crate::lanes::axes::Axes;
 use crate::lanes::math::PowLog;
+use crate::lanes::slots::Slots;
 use crate::lanes::{Mask, Real, sub, zeros};
 use crate::math::sgn;
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
@@ -190,13 +191,14 @@ crate::gather_struct!(FixedTimeNtsmc<const D: usize, R> {
 /// by lane as axis after axis, so the same bits, with D times the independent work for the
 /// processor between the logarithms and exponentials of each step).
 #[derive(Clone, Copy, Debug)]
-struct Surfaces<const D: usize, R> {
+struct Surfaces<'p, const D: usize, R> {
     s: Axes<R, D>,
     /// ln |s|, shared by the powers of s in the reaching law and the adaptation
     ln_abs_s: PowLog<Axes<R, D>>,
     /// K1 zeta1' + K2 zeta2'
     surface_rate: Axes<R, D>,
-    phi: [Axes<R, D>; MAX_NODES],
+    /// the network's basis, rbf_nodes^2 entries
+    phi: &'p [Axes<R, D>],
 }
 
 /// `sig^a(s)` from the logarithm of |s| (0 at s = 0 for a > 0).
@@ -207,7 +209,11 @@ fn sig_from_ln<R: Real>(s: R, ln_abs: PowLog<R>, a: R) -> R {
 
 impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
     #[inline(always)]
-    fn surfaces(&self, input: &LawInput<D, R>) -> Surfaces<D, R> {
+    fn surfaces<'p>(
+        &self,
+        input: &LawInput<D, R>,
+        phi: &'p mut Slots<Axes<R, D>, MAX_NODES>,
+    ) -> Surfaces<'p, D, R> {
         let (e1, e2) = (Axes::of(&input.e), Axes::of(&input.de));
         let (k1, k2) = (Axes::of(&self.k1), Axes::of(&self.k2));
         let p = [Axes::of(&self.p1), Axes::of(&self.p2)];
@@ -222,14 +228,15 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
             s,
             ln_abs_s: PowLog::of(s.abs()),
             surface_rate,
-            phi: rbf::basis(self.rbf_nodes, zn, Axes::of(&self.rbf_width)),
+            phi: rbf::basis(self.rbf_nodes, zn, Axes::of(&self.rbf_width), phi),
         }
     }
 
     /// The sliding variable s per axis (eq. 20).
     #[inline(always)]
     pub fn s(&self, input: &LawInput<D, R>) -> SVector<R, D> {
-        self.surfaces(input).s.vector()
+        let mut phi = Slots::EMPTY;
+        self.surfaces(input, &mut phi).s.vector()
     }
 
     /// The network's estimate W^T Phi of the unknown terms per axis, in actuator units.
@@ -238,21 +245,18 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
         weights: &SMatrix<R, MAX_NODES, D>,
         input: &LawInput<D, R>,
     ) -> SVector<R, D> {
-        self.outputs(weights, &self.surfaces(input).phi).vector()
+        let mut phi = Slots::EMPTY;
+        self.outputs(weights, self.surfaces(input, &mut phi).phi)
+            .vector()
     }
 
     /// W^T Phi on every axis, each axis's sum in node order.
     #[inline(always)]
-    fn outputs(
-        &self,
-        weights: &SMatrix<R, MAX_NODES, D>,
-        phi: &[Axes<R, D>; MAX_NODES],
-    ) -> Axes<R, D> {
-        let n = self.rbf_nodes * self.rbf_nodes;
+    fn outputs(&self, weights: &SMatrix<R, MAX_NODES, D>, phi: &[Axes<R, D>]) -> Axes<R, D> {
         let mut sum = [R::zero(); D];
         for (i, total) in sum.iter_mut().enumerate() {
-            for j in 0..n {
-                *total += weights[(j, i)] * phi[j].0[i];
+            for (j, phi) in phi.iter().enumerate() {
+                *total += weights[(j, i)] * phi.0[i];
             }
         }
         Axes(sum)
@@ -264,12 +268,12 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
         &self,
         weights: &SMatrix<R, MAX_NODES, D>,
         input: &LawInput<D, R>,
-        sf: &Surfaces<D, R>,
+        sf: &Surfaces<'_, D, R>,
     ) -> SVector<R, D> {
         let reach = Axes::of(&self.k3)
             * (sig_from_ln(sf.s, sf.ln_abs_s, Axes::of(&self.alpha_s))
                 + sig_from_ln(sf.s, sf.ln_abs_s, Axes::of(&self.beta_s)));
-        let compensation = self.outputs(weights, &sf.phi) + Axes::of(&self.eps_max) * sgn(sf.s);
+        let compensation = self.outputs(weights, sf.phi) + Axes::of(&self.eps_max) * sgn(sf.s);
         let a = Axes::of(&sub(&input.reference.acceleration, &input.drift));
         (a - (sf.surface_rate + reach + compensation / Axes::of(&input.inertia))).vector()
     }
@@ -286,9 +290,8 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
         &self,
         weights: &mut SMatrix<R, MAX_NODES, D>,
         input: &LawInput<D, R>,
-        sf: &Surfaces<D, R>,
+        sf: &Surfaces<'_, D, R>,
     ) {
-        let n = self.rbf_nodes * self.rbf_nodes;
         // 2 as - 1 > 0 and 2 bs - 1 > 1: both powers are finite at s = 0
         let two = <Axes<R, D> as Real>::splat(2.0);
         let big_n = Axes::of(&self.k3)
@@ -300,8 +303,8 @@ impl<const D: usize, R: Real> FixedTimeNtsmc<D, R> {
                 continue;
             }
             let step = R::splat(input.dt) * self.gamma[i] * big_n.0[i];
-            for j in 0..n {
-                weights[(j, i)] += step * sf.phi[j].0[i];
+            for (j, phi) in sf.phi.iter().enumerate() {
+                weights[(j, i)] += step * phi.0[i];
             }
         }
     }
@@ -320,14 +323,16 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
 
     #[inline(always)]
     fn command(&self, weights: &Self::Memory, input: &LawInput<D, R>) -> SVector<R, D> {
-        self.command_at(weights, input, &self.surfaces(input))
+        let mut phi = Slots::EMPTY;
+        self.command_at(weights, input, &self.surfaces(input, &mut phi))
     }
 
     #[inline(always)]
     fn advance(&self, weights: &mut Self::Memory, input: &LawInput<D, R>) {
         // Gamma = 0 leaves the weights where they are (w + 0 phi = w): skip the work
         if self.adapts() {
-            self.adapt(weights, input, &self.surfaces(input));
+            let mut phi = Slots::EMPTY;
+            self.adapt(weights, input, &self.surfaces(input, &mut phi));
         }
     }
 
@@ -339,7 +344,8 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
         weights: &mut Self::Memory,
         input: &LawInput<D, R>,
     ) -> SVector<R, D> {
-        let sf = self.surfaces(input);
+        let mut phi = Slots::EMPTY;
+        let sf = self.surfaces(input, &mut phi);
         let u = self.command_at(weights, input, &sf);
         if self.adapts() {
             self.adapt(weights, input, &sf);
@@ -349,8 +355,9 @@ impl<const D: usize, R: Real> ControlLaw<R, D> for FixedTimeNtsmc<D, R> {
 
     #[inline(always)]
     fn diagnostics(&self, weights: &Self::Memory, input: &LawInput<D, R>, out: &mut [R]) {
-        let sf = self.surfaces(input);
-        let estimate = self.outputs(weights, &sf.phi);
+        let mut phi = Slots::EMPTY;
+        let sf = self.surfaces(input, &mut phi);
+        let estimate = self.outputs(weights, sf.phi);
         out[..D].copy_from_slice(&sf.s.0);
         out[D..2 * D].copy_from_slice(&estimate.0);
     }

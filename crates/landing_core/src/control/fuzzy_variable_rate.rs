@@ -21,7 +21,7 @@ use nalgebra::SVector;
 use super::integral_reaching::{C1, C2, IntegralSurface, K};
 use super::{ControlLaw, LawInput};
 use crate::error::{ParamError, ReadError, Validate, check_axes};
-use crate::fuzzy::{MAX_INPUTS, Mamdani};
+use crate::fuzzy::Mamdani;
 use crate::lanes::{Real, add, sub, zeros};
 use crate::params::{Declared, FromParams, Param, ParamSource, Schema};
 
@@ -87,7 +87,8 @@ impl<const D: usize, R: Real> FuzzyVariableRate<D, R> {
             zeros()
         };
         // the axes' systems evaluated side by side (`Mamdani::evaluate_each`)
-        let mut x = [[R::zero(); MAX_INPUTS]; D];
+        // (the system's two inputs: `validate` checks it has two)
+        let mut x = [[R::zero(); 2]; D];
         for (i, x) in x.iter_mut().enumerate() {
             x[0] = self.ke[i] * s[i];
             x[1] = self.kec[i] * ds[i];

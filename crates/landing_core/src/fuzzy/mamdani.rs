@@ -9,6 +9,7 @@
 
 use super::Membership;
 use crate::error::{ParamError, ReadError, require};
+use crate::lanes::slots::Slots;
 use crate::lanes::{Mask, Real};
 use crate::limits::MAX_FUZZY_RESOLUTION;
 use crate::params::schema::{Declared, Layout, Param, Schema};
@@ -235,7 +236,7 @@ impl Mamdani {
     /// The aggregated membership at grid point `j`: the largest of the fired output sets
     /// clipped at their firing strengths.
     #[inline(always)]
-    fn aggregated<R: Real>(&self, fire: &[R; MAX_OUTPUT_SETS], active: &[usize], j: usize) -> R {
+    fn aggregated<R: Real>(&self, fire: &[R], active: &[usize], j: usize) -> R {
         let n = self.grid.len();
         let mut m = R::zero();
         for &k in active {
@@ -262,19 +263,24 @@ impl Mamdani {
     }
 
     /// [`evaluate`](Self::evaluate) at `A` points at once (a law's axes; each point's inputs
-    /// first, the rest of its row unread), each giving the bits it gives alone. Each point's
+    /// first, the rest of its row unread: `I` is at least [`Mamdani::n_inputs`], which the
+    /// laws check when they are validated), each giving the bits it gives alone. Each point's
     /// two centroid sums are chains of dependent additions over the grid, in grid order; run
     /// in one loop, the points' chains advance side by side where one after another each
     /// would wait on its own.
     #[inline(always)]
-    pub fn evaluate_each<R: Real, const A: usize>(&self, x: &[[R; MAX_INPUTS]; A]) -> [R; A] {
+    pub fn evaluate_each<R: Real, const A: usize, const I: usize>(
+        &self,
+        x: &[[R; I]; A],
+    ) -> [R; A] {
         let zero = R::zero();
         let n = self.grid.len();
         // (loops, not `std::array::from_fn`: its closures are not inlined into a kernel
         // compiled for an instruction set, whose intrinsics then become calls)
-        let mut fire = [[zero; MAX_OUTPUT_SETS]; A];
-        for (f, x) in fire.iter_mut().zip(x) {
-            *f = self.strengths(x);
+        let mut slots = [Slots::<R, MAX_OUTPUT_SETS>::EMPTY; A];
+        let mut fire: [&[R]; A] = [&[]; A];
+        for ((f, slots), x) in fire.iter_mut().zip(&mut slots).zip(x) {
+            *f = self.strengths(x, slots);
         }
         // per point, the output sets fired in some lane, and the grid points where one of
         // them is positive
@@ -282,7 +288,7 @@ impl Mamdani {
         let mut n_active = [0usize; A];
         let mut span = [(n, 0usize); A];
         for a in 0..A {
-            for (k, f) in fire[a].iter().enumerate().take(self.output.sets.len()) {
+            for (k, f) in fire[a].iter().enumerate() {
                 if f.simd_gt(zero).any() {
                     active[a][n_active[a]] = k;
                     n_active[a] += 1;
@@ -340,12 +346,12 @@ impl Mamdani {
             }
             let active = &active[a][..n_active[a]];
             let m0 = if first == 0 {
-                self.aggregated(&fire[a], active, 0)
+                self.aggregated(fire[a], active, 0)
             } else {
                 zero
             };
             let mn = if last == n - 1 {
-                self.aggregated(&fire[a], active, n - 1)
+                self.aggregated(fire[a], active, n - 1)
             } else {
                 zero
             };
@@ -357,19 +363,27 @@ impl Mamdani {
         out
     }
 
-    /// Each output set's firing strength at `x`: the largest over its rules of the smallest
-    /// membership of the rule's antecedents (every input set's membership evaluated once).
+    /// Each output set's firing strength at `x`, written in `slots`: the largest over its
+    /// rules of the smallest membership of the rule's antecedents (every input set's
+    /// membership evaluated once).
     #[inline(always)]
-    fn strengths<R: Real>(&self, x: &[R]) -> [R; MAX_OUTPUT_SETS] {
-        let zero = R::zero();
-        let mut mu = [[zero; MAX_INPUT_SETS]; MAX_INPUTS];
-        for (i, v) in self.inputs.iter().enumerate() {
-            let xi = x[i].clamp(R::splat(v.lo), R::splat(v.hi));
-            for (a, set) in v.sets.iter().enumerate() {
-                mu[i][a] = set.eval_lanes(xi);
+    fn strengths<'s, R: Real>(&self, x: &[R], slots: &'s mut Slots<R, MAX_OUTPUT_SETS>) -> &'s [R] {
+        debug_assert!(x.len() >= self.inputs.len(), "one value per input");
+        let mut memberships = [Slots::<R, MAX_INPUT_SETS>::EMPTY; MAX_INPUTS];
+        let mut mu: [&[R]; MAX_INPUTS] = [&[]; MAX_INPUTS];
+        for (((v, mu), slots), &x) in self.inputs.iter().zip(&mut mu).zip(&mut memberships).zip(x) {
+            let xi = x.clamp(R::splat(v.lo), R::splat(v.hi));
+            let mut row = slots.start();
+            for set in &v.sets {
+                row.push(set.eval_lanes(xi));
             }
+            *mu = row.done();
         }
-        let mut fire = [zero; MAX_OUTPUT_SETS];
+        let mut fire = slots.start();
+        for _ in &self.output.sets {
+            fire.push(R::zero());
+        }
+        let fire = fire.done();
         for r in &self.rules {
             let mut w = R::one();
             for (i, &a) in r.antecedent.iter().enumerate() {
@@ -568,6 +582,57 @@ mod tests {
             })
             .chain([2, 7, 401, 2001].map(variable_rate_system))
             .collect()
+    }
+
+    /// A system at every cap (4 inputs of 16 sets, 16 output sets, a rule for each output set
+    /// and input set): its memberships and strengths fill the evaluation's slots.
+    #[test]
+    fn a_system_at_every_cap_has_the_bits_of_the_definition() {
+        use crate::lanes::Lanes;
+        let input = Variable {
+            lo: -5.0,
+            hi: 5.0,
+            sets: even_triangles(-5.0, 5.0, MAX_INPUT_SETS),
+        };
+        let output = Variable {
+            lo: -4.0,
+            hi: 4.0,
+            sets: even_triangles(-4.0, 4.0, MAX_OUTPUT_SETS),
+        };
+        // every input set and every output set in some rule; a rule fires where the inputs are
+        // near one another, as they are below
+        let rules = (0..MAX_INPUT_SETS)
+            .map(|k| Rule {
+                antecedent: vec![k; MAX_INPUTS],
+                consequent: (7 * k + 3) % MAX_OUTPUT_SETS,
+            })
+            .collect();
+        let m = Mamdani::new(vec![input; MAX_INPUTS], output, rules, 301).unwrap();
+        let value = |i: usize| -5.5 + 11.0 * ((i * 37) % 101) as f64 / 100.0;
+        let mut fired = 0;
+        for start in 0..60 {
+            let point = |p: usize| {
+                let mut row = [Lanes::<8>([0.0; 8]); MAX_INPUTS];
+                for (i, v) in row.iter_mut().enumerate() {
+                    *v = Lanes(std::array::from_fn(|l| {
+                        value(start + 13 * p + 3 * l) + 0.1 * i as f64
+                    }));
+                }
+                row
+            };
+            let got = m.evaluate_each(&[point(0), point(1)]);
+            for (p, got) in got.iter().enumerate() {
+                let row = point(p);
+                for l in 0..8 {
+                    let x: Vec<f64> = row.iter().map(|v| v.0[l]).collect();
+                    let want = naive(&m, &x);
+                    fired += usize::from(want != 0.0);
+                    assert_eq!(got.0[l].to_bits(), want.to_bits(), "point {p}, lane {l}");
+                    assert_eq!(m.evaluate(&x).to_bits(), want.to_bits(), "{x:?}");
+                }
+            }
+        }
+        assert!(fired > 200, "too few inputs fire a rule: {fired}");
     }
 
     #[test]

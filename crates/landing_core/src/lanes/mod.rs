@@ -23,6 +23,7 @@ pub mod axes;
 mod exp_log;
 pub mod gather;
 pub mod math;
+pub mod slots;
 mod trig;
 #[cfg(target_arch = "x86_64")]
 pub mod x86;
