@@ -3,9 +3,10 @@
 //! interpolated linearly between samples (the scikit-fuzzy conventions, which the Python tests
 //! compare with).
 //!
-//! Evaluated over [`Real`] lanes, one system for a block of cases. Only the output sets some
-//! lane fires are aggregated, and only over the grid points where one of them is positive:
-//! elsewhere the aggregated membership is zero and adds nothing to the centroid's sums.
+//! Evaluated over [`Real`] lanes, one system for a block of cases. The aggregated membership
+//! is made at each grid point from the output sets positive there (a table made once per
+//! system), and only over the grid points where a set some lane fires is positive: elsewhere
+//! it is zero and adds nothing to the centroid's sums.
 
 use super::Membership;
 use crate::error::{ParamError, ReadError, require};
@@ -47,9 +48,6 @@ pub const RESOLUTION: Param = Param::scalar("resolution")
     .unit("1")
     .rule("2 <= resolution <= max_fuzzy_resolution (100000)")
     .doc("points sampling the output universe for the centroid, ends included");
-
-/// Grid points whose aggregated membership [`Mamdani::evaluate`] holds at a time, on the stack.
-const CHUNK: usize = 32;
 
 /// Most sets one output variable may have (the aggregation keeps one activation per set on
 /// the stack, so evaluation never allocates).
@@ -126,6 +124,10 @@ pub struct Mamdani {
     /// Per output set, the first and last grid index where its membership is positive
     /// (first > last when it is nowhere positive on the grid).
     support: Vec<(usize, usize)>,
+    /// Per grid point j, the output sets positive there and their memberships, in set order:
+    /// entries `at[j]..at[j + 1]` of `positive` (at most two at a point of an even partition).
+    at: Vec<usize>,
+    positive: Vec<(usize, f64)>,
 }
 
 impl Mamdani {
@@ -202,6 +204,16 @@ impl Mamdani {
                 }
             })
             .collect();
+        let (mut at, mut positive) = (vec![0], Vec::new());
+        for j in 0..resolution {
+            for k in 0..output.sets.len() {
+                let t = table[k * resolution + j];
+                if t > 0.0 {
+                    positive.push((k, t));
+                }
+            }
+            at.push(positive.len());
+        }
         Ok(Self {
             inputs,
             output,
@@ -209,6 +221,8 @@ impl Mamdani {
             grid,
             table,
             support,
+            at,
+            positive,
         })
     }
 
@@ -299,43 +313,36 @@ impl Mamdani {
         }
         let first = span.iter().map(|s| s.0).min().unwrap_or(n);
         let last = span.iter().map(|s| s.1).max().unwrap_or(0);
-        // The aggregated membership of CHUNK grid points at a time, set by set over each set's
-        // support only: outside it a set's membership is 0, which min and max with the
-        // non-negative strengths leave out, so each point gets the value `aggregated` gives it
-        // (min and max are exact in any order) for a fraction of the work (at most two sets
-        // are positive at a point of an even partition, however many fire in the block). The
-        // sums then run over the grid in order; a point adds exact zeros outside its own span,
-        // which leave its sums as they were. (A zero's sign, which the max of zeros may
-        // change, changes no sum.)
+        // The aggregated membership point by point, from the sets positive there only: a set's
+        // membership is 0 elsewhere, which min and max with the non-negative strengths leave
+        // out, and a set no lane fires has strength 0 (its clipped membership too), so each
+        // point gets the value `aggregated` gives it (min and max are exact in any order) for
+        // a fraction of the work (at most two sets are positive at a point of an even
+        // partition, however many fire in the block). The first set's clipped membership is
+        // the point's maximum so far, with no maximum against zero (the strengths are not
+        // negative). The point's membership is made in registers and summed at once, in grid
+        // order; a point adds exact zeros outside its own span, which leave its sums as they
+        // were. (A zero's sign, which the max of zeros may change, changes no sum.)
         let (mut s0, mut s1) = ([zero; A], [zero; A]);
-        let mut m = [[zero; CHUNK]; A];
-        let mut from = first;
-        while from <= last {
-            let to = (from + CHUNK).min(last + 1);
-            for a in 0..A {
-                for &k in &active[a][..n_active[a]] {
-                    let (lo, hi) = (self.support[k].0.max(from), (self.support[k].1 + 1).min(to));
-                    if lo >= hi {
-                        continue;
-                    }
-                    let f = fire[a][k];
-                    let row = &self.table[k * n + lo..k * n + hi];
-                    for (mj, &t) in m[a][lo - from..hi - from].iter_mut().zip(row) {
-                        *mj = mj.max(f.min(R::splat(t)));
-                    }
-                }
-            }
-            // (the point's index i, not an iterator: each i reads a row of every point's m)
-            #[allow(clippy::needless_range_loop)]
-            for i in 0..to - from {
-                let j = (from + i) as f64;
+        for j in first..=last {
+            let mut m = [zero; A];
+            if let Some((&(k, t), rest)) = self.positive[self.at[j]..self.at[j + 1]].split_first() {
+                let t = R::splat(t);
                 for a in 0..A {
-                    let mj = std::mem::replace(&mut m[a][i], zero);
-                    s0[a] += mj;
-                    s1[a] += mj * j;
+                    m[a] = fire[a][k].min(t);
+                }
+                for &(k, t) in rest {
+                    let t = R::splat(t);
+                    for a in 0..A {
+                        m[a] = m[a].max(fire[a][k].min(t));
+                    }
                 }
             }
-            from = to;
+            let j = j as f64;
+            for a in 0..A {
+                s0[a] += m[a];
+                s1[a] += m[a] * j;
+            }
         }
         let h = (self.output.hi - self.output.lo) / (n - 1) as f64;
         let mut out = [zero; A];
@@ -526,7 +533,7 @@ mod tests {
     }
 
     /// Systems with trapezoids, shoulders, sets narrower than the grid's step and uneven
-    /// overlaps, at resolutions below, at and above the chunk of grid points.
+    /// overlaps, at resolutions from 2 to 1000.
     fn odd_systems() -> Vec<Mamdani> {
         let s_in = Variable {
             lo: -5.0,
@@ -569,7 +576,7 @@ mod tests {
             consequent: c,
         })
         .to_vec();
-        [2, 3, CHUNK - 1, CHUNK, CHUNK + 1, 401, 1000]
+        [2, 3, 31, 32, 33, 401, 1000]
             .into_iter()
             .map(|res| {
                 Mamdani::new(
