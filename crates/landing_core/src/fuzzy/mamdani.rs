@@ -315,7 +315,8 @@ impl Mamdani {
         let last = span.iter().map(|s| s.1).max().unwrap_or(0);
         // The aggregated membership point by point, from the sets positive there only: a set's
         // membership is 0 elsewhere, which min and max with the non-negative strengths leave
-        // out, and a set no lane fires has strength 0 (its clipped membership too), so each
+        // out, and a set no lane fires has strength 0 in each lane (whose inputs are numbers:
+        // a NaN input gives a lane no defined strength), its clipped membership too, so each
         // point gets the value `aggregated` gives it (min and max are exact in any order) for
         // a fraction of the work (at most two sets are positive at a point of an even
         // partition, however many fire in the block). The first set's clipped membership is
