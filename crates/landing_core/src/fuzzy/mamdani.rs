@@ -124,10 +124,26 @@ pub struct Mamdani {
     /// Per output set, the first and last grid index where its membership is positive
     /// (first > last when it is nowhere positive on the grid).
     support: Vec<(usize, usize)>,
-    /// Per grid point j, the output sets positive there and their memberships, in set order:
-    /// entries `at[j]..at[j + 1]` of `positive` (at most two at a point of an even partition).
-    at: Vec<usize>,
-    positive: Vec<(usize, f64)>,
+    /// Per grid point, the output sets positive there and their memberships, in set order and
+    /// in pairs: `points[j]` the first two, and `more[more_at[j]..more_at[j + 1]]` any further
+    /// ones (none in an even partition, where at most two sets are positive at a point). A pair
+    /// short of a set is completed by set 0 at membership 0, whose clipped membership, 0, the
+    /// max with the other leaves as it is (the strengths are not negative).
+    points: Vec<GridPoint>,
+    more_at: Vec<usize>,
+    more: Vec<GridPoint>,
+}
+
+/// Two output sets and their memberships at a grid point, and the point's index as a double
+/// (the weight of its membership in the centroid's first moment). The values the centroid's
+/// loop multiplies by are read from memory where each lane register needs them (with AVX-512,
+/// a broadcast from memory is a load alone; the index converted, or a value loaded and then
+/// broadcast, took the vector ports' operations: W5 6 % slower, see BENCHMARKS.md).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct GridPoint {
+    membership: [f64; 2],
+    set: [usize; 2],
+    index: f64,
 }
 
 impl Mamdani {
@@ -204,15 +220,28 @@ impl Mamdani {
                 }
             })
             .collect();
-        let (mut at, mut positive) = (vec![0], Vec::new());
+        let (mut points, mut more_at, mut more) = (Vec::new(), vec![0], Vec::new());
         for j in 0..resolution {
-            for k in 0..output.sets.len() {
-                let t = table[k * resolution + j];
-                if t > 0.0 {
-                    positive.push((k, t));
+            let positive: Vec<(usize, f64)> = (0..output.sets.len())
+                .map(|k| (k, table[k * resolution + j]))
+                .filter(|&(_, t)| t > 0.0)
+                .collect();
+            let mut pairs = positive.chunks(2).map(|p| {
+                let (a, b) = (p[0], *p.get(1).unwrap_or(&(0, 0.0)));
+                GridPoint {
+                    membership: [a.1, b.1],
+                    set: [a.0, b.0],
+                    index: j as f64,
                 }
-            }
-            at.push(positive.len());
+            });
+            let empty = GridPoint {
+                membership: [0.0; 2],
+                set: [0; 2],
+                index: j as f64,
+            };
+            points.push(pairs.next().unwrap_or(empty));
+            more.extend(pairs);
+            more_at.push(more.len());
         }
         Ok(Self {
             inputs,
@@ -221,8 +250,9 @@ impl Mamdani {
             grid,
             table,
             support,
-            at,
-            positive,
+            points,
+            more_at,
+            more,
         })
     }
 
@@ -257,6 +287,67 @@ impl Mamdani {
             m = m.max(fire[k].min(R::splat(self.table[k * n + j])));
         }
         m
+    }
+
+    /// The sums `S0 = sum m_j` and `S1 = sum j m_j` of [`evaluate`](Self::evaluate)'s
+    /// centroid for each of `A` points, over the grid points `first..=last`; `MORE` when some
+    /// grid point has more than two positive output sets.
+    ///
+    /// The aggregated membership point by point, from the sets positive there only: a set's
+    /// membership is 0 elsewhere, which min and max with the non-negative strengths leave out,
+    /// and a set no lane fires has strength 0 in each lane (whose inputs are numbers: a NaN
+    /// input gives a lane no defined strength), its clipped membership too, so each point gets
+    /// the value `aggregated` gives it (min and max are exact in any order) for a fraction of
+    /// the work (two sets at a point of an even partition, however many fire in the block).
+    /// The point's membership is made in registers and summed at once, in grid order; a point
+    /// adds exact zeros outside its own span, which leave its sums as they were. (A zero's
+    /// sign, which the max of zeros may change, changes no sum.) Each point's work is the
+    /// same, two sets, with no inner loop and no bounds check: W5 5 % faster than a loop over
+    /// each point's one or two sets (BENCHMARKS.md).
+    #[inline(always)]
+    fn centroid_sums<R: Real, const A: usize, const MORE: bool>(
+        &self,
+        fire: &[&[R]; A],
+        first: usize,
+        last: usize,
+    ) -> ([R; A], [R; A]) {
+        let zero = R::zero();
+        let (mut s0, mut s1) = ([zero; A], [zero; A]);
+        if first > last {
+            return (s0, s1);
+        }
+        let sets = self.output.sets.len();
+        for f in fire {
+            assert!(f.len() == sets, "a strength per output set");
+        }
+        // the point's membership: the larger of its two sets' clipped at their strengths
+        let pair = |p: &GridPoint, f: &[R]| {
+            debug_assert!(p.set[0] < sets && p.set[1] < sets);
+            // SAFETY: every set index in `points` and `more` is below the number of output
+            // sets (`new`), which is `f.len()` (asserted above)
+            let (f0, f1) = unsafe { (f.get_unchecked(p.set[0]), f.get_unchecked(p.set[1])) };
+            f0.min(R::splat(p.membership[0]))
+                .max(f1.min(R::splat(p.membership[1])))
+        };
+        for (j, p) in (first..=last).zip(&self.points[first..=last]) {
+            let mut m = [zero; A];
+            for a in 0..A {
+                m[a] = pair(p, fire[a]);
+            }
+            if MORE {
+                for p in &self.more[self.more_at[j]..self.more_at[j + 1]] {
+                    for a in 0..A {
+                        m[a] = m[a].max(pair(p, fire[a]));
+                    }
+                }
+            }
+            let index = R::splat(p.index);
+            for a in 0..A {
+                s0[a] += m[a];
+                s1[a] += m[a] * index;
+            }
+        }
+        (s0, s1)
     }
 
     /// The crisp output for `x` (one value per input; values outside an input's universe are
@@ -313,38 +404,11 @@ impl Mamdani {
         }
         let first = span.iter().map(|s| s.0).min().unwrap_or(n);
         let last = span.iter().map(|s| s.1).max().unwrap_or(0);
-        // The aggregated membership point by point, from the sets positive there only: a set's
-        // membership is 0 elsewhere, which min and max with the non-negative strengths leave
-        // out, and a set no lane fires has strength 0 in each lane (whose inputs are numbers:
-        // a NaN input gives a lane no defined strength), its clipped membership too, so each
-        // point gets the value `aggregated` gives it (min and max are exact in any order) for
-        // a fraction of the work (at most two sets are positive at a point of an even
-        // partition, however many fire in the block). The first set's clipped membership is
-        // the point's maximum so far, with no maximum against zero (the strengths are not
-        // negative). The point's membership is made in registers and summed at once, in grid
-        // order; a point adds exact zeros outside its own span, which leave its sums as they
-        // were. (A zero's sign, which the max of zeros may change, changes no sum.)
-        let (mut s0, mut s1) = ([zero; A], [zero; A]);
-        for j in first..=last {
-            let mut m = [zero; A];
-            if let Some((&(k, t), rest)) = self.positive[self.at[j]..self.at[j + 1]].split_first() {
-                let t = R::splat(t);
-                for a in 0..A {
-                    m[a] = fire[a][k].min(t);
-                }
-                for &(k, t) in rest {
-                    let t = R::splat(t);
-                    for a in 0..A {
-                        m[a] = m[a].max(fire[a][k].min(t));
-                    }
-                }
-            }
-            let j = j as f64;
-            for a in 0..A {
-                s0[a] += m[a];
-                s1[a] += m[a] * j;
-            }
-        }
+        let (s0, s1) = if self.more.is_empty() {
+            self.centroid_sums::<R, A, false>(&fire, first, last)
+        } else {
+            self.centroid_sums::<R, A, true>(&fire, first, last)
+        };
         let h = (self.output.hi - self.output.lo) / (n - 1) as f64;
         let mut out = [zero; A];
         for (a, out) in out.iter_mut().enumerate() {
@@ -562,6 +626,8 @@ mod tests {
                 Membership::Triangle(-0.01, 0.0, 0.013),
                 Membership::Trapezoid(0.5, 1.5, 2.2, 4.0),
                 Membership::Triangle(3.0, 4.0, 4.0),
+                // with sets 0, 3 and 4, four sets positive at a point (two pairs there)
+                Membership::Triangle(-4.0, 0.0, 4.0),
             ],
         };
         let rules = [
@@ -571,6 +637,7 @@ mod tests {
             (1, 1, 3),
             (2, 0, 4),
             (2, 1, 0),
+            (2, 1, 5),
         ]
         .map(|(a, b, c)| Rule {
             antecedent: vec![a, b],
