@@ -58,15 +58,31 @@ impl Membership {
         }
     }
 
-    /// The membership of each lane of `x` (the same ramps as [`Membership::eval`], as selects).
+    /// The membership of each lane of `x`: the value [`Membership::eval`] gives, with one
+    /// division per lane where the two ramps take two.
+    ///
+    /// Left of the peak or shoulder b the falling ramp is 1, and from b on the rising one is,
+    /// so the smaller of the two is the ramp on the lane's side of b: the same division of the
+    /// same operands, its quotient selected as [`Membership::eval`]'s ramps select it. (The
+    /// divider is the slowest unit a fuzzy law uses: a lane's second division was a fifth of
+    /// the time of W5's whole control period, see BENCHMARKS.md.)
     #[inline(always)]
     pub fn eval_lanes<R: Real>(&self, x: R) -> R {
-        match *self {
-            Membership::Triangle(a, b, c) => ramp_up_lanes(x, a, b).min(ramp_down_lanes(x, b, c)),
-            Membership::Trapezoid(a, b, c, d) => {
-                ramp_up_lanes(x, a, b).min(ramp_down_lanes(x, c, d))
-            }
-        }
+        // the rising ramp over [a, b], the falling one over [c, d]
+        let (a, b, c, d) = match *self {
+            Membership::Triangle(a, b, c) => (a, b, b, c),
+            Membership::Trapezoid(a, b, c, d) => (a, b, c, d),
+        };
+        let left = x.simd_lt(R::splat(b));
+        let q = R::select(left, x - a, R::splat(d) - x)
+            / R::select(left, R::splat(b - a), R::splat(d - c));
+        let rising = R::select(x.simd_lt(R::splat(a)), R::zero(), q);
+        let falling = R::select(
+            x.simd_gt(R::splat(d)),
+            R::zero(),
+            R::select(x.simd_le(R::splat(c)), R::one(), q),
+        );
+        R::select(left, rising, falling)
     }
 
     pub fn validate(&self) -> Result<(), ParamError> {
@@ -108,28 +124,6 @@ fn ramp_down(x: f64, b: f64, c: f64) -> f64 {
     }
 }
 
-/// [`ramp_up`] per lane.
-#[inline(always)]
-fn ramp_up_lanes<R: Real>(x: R, a: f64, b: f64) -> R {
-    let (a_, b_) = (R::splat(a), R::splat(b));
-    R::select(
-        x.simd_lt(a_),
-        R::zero(),
-        R::select(x.simd_ge(b_), R::one(), (x - a) / (b - a)),
-    )
-}
-
-/// [`ramp_down`] per lane.
-#[inline(always)]
-fn ramp_down_lanes<R: Real>(x: R, b: f64, c: f64) -> R {
-    let (b_, c_) = (R::splat(b), R::splat(c));
-    R::select(
-        x.simd_gt(c_),
-        R::zero(),
-        R::select(x.simd_le(b_), R::one(), (R::splat(c) - x) / (c - b)),
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -149,5 +143,39 @@ mod tests {
         assert_eq!(trap.eval(1.5), 1.0);
         assert_eq!(trap.eval(3.0), 0.5);
         assert!(Membership::Triangle(1.0, 0.0, 2.0).validate().is_err());
+    }
+
+    /// `eval_lanes` has the bits of `eval`, the two ramps' definition, in every lane: inside,
+    /// on every corner, outside, for triangles, shoulders, trapezoids and steps.
+    #[test]
+    fn the_lanes_have_the_bits_of_the_ramps() {
+        use crate::lanes::Lanes;
+        let sets = [
+            Membership::Triangle(-5.0, -2.5, 0.0),
+            Membership::Triangle(-5.0, -5.0, -2.5),
+            Membership::Triangle(2.5, 5.0, 5.0),
+            Membership::Triangle(-0.01, 0.0, 0.013),
+            Membership::Triangle(-1.0, 0.3, 0.3),
+            Membership::Trapezoid(0.0, 1.0, 2.0, 4.0),
+            Membership::Trapezoid(-5.0, -5.0, -3.0, 0.3),
+            Membership::Trapezoid(-0.5, 2.0, 5.0, 5.0),
+            Membership::Trapezoid(-1.0, 0.5, 0.5, 3.0),
+            Membership::Trapezoid(-1.0, -1.0, 2.0, 2.0),
+        ];
+        for set in sets {
+            let corners = set.corners();
+            let mut xs: Vec<f64> = (0..=400).map(|i| -6.0 + 12.0 * i as f64 / 400.0).collect();
+            for &c in &corners {
+                xs.extend([c, c.next_down(), c.next_up()]);
+            }
+            xs.extend([f64::INFINITY, f64::NEG_INFINITY]);
+            for x in xs.chunks(8) {
+                let lanes = Lanes::<8>(std::array::from_fn(|l| x[l % x.len()]));
+                let got = set.eval_lanes(lanes);
+                for (l, &x) in x.iter().enumerate() {
+                    assert_eq!(got.0[l].to_bits(), set.eval(x).to_bits(), "{set:?} at {x}");
+                }
+            }
+        }
     }
 }
