@@ -135,10 +135,11 @@ pub struct Mamdani {
 }
 
 /// Two output sets and their memberships at a grid point, and the point's index as a double
-/// (the weight of its membership in the centroid's first moment). The values the centroid's
-/// loop multiplies by are read from memory where each lane register needs them (with AVX-512,
-/// a broadcast from memory is a load alone; the index converted, or a value loaded and then
-/// broadcast, took the vector ports' operations: W5 6 % slower, see BENCHMARKS.md).
+/// (the weight of its membership in the centroid's first moment). The loop reads each of
+/// these constants as a broadcast from memory, which with AVX-512 is a load alone; converted
+/// from the index, or loaded and then broadcast from a register, each took an operation of
+/// the two vector ports the loop's arithmetic fills (in this layout W5 was 4 to 6 % faster
+/// than with the memberships beside their sets' indices, see BENCHMARKS.md).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct GridPoint {
     membership: [f64; 2],
