@@ -319,6 +319,44 @@ fn an_external_law_gives_the_bits_of_the_same_law_built_in() {
     }
 }
 
+/// Slices of thousands of cases, whose periods run in many groups of blocks: the bits of the
+/// law built in, recorded states included. 4200 cases in one slice on one thread, in two
+/// interleaved slices of 2100 on two (each period spread over the pool), in slices of 2048,
+/// 2048 and 104 on one.
+#[test]
+fn slices_of_thousands_of_cases_give_the_same_bits() {
+    let n = 4200;
+    let mut x0 = mars_dispersed(n, 7);
+    x0[1000][3] = 1e200;
+    let laws: Vec<AnyLaw<3>> = (0..n)
+        .map(|i| {
+            FixedTimeMss {
+                alpha1: Vector3::repeat(0.5 + 1e-4 * i as f64),
+                ..reconstructed_gains(MssVariant::Printed)
+            }
+            .into()
+        })
+        .collect();
+    let noisy = mars_storm().with_noise(Vector3::repeat(0.5));
+    let cfg = SimConfig::new(0.02, 0.001, 1, 3, 5).unwrap();
+    let reference = run(&builtin(&laws, &x0, &noisy), &cfg, &at(2, Level::Baseline)).unwrap();
+    assert!(
+        reference.metrics[1000].diverged.is_some(),
+        "the absurd case diverges"
+    );
+    let level = *Level::supported().last().unwrap();
+    for (per_call, threads) in [(usize::MAX, 1), (usize::MAX, 2), (2048, 1)] {
+        let mut law = CaseByCase::new(laws.clone(), cfg.dt);
+        law.per_call = per_call;
+        let out = run_external(&outside(&x0, &noisy), &cfg, &at(threads, level), &mut law).unwrap();
+        assert_eq!(
+            fingerprint(&out),
+            fingerprint(&reference),
+            "{per_call} cases per call, {threads} threads"
+        );
+    }
+}
+
 /// The calls of a batch of `n` cases run a slice at a time: slices of whole blocks (at most
 /// `per_call` cases, at least one block), starting in order and covering the batch, each
 /// called at every instant in time order (but the absurd case 3, which stops at once, when a
