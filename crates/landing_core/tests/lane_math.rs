@@ -896,6 +896,25 @@ fn write_rows_at_every_level() {
                 assert_eq!(*got, want, "{level}, D = {D}, {used} lanes used: value {j}");
             }
         }
+        // and back (`read_rows`): the rows of `used` cases (then other values) read as lanes,
+        // the lanes beyond repeating the last case
+        for used in [R::LANES, R::LANES - 1, 1].into_iter().filter(|&u| u > 0) {
+            let mut rows = vec![-1.0; R::LANES * D + 5];
+            for (j, r) in rows.iter_mut().enumerate().take(used * D) {
+                *r = (100 * (j % D) + j / D) as f64 + 0.5;
+            }
+            let v = R::read_rows::<D>(&rows, used);
+            for (c, v) in v.iter().enumerate() {
+                for i in 0..R::LANES {
+                    let want = (100 * c + i.min(used - 1)) as f64 + 0.5;
+                    assert_eq!(
+                        v.lane(i),
+                        want,
+                        "{level}, D = {D}, {used} lanes read: lane {i} of {c}"
+                    );
+                }
+            }
+        }
     }
     fn all<R: Real>(level: &str) {
         check::<R, 1>(level);

@@ -105,6 +105,14 @@ pub trait Real:
     fn write_rows<const D: usize>(v: &[Self; D], out: &mut [f64], used: usize) {
         write_rows_by_lane(v, out, used);
     }
+    /// The inverse of [`Real::write_rows`]: `v[c].lane(i) = rows[i D + c]` for the first
+    /// `used` lanes (at least one), the lanes beyond repeating lane `used - 1` (a block's last
+    /// case). A level may read whole registers and shuffle them (the bits are copied, never
+    /// computed).
+    #[inline(always)]
+    fn read_rows<const D: usize>(rows: &[f64], used: usize) -> [Self; D] {
+        read_rows_by_lane(rows, used)
+    }
 
     fn abs(self) -> Self;
     fn sqrt(self) -> Self;
@@ -810,6 +818,18 @@ pub fn write_rows_by_lane<R: Real, const D: usize>(v: &[R; D], out: &mut [f64], 
             *value = lanes.lane(i);
         }
     }
+}
+
+/// [`Real::read_rows`] one value at a time. (Loops, not `std::array::from_fn`, whose closure
+/// is not always inlined into a kernel compiled for an instruction set.)
+#[inline(always)]
+pub fn read_rows_by_lane<R: Real, const D: usize>(rows: &[f64], used: usize) -> [R; D] {
+    assert!(used > 0, "at least one lane is used");
+    let mut v = [R::zero(); D];
+    for (c, v) in v.iter_mut().enumerate() {
+        *v = R::from_fn(|i| rows[i.min(used - 1) * D + c]);
+    }
+    v
 }
 
 #[cfg(test)]

@@ -36,7 +36,7 @@ macro_rules! level {
         blend: $blend:expr, mand: $mand:expr, mor: $mor:expr, mxor: $mxor:expr, mnot: $mnot:expr,
         bits: $bits:expr, mtrue: $mtrue:expr, mfalse: $mfalse:expr,
         split: $split:path, scale2: $scale2:path, lookup16: $lookup16:path,
-        add_shl48: $add_shl48:path, rows3: $rows3:path,
+        add_shl48: $add_shl48:path, rows3: $rows3:path, cols3: $cols3:path,
         features: [$($features:literal)?] $(,)?
     ) => {
         /// N vector registers of lanes (see the module documentation).
@@ -279,6 +279,23 @@ macro_rules! level {
                 }
             }
             #[inline(always)]
+            fn read_rows<const D: usize>(rows: &[f64], used: usize) -> [Self; D] {
+                if D == 3 && used == $width * N {
+                    let rows = &rows[..3 * $width * N];
+                    let mut v = [Self::splat(0.0); D];
+                    for k in 0..N {
+                        // SAFETY: `rows` holds `3 WIDTH` values from `3 WIDTH k` on (the slice
+                        // above is of `3 WIDTH N`)
+                        let from = unsafe { rows.as_ptr().add(3 * $width * k) };
+                        let (x, y, z) = unsafe { ($cols3)(from) };
+                        (v[0].0[k], v[1].0[k], v[2].0[k]) = (x, y, z);
+                    }
+                    v
+                } else {
+                    super::read_rows_by_lane(rows, used)
+                }
+            }
+            #[inline(always)]
             fn set_lane(&mut self, i: usize, value: f64) {
                 assert!(i < $width * N);
                 // SAFETY: as for `lane`, and i is in bounds
@@ -454,6 +471,7 @@ level!(
     lookup16: sse2_ops::lookup16,
     add_shl48: sse2_ops::add_shl48,
     rows3: sse2_ops::rows3,
+    cols3: sse2_ops::cols3,
     features: [],
 );
 
@@ -483,6 +501,7 @@ level!(
     lookup16: avx2_ops::lookup16,
     add_shl48: avx2_ops::add_shl48,
     rows3: avx2_ops::rows3,
+    cols3: avx2_ops::cols3,
     features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt"],
 );
 
@@ -515,6 +534,7 @@ level!(
     lookup16: avx512_ops::lookup16,
     add_shl48: avx512_ops::add_shl48,
     rows3: avx512_ops::rows3,
+    cols3: avx512_ops::cols3,
     features: ["avx2,fma,bmi1,bmi2,lzcnt,popcnt,avx512f,avx512cd,avx512bw,avx512dq,avx512vl"],
 );
 
@@ -533,6 +553,25 @@ mod sse2_ops {
         _mm_storeu_pd(out, _mm_unpacklo_pd(x, y));
         _mm_storeu_pd(out.add(2), _mm_shuffle_pd::<0b10>(z, x));
         _mm_storeu_pd(out.add(4), _mm_unpackhi_pd(y, z));
+    }
+
+    /// Two rows `x0 y0 z0 x1 y1 z1` as lanes of `x`, `y`, `z` ([`Real::read_rows`]).
+    ///
+    /// # Safety
+    ///
+    /// `rows` is valid for reads of 6 values.
+    #[inline(always)]
+    pub(super) unsafe fn cols3(rows: *const f64) -> (__m128d, __m128d, __m128d) {
+        let (r0, r1, r2) = (
+            _mm_loadu_pd(rows),
+            _mm_loadu_pd(rows.add(2)),
+            _mm_loadu_pd(rows.add(4)),
+        );
+        (
+            _mm_shuffle_pd::<0b10>(r0, r1),
+            _mm_shuffle_pd::<0b01>(r0, r2),
+            _mm_shuffle_pd::<0b10>(r1, r2),
+        )
     }
 
     /// SSE2 has no fused multiply-add: libm's `fma` per lane, correctly rounded as the
@@ -609,6 +648,30 @@ mod avx2_ops {
         _mm256_storeu_pd(out.add(8), _mm256_permute2f128_pd::<0x31>(zx, yz));
     }
 
+    /// Four rows `x0 y0 z0 x1 | y1 z1 x2 y2 | z2 x3 y3 z3` as lanes of `x`, `y`, `z`
+    /// ([`Real::read_rows`]): [`rows3`]'s steps undone, a blend and a lane permute pairing the
+    /// values, three in-lane shuffles parting them.
+    ///
+    /// # Safety
+    ///
+    /// `rows` is valid for reads of 12 values.
+    #[inline(always)]
+    pub(super) unsafe fn cols3(rows: *const f64) -> (__m256d, __m256d, __m256d) {
+        let (r0, r1, r2) = (
+            _mm256_loadu_pd(rows),
+            _mm256_loadu_pd(rows.add(4)),
+            _mm256_loadu_pd(rows.add(8)),
+        );
+        let xy = _mm256_blend_pd::<0b1100>(r0, r1); // x0 y0 x2 y2
+        let zx = _mm256_permute2f128_pd::<0x21>(r0, r2); // z0 x1 z2 x3
+        let yz = _mm256_blend_pd::<0b1100>(r1, r2); // y1 z1 y3 z3
+        (
+            _mm256_shuffle_pd::<0b1010>(xy, zx),
+            _mm256_shuffle_pd::<0b0101>(xy, yz),
+            _mm256_shuffle_pd::<0b1010>(zx, yz),
+        )
+    }
+
     #[inline(always)]
     pub(super) unsafe fn split(x: __m256d) -> (__m256d, __m256d) {
         let bits = _mm256_castpd_si256(x);
@@ -676,6 +739,45 @@ mod avx512_ops {
         _mm512_storeu_pd(out, r0);
         _mm512_storeu_pd(out.add(8), r1);
         _mm512_storeu_pd(out.add(16), r2);
+    }
+
+    /// Eight rows `x0 y0 z0 x1 y1 z1 x2 y2 | z2 x3 ... | ... y7 z7` as lanes of `x`, `y`, `z`
+    /// ([`Real::read_rows`]): each takes its first lanes from the first two registers of rows
+    /// by a two-source permute, its last from the third by a masked permute.
+    ///
+    /// # Safety
+    ///
+    /// `rows` is valid for reads of 24 values.
+    #[inline(always)]
+    pub(super) unsafe fn cols3(rows: *const f64) -> (__m512d, __m512d, __m512d) {
+        let (r0, r1, r2) = (
+            _mm512_loadu_pd(rows),
+            _mm512_loadu_pd(rows.add(8)),
+            _mm512_loadu_pd(rows.add(16)),
+        );
+        // indices 0..8 pick from `r0`, 8..16 from `r1`; the lanes masked in below from `r2`
+        let x = _mm512_permutex2var_pd(r0, _mm512_setr_epi64(0, 3, 6, 9, 12, 15, 0, 0), r1);
+        let y = _mm512_permutex2var_pd(r0, _mm512_setr_epi64(1, 4, 7, 10, 13, 0, 0, 0), r1);
+        let z = _mm512_permutex2var_pd(r0, _mm512_setr_epi64(2, 5, 8, 11, 14, 0, 0, 0), r1);
+        let x = _mm512_mask_permutexvar_pd(
+            x,
+            0b1100_0000,
+            _mm512_setr_epi64(0, 0, 0, 0, 0, 0, 2, 5),
+            r2,
+        );
+        let y = _mm512_mask_permutexvar_pd(
+            y,
+            0b1110_0000,
+            _mm512_setr_epi64(0, 0, 0, 0, 0, 0, 3, 6),
+            r2,
+        );
+        let z = _mm512_mask_permutexvar_pd(
+            z,
+            0b1110_0000,
+            _mm512_setr_epi64(0, 0, 0, 0, 0, 1, 4, 7),
+            r2,
+        );
+        (x, y, z)
     }
 
     #[inline(always)]
