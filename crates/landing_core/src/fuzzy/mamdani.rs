@@ -139,7 +139,8 @@ pub struct Mamdani {
 /// these constants as a broadcast from memory, which with AVX-512 is a load alone; converted
 /// from the index, or loaded and then broadcast from a register, each took an operation of
 /// the two vector ports the loop's arithmetic fills (in this layout W5 was 4 to 6 % faster
-/// than with the memberships beside their sets' indices, see BENCHMARKS.md).
+/// than with each membership in a tuple beside its set's index, which LLVM loaded as a scalar
+/// and broadcast from a register; see BENCHMARKS.md).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct GridPoint {
     membership: [f64; 2],
