@@ -359,12 +359,6 @@ struct Step<'a, 'b, 'c, const D: usize, P: PlantModel<D>> {
     out: &'b mut BlockBuffers<'c, D>,
 }
 
-/// Lanes of the block's rows `values` (`used x width`; the padding lanes repeat the last case).
-#[inline(always)]
-fn lanes<R: Real>(values: &[f64], used: usize, width: usize, c: usize) -> R {
-    R::from_fn(|i| values[i.min(used - 1) * width + c])
-}
-
 impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
     type Blocks = P::Blocks;
     /// Whether the block goes on (false once it is finished).
@@ -393,7 +387,7 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
         // AVX-512) showed in a profile of a Python law's run
         let mut room = [const { MaybeUninit::<R>::uninit() }; MAX_DIAGNOSTIC_WIDTH];
         for (c, d) in room[..nd].iter_mut().enumerate() {
-            d.write(lanes(self.diagnostics, used, nd, c));
+            d.write(crate::lanes::column(self.diagnostics, used, nd, c));
         }
         // SAFETY: the first `nd` values were written just above
         let diag = unsafe { std::slice::from_raw_parts(room.as_ptr().cast::<R>(), nd) };

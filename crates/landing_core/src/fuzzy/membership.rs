@@ -64,8 +64,8 @@ impl Membership {
     /// Left of the peak or shoulder b the falling ramp is 1, and from b on the rising one is,
     /// so the smaller of the two is the ramp on the lane's side of b: the same division of the
     /// same operands, its quotient selected as [`Membership::eval`]'s ramps select it. (The
-    /// divider is the slowest unit a fuzzy law uses: a lane's second division was a fifth of
-    /// the time of W5's whole control period, see BENCHMARKS.md.)
+    /// divider is the slowest unit a fuzzy law uses: with one division W5 took 0.94 times as
+    /// long, see BENCHMARKS.md.)
     #[inline(always)]
     pub fn eval_lanes<R: Real>(&self, x: R) -> R {
         // the rising ramp over [a, b], the falling one over [c, d]

@@ -824,12 +824,19 @@ pub fn write_rows_by_lane<R: Real, const D: usize>(v: &[R; D], out: &mut [f64], 
 /// is not always inlined into a kernel compiled for an instruction set.)
 #[inline(always)]
 pub fn read_rows_by_lane<R: Real, const D: usize>(rows: &[f64], used: usize) -> [R; D] {
-    assert!(used > 0, "at least one lane is used");
     let mut v = [R::zero(); D];
     for (c, v) in v.iter_mut().enumerate() {
-        *v = R::from_fn(|i| rows[i.min(used - 1) * D + c]);
+        *v = column(rows, used, D, c);
     }
     v
+}
+
+/// Column `c` of the rows `rows` (`used x width`) as lanes, the lanes beyond `used` (at least
+/// one) repeating the last row.
+#[inline(always)]
+pub fn column<R: Real>(rows: &[f64], used: usize, width: usize, c: usize) -> R {
+    assert!(used > 0, "at least one lane is used");
+    R::from_fn(|i| rows[i.min(used - 1) * width + c])
 }
 
 #[cfg(test)]
