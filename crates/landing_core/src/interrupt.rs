@@ -8,6 +8,7 @@
 
 use std::any::Any;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::RecvTimeoutError;
 use std::time::Duration;
 
 /// Jobs of fewer integrator steps than this (cases x periods x substeps) run on the calling
@@ -40,28 +41,38 @@ pub fn supervised<'a, T: Send, E>(
     if work < WATCHED_WORK {
         return caught().map_err(Stopped::Panicked);
     }
-    let watcher = std::thread::current();
+    // the result comes back through a channel, which wakes this thread as it is sent: a
+    // thread parked until the job's thread had finished (woken by an unpark just before the
+    // job's thread returned) found it still running at times, parked again and slept out the
+    // poll interval: up to 50 ms added to a run (BENCHMARKS.md)
+    let (send, result) = std::sync::mpsc::sync_channel(1);
     std::thread::scope(|scope| {
         let worker = scope.spawn(move || {
-            let out = caught();
-            watcher.unpark();
-            out
+            // the receiver outlives the scope, so the send cannot fail
+            let _ = send.send(caught());
         });
         let mut raised = None;
-        while !worker.is_finished() {
-            std::thread::park_timeout(POLL_INTERVAL);
-            if raised.is_none()
-                && !worker.is_finished()
-                && let Err(e) = poll()
-            {
-                cancel.store(true, Ordering::Relaxed);
-                raised = Some(e);
+        let out = loop {
+            match result.recv_timeout(POLL_INTERVAL) {
+                Ok(out) => break out,
+                Err(RecvTimeoutError::Timeout) => {
+                    if raised.is_none()
+                        && let Err(e) = poll()
+                    {
+                        cancel.store(true, Ordering::Relaxed);
+                        raised = Some(e);
+                    }
+                }
+                // the job's panics are caught inside it, so its thread sends before it ends;
+                // should it end without sending, its panic is the job's
+                Err(RecvTimeoutError::Disconnected) => {
+                    break Err(worker
+                        .join()
+                        .err()
+                        .unwrap_or_else(|| Box::new("the job's thread ended without a result")));
+                }
             }
-        }
-        // the job's panics are caught inside it, so the thread itself cannot have panicked
-        let out = worker
-            .join()
-            .expect("the job's panics are caught inside it");
+        };
         match (raised, out) {
             (Some(e), _) => Err(Stopped::Interrupted(e)),
             (None, out) => out.map_err(Stopped::Panicked),
@@ -108,6 +119,26 @@ mod tests {
         let r = supervised(u128::MAX, &cancel, || Err::<(), &str>("stop"), job);
         assert!(matches!(r, Err(Stopped::Interrupted("stop"))));
         assert!(cancel.load(Ordering::Relaxed));
+    }
+
+    #[test]
+    fn the_caller_is_woken_when_a_large_job_ends_not_at_its_next_poll() {
+        // a job that ends at once is never polled: the caller's wait ends with it. Parked until
+        // the job's thread had finished, the caller was woken just before, found the thread
+        // still running at times, polled and slept out the interval (up to 50 ms a run)
+        let cancel = AtomicBool::new(false);
+        let polled = std::cell::Cell::new(0);
+        for i in 0..200 {
+            let poll = || -> Result<(), ()> {
+                polled.set(polled.get() + 1);
+                Ok(())
+            };
+            assert!(matches!(
+                supervised(u128::MAX, &cancel, poll, Box::new(move || i)),
+                Ok(j) if j == i
+            ));
+        }
+        assert_eq!(polled.get(), 0, "polls after jobs that had ended");
     }
 
     #[test]
