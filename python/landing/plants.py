@@ -498,7 +498,8 @@ class PythonPlant(Plant):
         The optional hooks above.
     params : Mapping[str, ArrayLike]
         The plant's parameters by name: a scalar (the functions see (n,)), a vector (k,)
-        shared by every case (seen as (n, k)), or a value per case (N,) or (N, k).
+        shared by every case (seen as (n, k)), or a value per case (N,) or (N, k); read-only,
+        a shared value as a broadcast view of one copy (stride 0 along the cases).
     state_names, control_names : tuple of str
         Names for tables and plots (default x0, x1, ... and u0, ...).
     mass, altitude : int or None

@@ -143,6 +143,40 @@ def test_per_case_parameters_reach_the_function_and_match_a_per_case_built_in_la
     assert len({tuple(r) for r in a.final_state.round(12)}) == 9  # the gains differ per case
 
 
+def test_the_parameters_are_read_only_views_of_a_copy_shared_values_with_zero_strides():
+    # a value shared by the cases (or the axes) is handed as a broadcast view, not an (n, D)
+    # copy: numpy reads it from the cache (BENCHMARKS.md); what the caller gave is copied first
+    seen = []
+
+    def law(t, e, de, ref, drift, inertia, params, memory):
+        if not seen:
+            seen.append({k: (v.shape, v.strides, v.flags.writeable, v.copy()) for k, v in params.items()})
+        return -params["k"] * e
+
+    n = 6
+    per_case = np.linspace(1.0, 2.0, n)
+    per_axis = np.array([1.0, 2.0, 3.0])
+    full = np.arange(3.0 * n).reshape(n, 3)
+    given = {"shared": 0.5, "axes": per_axis, "cases": per_case, "cases_1": per_case[:, None], "full": full,
+             "k": 0.1}
+    law_ = C.PythonLaw(law, params=given)
+    per_axis[:] = -1.0  # changed after the law was made: the run sees the values given
+    landing.simulate_batch(P.DoubleIntegrator(), law_, np.ones((n, 6)), t_final=0.02, dt=0.01, record_every=0,
+                           threads=1)
+    (p,) = seen
+    expect = {"shared": np.full((n, 3), 0.5), "axes": np.tile([1.0, 2.0, 3.0], (n, 1)),
+              "cases": np.repeat(per_case[:, None], 3, axis=1), "cases_1": np.repeat(per_case[:, None], 3, axis=1),
+              "full": full}
+    for k, v in expect.items():
+        shape, strides, writeable, values = p[k]
+        assert shape == (n, 3) and not writeable, (k, shape, writeable)
+        np.testing.assert_array_equal(values, v, err_msg=k)
+    assert p["shared"][1] == (0, 0)
+    assert p["axes"][1] == (0, 8)
+    assert p["cases"][1] == (8, 0) and p["cases_1"][1] == (8, 0)
+    assert p["full"][1] == (24, 8)
+
+
 def test_the_python_law_is_bit_identical_across_threads_and_levels():
     gains = dict(RECONSTRUCTED_GAINS, s1_floor=1e-3)
     law = C.PythonLaw(mss_printed, params=gains, diagnostics=("s1", "s2"))

@@ -128,6 +128,23 @@ def test_the_arrays_a_plant_is_handed_are_read_only():
     assert len(flags) == 20 and not any(w for pair in flags for w in pair), flags
 
 
+def test_a_plant_s_parameters_are_read_only_and_shared_values_are_views():
+    # a value shared by the cases is a broadcast view with zero strides, not a copy per case
+    seen = []
+
+    def derivative(t, x, u, params):
+        if not seen:
+            seen.append({k: (v.shape, v.strides, v.flags.writeable) for k, v in params.items()})
+        return np.concatenate([x[:, 3:], u * params["gain"][:, None]], axis=1)
+
+    n = 4
+    params = {"gain": 1.0, "vector": np.array([1.0, 2.0]), "cases": np.linspace(1.0, 2.0, n)}
+    plant = P.PythonPlant(derivative, 6, positions=(0, 1, 2), velocities=(3, 4, 5), params=params)
+    landing.simulate_batch(plant, C.OpenLoop(), np.zeros((n, 6)), t_final=0.02, dt=0.01, record_every=0)
+    (p,) = seen
+    assert p == {"gain": ((n,), (0,), False), "vector": ((n, 2), (0, 8), False), "cases": ((n,), (8,), False)}
+
+
 def test_the_mars_lander_in_python_agrees_with_the_built_in_one():
     x0 = mars_x0(30)
     x0[4] = [10.0, 0.0, 3.0, 0.0, 0.0, -40.0, 1900.0]  # touches down in the first tenth of a second

@@ -82,9 +82,10 @@ def load_function(spec: str, search: Sequence[str] = ()) -> Callable[..., Any]:
 
 def per_axis(owner: str, name: str, given: Any, n: int, axes: int) -> np.ndarray:
     """A parameter given as a scalar, ``(D,)``, or per case ``(N,)``, ``(N, 1)``, ``(N, D)``, as
-    the (n, D) array the function sees (a 1-d value of length D is per axis; give (N, 1) for a
-    value per case when N equals D)."""
-    value = np.asarray(given, dtype=np.float64)
+    the read-only (n, D) array the function sees (a 1-d value of length D is per axis; give
+    (N, 1) for a value per case when N equals D): a broadcast view of a copy of the value."""
+    # a copy of what was given, so that a run does not see later changes to the caller's array
+    value = np.array(given, dtype=np.float64)
     shape = value.shape
     if value.ndim == 0 or shape == (axes,):
         out = np.broadcast_to(value, (n, axes))
@@ -97,8 +98,9 @@ def per_axis(owner: str, name: str, given: Any, n: int, axes: int) -> np.ndarray
             f"{owner}: params[{name!r}] has shape {shape}; with {n} cases and {axes} axes it takes a scalar, "
             f"({axes},), ({n},), ({n}, 1) or ({n}, {axes})"
         )
-    out = np.array(out, dtype=np.float64)
-    out.setflags(write=False)
+    # a read-only view, not an (n, D) copy: a value shared by the cases or the axes has zero
+    # strides there, and numpy reads it from the cache instead of an array's worth of memory
+    # (BENCHMARKS.md, "A Python law's shared parameters handed as views")
     return out
 
 

@@ -23,8 +23,9 @@ __all__ = ["PlantStep", "per_case"]
 def per_case(owner: str, name: str, given: Any, n: int) -> np.ndarray:
     """A plant parameter as the functions see it, one row per case: a scalar as ``(n,)``, a
     value per case ``(N,)`` or ``(N, k)`` as it is, a vector ``(k,)`` shared by every case (k
-    not N) as ``(n, k)``. Read-only."""
-    value = np.asarray(given, dtype=np.float64)
+    not N) as ``(n, k)``. Read-only: a copy of the value, broadcast without another copy (a value
+    shared by the cases has zero strides there)."""
+    value = np.array(given, dtype=np.float64)
     if value.ndim == 0:
         out = np.broadcast_to(value, (n,))
     elif value.shape[0] == n and value.ndim <= 2:
@@ -35,8 +36,8 @@ def per_case(owner: str, name: str, given: Any, n: int) -> np.ndarray:
         raise UserFunctionError(
             f"{owner}: params[{name!r}] has shape {value.shape}; with {n} cases it takes a scalar, a vector "
             f"(k,) shared by every case, or a value per case ({n},) or ({n}, k)")
-    out = np.array(out, dtype=np.float64)
-    out.setflags(write=False)
+    if out is value:
+        value.setflags(write=False)
     return out
 
 
