@@ -32,12 +32,18 @@ Three tables:
    waits its turn. The function alone on two slices' arrays (2048 and 4096 cases), the two
    calls in turn on one thread against one call on each of two threads at once: the speed-up
    a driver calling the law from both threads could at most expect.
+6. What the form of the parameters costs: the careful function with its eight gains given as
+   scalars, per axis ``(3,)`` and per case ``(N,)`` (the same values, so the same bits), whole
+   runs at each ``--threads``; and the function alone on 4096 cases with the gains as the
+   run hands them (a scalar as a view with zero strides, any other value as a contiguous
+   ``(n, 3)`` array) against per-axis and per-case gains handed as views with one zero
+   stride, which numpy cannot iterate as one run of values.
 
 The timed runs go round-robin over the rows; the tables give the median of ``--repeat`` runs.
 
     python benches/python_law.py [--cases 10000] [--repeat 5] [--threads 1 2] [--json FILE]
 
-``--json`` writes tables 1, 3 and 4 (those that ran).
+``--json`` writes tables 1, 3, 4 and 6 (those that ran).
 """
 
 from __future__ import annotations
@@ -157,7 +163,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--t-final", type=float, default=2.0)
-    ap.add_argument("--tables", type=int, nargs="+", default=[1, 2, 3, 4, 5], help="which tables to print")
+    ap.add_argument("--tables", type=int, nargs="+", default=[1, 2, 3, 4, 5, 6], help="which tables to print")
     ap.add_argument("--sweep", nargs="+", choices=["printed", "careful", "zeros"], default=["printed"],
                     help="table 2's functions (zeros: the engine's own cost)")
     json_option(ap)
@@ -193,6 +199,8 @@ def main() -> None:
         numbers["table4"] = table4(args, plant, kw, steps)
     if 5 in args.tables:
         table5(args)
+    if 6 in args.tables:
+        numbers["table6"] = table6(args, plant, x0, kw, steps)
     write_json(args.json, numbers)
 
 
@@ -321,6 +329,59 @@ def table5(args) -> None:
         for n in (2048, 4096):
             a, b = two_calls(function, n, args.repeat)
             print(f"   {label}, {n} cases: in turn {a:6.1f}   at once {b:6.1f}   speed-up {a / b:5.2f}")
+
+
+def gain_forms(n: int) -> dict[str, dict[str, object]]:
+    """``GAINS`` given as scalars, per axis and per case: the same values in three forms."""
+    return {"scalars": dict(GAINS), "per axis": {k: np.full(3, v) for k, v in GAINS.items()},
+            "per case": {k: np.full(n, v) for k, v in GAINS.items()}}
+
+
+def table6(args, plant, x0, kw, steps) -> list[dict]:
+    from landing._internal.user_law import per_axis
+
+    n = len(x0)
+    table = []
+    laws = {form: C.PythonLaw(mss_lean, params=p) for form, p in gain_forms(n).items()}
+    ref = landing.simulate_batch(plant, laws["scalars"], x0, threads=1, **kw).final_state
+    for form, law in laws.items():
+        same = np.array_equal(landing.simulate_batch(plant, law, x0, threads=1, **kw).final_state, ref)
+        assert same, f"the gains given {form} give other bits"
+    for threads in args.threads:
+        print(f"\n6. the careful function's gains given in three forms, {n} Mars cases, {threads} thread(s); "
+              f"median of {args.repeat}, ns per case-step")
+        times: dict[str, list[float]] = {form: [] for form in laws}
+        for r in range(args.repeat):
+            names = list(laws)
+            for form in names[r % len(names):] + names[:r % len(names)]:
+                times[form].append(timed(lambda law=laws[form], t=threads: landing.simulate_batch(
+                    plant, law, x0, threads=t, **kw)))
+        per = {form: statistics.median(v) / (n * steps) * 1e9 for form, v in times.items()}
+        print("   " + "   ".join(f"{form} {ns:6.1f}" for form, ns in per.items()))
+        table.append({"threads": threads, **{form.replace(" ", "_") + "_ns": ns for form, ns in per.items()}})
+
+    m, calls = 4096, 200
+    rng = np.random.default_rng(6)
+    e, de, drift = rng.normal(0.0, 100.0, (m, 3)), rng.normal(0.0, 5.0, (m, 3)), rng.normal(0.0, 1.0, (m, 3))
+    ref = types.SimpleNamespace(position=np.zeros((m, 3)), velocity=np.zeros((m, 3)), acceleration=np.zeros((m, 3)))
+    handed = {form: {k: per_axis("bench", k, v, m, 3) for k, v in p.items()}
+              for form, p in gain_forms(m).items()}
+    handed["per axis, as views"] = {k: np.broadcast_to(np.full(3, v), (m, 3)) for k, v in GAINS.items()}
+    handed["per case, as views"] = {k: np.broadcast_to(np.full(m, v)[:, None], (m, 3)) for k, v in GAINS.items()}
+    print(f"\n6. the careful function alone, {m} cases, its gains as handed to it; median of {args.repeat} rounds of "
+          f"{calls} calls, ns per case")
+    alone: dict[str, list[float]] = {form: [] for form in handed}
+    for _ in range(args.repeat):
+        for form, p in handed.items():
+            start = time.perf_counter()
+            for _ in range(calls):
+                mss_lean(0.0, e, de, ref, drift, np.ones((m, 3)), p, None)
+            alone[form].append(time.perf_counter() - start)
+    for form, v in alone.items():
+        strides = handed[form]["beta1"].strides
+        print(f"   {form:>20} (strides {strides}): {statistics.median(v) / (calls * m) * 1e9:6.1f}")
+    table.append({"alone_ns_per_case": {form: statistics.median(v) / (calls * m) * 1e9 for form, v in alone.items()}})
+    return table
 
 
 def two_calls(function, n: int, repeat: int, calls: int = 200) -> tuple[float, float]:

@@ -657,8 +657,8 @@ class PythonLaw(Controller):
         Its parameters, by name: each a scalar, a per-axis ``(D,)`` value, or per case
         ``(N,)``, ``(N, 1)``, ``(N, D)`` (N the batch's or campaign's cases; a 1-d value of length D is per
         axis, so give ``(N, 1)`` for a value per case when N equals D). The function sees each
-        as a read-only (n, D) array: a value shared by the cases or the axes as a broadcast
-        view of one copy (stride 0 there). ``law.replace(kp=2.0)`` changes one;
+        as a read-only (n, D) array: a scalar as a broadcast view of one copy (zero strides),
+        any other value as a C-contiguous array. ``law.replace(kp=2.0)`` changes one;
         ``landing.tune`` tunes them.
     memory : Mapping, Callable or None
         The law's internal state at t = 0: a dict of initial values shared by every case

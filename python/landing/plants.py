@@ -498,8 +498,8 @@ class PythonPlant(Plant):
         The optional hooks above.
     params : Mapping[str, ArrayLike]
         The plant's parameters by name: a scalar (the functions see (n,)), a vector (k,)
-        shared by every case (seen as (n, k)), or a value per case (N,) or (N, k); read-only,
-        a shared value as a broadcast view of one copy (stride 0 along the cases).
+        shared by every case (seen as (n, k)), or a value per case (N,) or (N, k); read-only
+        copies, a scalar as a broadcast view of one value (stride 0), any other C-contiguous.
     state_names, control_names : tuple of str
         Names for tables and plots (default x0, x1, ... and u0, ...).
     mass, altitude : int or None

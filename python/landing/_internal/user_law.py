@@ -83,11 +83,17 @@ def load_function(spec: str, search: Sequence[str] = ()) -> Callable[..., Any]:
 def per_axis(owner: str, name: str, given: Any, n: int, axes: int) -> np.ndarray:
     """A parameter given as a scalar, ``(D,)``, or per case ``(N,)``, ``(N, 1)``, ``(N, D)``, as
     the read-only (n, D) array the function sees (a 1-d value of length D is per axis; give
-    (N, 1) for a value per case when N equals D): a broadcast view of a copy of the value."""
+    (N, 1) for a value per case when N equals D): a scalar as a broadcast view of one copy, any
+    other value as a C-contiguous array of its own."""
     # a copy of what was given, so that a run does not see later changes to the caller's array
     value = np.array(given, dtype=np.float64)
     shape = value.shape
-    if value.ndim == 0 or shape == (axes,):
+    if value.ndim == 0:
+        # zero strides on both axes: numpy reads it as it reads a Python float, from the cache,
+        # where an (n, D) array would be read at every operation (BENCHMARKS.md, "A Python
+        # law's shared parameters handed as views")
+        return np.broadcast_to(value, (n, axes))
+    if shape == (axes,):
         out = np.broadcast_to(value, (n, axes))
     elif value.ndim == 1 and shape[0] == n:
         out = np.broadcast_to(value[:, None], (n, axes))
@@ -98,9 +104,11 @@ def per_axis(owner: str, name: str, given: Any, n: int, axes: int) -> np.ndarray
             f"{owner}: params[{name!r}] has shape {shape}; with {n} cases and {axes} axes it takes a scalar, "
             f"({axes},), ({n},), ({n}, 1) or ({n}, {axes})"
         )
-    # a read-only view, not an (n, D) copy: a value shared by the cases or the axes has zero
-    # strides there, and numpy reads it from the cache instead of an array's worth of memory
-    # (BENCHMARKS.md, "A Python law's shared parameters handed as views")
+    # copied whole, not a view with a zero stride along one axis only: numpy cannot merge such
+    # a view's two axes into one, so every operation with it loops over rows of D values, three
+    # to five times slower than over an array (BENCHMARKS.md, "per-axis parameters")
+    out = np.ascontiguousarray(out)
+    out.setflags(write=False)
     return out
 
 

@@ -23,21 +23,25 @@ __all__ = ["PlantStep", "per_case"]
 def per_case(owner: str, name: str, given: Any, n: int) -> np.ndarray:
     """A plant parameter as the functions see it, one row per case: a scalar as ``(n,)``, a
     value per case ``(N,)`` or ``(N, k)`` as it is, a vector ``(k,)`` shared by every case (k
-    not N) as ``(n, k)``. Read-only: a copy of the value, broadcast without another copy (a value
-    shared by the cases has zero strides there)."""
+    not N) as ``(n, k)``. Read-only, a copy of the value: a scalar broadcast without another
+    copy (stride 0), anything else a C-contiguous array."""
     value = np.array(given, dtype=np.float64)
     if value.ndim == 0:
-        out = np.broadcast_to(value, (n,))
-    elif value.shape[0] == n and value.ndim <= 2:
+        # stride 0: numpy reads it as it reads a Python float (BENCHMARKS.md, "A Python law's
+        # shared parameters handed as views")
+        return np.broadcast_to(value, (n,))
+    if value.shape[0] == n and value.ndim <= 2:
         out = value
     elif value.ndim == 1:
-        out = np.broadcast_to(value, (n, value.shape[0]))
+        # a full (n, k) array, not a view with a zero stride along the cases: numpy could not
+        # merge that view's axes and would loop over rows of k values (BENCHMARKS.md,
+        # "per-axis parameters")
+        out = np.ascontiguousarray(np.broadcast_to(value, (n, value.shape[0])))
     else:
         raise UserFunctionError(
             f"{owner}: params[{name!r}] has shape {value.shape}; with {n} cases it takes a scalar, a vector "
             f"(k,) shared by every case, or a value per case ({n},) or ({n}, k)")
-    if out is value:
-        value.setflags(write=False)
+    out.setflags(write=False)
     return out
 
 
