@@ -319,6 +319,92 @@ fn an_external_law_gives_the_bits_of_the_same_law_built_in() {
     }
 }
 
+/// A plant, reference and disturbance given per case or shared, in each of the eight
+/// combinations: the driver keeps a block's own parts for what is given per case and one copy
+/// of the batch's for what is shared, and must give the bits of the law built in (which
+/// gathers every part per block) either way. A block that read the shared copy of a part given
+/// per case would see case 0's values.
+#[test]
+fn plants_references_and_disturbances_given_per_case_or_shared_give_the_bits_of_the_law_built_in() {
+    let n = 21;
+    let (laws, x0) = cases(|i| -> AnyLaw<3> {
+        FixedTimeMss {
+            alpha1: Vector3::repeat(0.5 + 0.05 * i as f64),
+            ..reconstructed_gains(MssVariant::Printed)
+        }
+        .into()
+    });
+    let plants = |per_case: bool| {
+        let each = |i: usize| MarsLander {
+            thrust_limit: Vector3::new(40_000.0 + 500.0 * i as f64, 45_000.0, 50_000.0),
+            isp: 225.0 + i as f64,
+            ..Default::default()
+        };
+        if per_case {
+            PerCase::from_vec((0..n).map(each).collect())
+        } else {
+            PerCase::shared(each(3))
+        }
+    };
+    let references = |per_case: bool| {
+        let each = |i: usize| {
+            let p = Vector3::new(10.0 * i as f64, -5.0, 0.0);
+            let v = Vector3::new(0.0, 0.0, -1.0 - 0.1 * i as f64);
+            Reference::cubic_from_boundary(p, v, Vector3::zeros(), Vector3::zeros(), 0.3).unwrap()
+        };
+        if per_case {
+            PerCase::from_vec((0..n).map(each).collect())
+        } else {
+            PerCase::shared(each(5))
+        }
+    };
+    let disturbances = |per_case: bool| {
+        let each = |i: usize| {
+            Disturbance::none()
+                .with_constant(Vector3::new(0.01 * i as f64, -0.02, 0.03))
+                .with_noise(Vector3::repeat(0.1 + 0.01 * i as f64))
+        };
+        if per_case {
+            PerCase::from_vec((0..n).map(each).collect())
+        } else {
+            PerCase::shared(each(7))
+        }
+    };
+    let cfg = SimConfig::new(0.4, 0.001, 2, 37, 11).unwrap();
+    for mask in 0..8 {
+        let (p, r, d) = (mask & 1 != 0, mask & 2 != 0, mask & 4 != 0);
+        let inside = Batch {
+            plants: plants(p),
+            laws: PerCase::from_vec(laws.clone()),
+            references: references(r),
+            disturbances: disturbances(d),
+            x0: x0.clone(),
+        };
+        let reference = run(&inside, &cfg, &at(1, Level::Baseline)).unwrap();
+        let batch = Batch {
+            plants: plants(p),
+            laws: (),
+            references: references(r),
+            disturbances: disturbances(d),
+            x0: x0.clone(),
+        };
+        for level in Level::supported() {
+            for (per_call, threads) in [(usize::MAX, 1), (8, 1), (8, 2), (usize::MAX, 2)] {
+                let mut law = CaseByCase::new(laws.clone(), cfg.dt);
+                law.per_call = per_call;
+                let out = run_external(&batch, &cfg, &at(threads, level), &mut law)
+                    .unwrap_or_else(|_| panic!("the batch runs"));
+                assert_eq!(
+                    fingerprint(&out),
+                    fingerprint(&reference),
+                    "per case: plant {p}, reference {r}, disturbance {d}; at {level:?}, \
+                     {per_call} cases per call, {threads} threads"
+                );
+            }
+        }
+    }
+}
+
 /// Slices of thousands of cases, whose periods run in many groups of blocks: the bits of the
 /// law built in, recorded states included. 4200 cases in one slice on one thread, in two
 /// interleaved slices of 2100 on two (each period spread over the pool), in slices of 2048,

@@ -284,17 +284,83 @@ impl<E> From<BatchError> for ExternalError<E> {
     }
 }
 
-/// A block kept between control periods, with its gathered plant, reference and disturbance,
-/// typed by the level's lane type (held as `dyn Any` by the driver, which knows only the
+/// A block kept between control periods, with the parts of its setting the batch gives per
+/// case, typed by the level's lane type (held as `dyn Any` by the driver, which knows only the
 /// level).
 struct Kept<const D: usize, R: Real, P: Plant<R, D>> {
-    plant: P,
-    reference: Reference<D, R>,
-    disturbance: Disturbance<D, R>,
+    own: Parts<D, R, P>,
     block: Block<D, R, P>,
 }
 
 type Held = Box<dyn Any + Send>;
+
+/// Some of a block's plant, reference and disturbance, gathered into lanes: a [`Kept`] block
+/// holds those the batch gives per case, and the batch those it shares among its cases,
+/// gathered once at its level ([`GatherShared`]). Every block of a slice reads the one shared
+/// copy at each period, where each kept its own: the lines of them a period touches, a
+/// quarter of a Mars block's, came back from beyond the second-level cache for every block of
+/// a slice that the cache does not hold (a law returning zeros, 10^4 Mars cases, 4096 a call,
+/// one thread: 0.85x; BENCHMARKS.md). A shared value's lanes are the same whichever block
+/// gathers them, so the same bits.
+struct Parts<const D: usize, R: Real, P: Plant<R, D>> {
+    plant: Option<P>,
+    reference: Option<Reference<D, R>>,
+    disturbance: Option<Disturbance<D, R>>,
+}
+
+impl<const D: usize, R: Real, P: Plant<R, D>> Parts<D, R, P> {
+    /// A block's setting: each part its own, or else the batch's shared one.
+    fn setting<'s>(
+        &'s self,
+        shared: &'s Self,
+        common: &'s Common<'s, D, impl PlantModel<D>>,
+    ) -> Setting<'s, D, R, P> {
+        const GATHERED: &str = "each part of a block's setting is its own or shared";
+        Setting {
+            plant: self
+                .plant
+                .as_ref()
+                .or(shared.plant.as_ref())
+                .expect(GATHERED),
+            reference: (self.reference.as_ref().or(shared.reference.as_ref())).expect(GATHERED),
+            disturbance: (self.disturbance.as_ref().or(shared.disturbance.as_ref()))
+                .expect(GATHERED),
+            table: common.table,
+            cfg: common.cfg,
+        }
+    }
+}
+
+/// The parts of a gathered block that the batch shares (`shared`), or those it gives per case.
+fn parts<const D: usize, R: Real, P: PlantModel<D>>(
+    cases: BlockCases<D, R, P>,
+    batch: &Batch<D, P, ()>,
+    shared: bool,
+) -> Parts<D, R, P::At<R>> {
+    let keep = |is_shared: bool| is_shared == shared;
+    Parts {
+        plant: keep(batch.plants.is_shared()).then_some(cases.plant),
+        reference: keep(batch.references.is_shared()).then_some(cases.reference),
+        disturbance: keep(batch.disturbances.is_shared()).then_some(cases.disturbance),
+    }
+}
+
+/// Gathers the batch's shared [`Parts`] at the level (held as `dyn Any`, as a [`Kept`] block is).
+struct GatherShared<'a, const D: usize, P: PlantModel<D>> {
+    batch: &'a Batch<D, P, ()>,
+    cfg: &'a SimConfig,
+}
+
+impl<const D: usize, P: PlantModel<D>> LevelJob<D> for GatherShared<'_, D, P> {
+    type Blocks = P::Blocks;
+    type Output = Box<dyn Any + Send + Sync>;
+
+    #[inline(always)]
+    fn run<R: Real, K: LawCalls<D, R>>(self) -> Self::Output {
+        let cases = BlockCases::<D, R, P>::gather(self.batch, self.cfg, 0, 1);
+        Box::new(parts(cases, self.batch, true))
+    }
+}
 
 /// What every block job reads.
 struct Common<'a, const D: usize, P: PlantModel<D>> {
@@ -303,6 +369,8 @@ struct Common<'a, const D: usize, P: PlantModel<D>> {
     table: Option<&'a StageTable<D>>,
     nd: usize,
     level: Level,
+    /// The batch's shared [`Parts`] at `level`.
+    shared: Box<dyn Any + Send + Sync>,
 }
 
 /// Starts the block of cases `first .. first + used` and writes its inputs at t = 0.
@@ -320,27 +388,18 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Start<'_, '_, D, P> {
     #[inline(always)]
     fn run<R: Real, K: LawCalls<D, R>>(mut self) -> Held {
         let co = self.common;
-        let BlockCases {
-            plant,
-            reference,
-            disturbance,
-            x0,
-            cases,
-            ..
-        } = BlockCases::<D, R, P>::gather(co.batch, co.cfg, self.first, self.used);
+        let g = BlockCases::<D, R, P>::gather(co.batch, co.cfg, self.first, self.used);
         let set = Setting {
-            plant: &plant,
-            reference: &reference,
-            disturbance: &disturbance,
+            plant: &g.plant,
+            reference: &g.reference,
+            disturbance: &g.disturbance,
             table: co.table,
             cfg: co.cfg,
         };
-        let block = Block::start(&set, &x0, &cases, self.used);
+        let block = Block::start(&set, &g.x0, &g.cases, self.used);
         self.rows.write(block.input(), self.used);
         Box::new(Kept {
-            plant,
-            reference,
-            disturbance,
+            own: parts(g, co.batch, false),
             block,
         })
     }
@@ -371,13 +430,11 @@ impl<const D: usize, P: PlantModel<D>> LevelJob<D> for Step<'_, '_, '_, D, P> {
             .held
             .downcast_mut::<Kept<D, R, P::At<R>>>()
             .expect("a block is stepped at the level it was started at");
-        let set = Setting {
-            plant: &kept.plant,
-            reference: &kept.reference,
-            disturbance: &kept.disturbance,
-            table: co.table,
-            cfg: co.cfg,
-        };
+        let shared = co
+            .shared
+            .downcast_ref::<Parts<D, R, P::At<R>>>()
+            .expect("the shared parts are gathered at the batch's level");
+        let set = kept.own.setting(shared, co);
         let (used, nd) = (self.used, co.nd);
         // whole registers of rows, shuffled: read a lane at a time, the commands took 12 % of
         // the samples of a run under a law returning zeros, and read so the engine's share is
@@ -455,6 +512,7 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         table: table.as_ref(),
         nd,
         level,
+        shared: kernel::dispatch(level, GatherShared { batch, cfg }),
     };
     let w = level.lanes::<P::Blocks>();
     let threads = pool.map_or_else(rayon::current_num_threads, |p| p.current_num_threads());
