@@ -37,7 +37,8 @@ Three tables:
    runs at each ``--threads``; and the function alone on 4096 cases with the gains as the
    run hands them (a scalar as a view with zero strides, any other value as a contiguous
    ``(n, 3)`` array) against per-axis and per-case gains handed as views with one zero
-   stride, which numpy cannot iterate as one run of values.
+   stride, which numpy cannot iterate as one run of values; and one multiply with a gain in
+   each of these forms and as a ``(3,)`` vector, which numpy broadcasts the same way.
 
 The timed runs go round-robin over the rows; the tables give the median of ``--repeat`` runs.
 
@@ -379,8 +380,26 @@ def table6(args, plant, x0, kw, steps) -> list[dict]:
             alone[form].append(time.perf_counter() - start)
     for form, v in alone.items():
         strides = handed[form]["beta1"].strides
-        print(f"   {form:>20} (strides {strides}): {statistics.median(v) / (calls * m) * 1e9:6.1f}")
+        print(f"   {form:>26} (strides {strides}): {statistics.median(v) / (calls * m) * 1e9:6.1f}")
     table.append({"alone_ns_per_case": {form: statistics.median(v) / (calls * m) * 1e9 for form, v in alone.items()}})
+
+    # one operation: a (4096, 3) array times a gain in each form, into an array held
+    out, ops = np.empty((m, 3)), 2000
+    print(f"\n6. one multiply, np.multiply(e, gain, out=out), {m} cases; median of {args.repeat} rounds of {ops}, "
+          "ns per case")
+    gains = {form: p["beta1"] for form, p in handed.items()}
+    # what numpy does with a (3,) vector itself: the same loop over rows as a (0, 8) view
+    gains["per axis, as a (3,) vector"] = np.full(3, GAINS["beta1"])
+    one: dict[str, list[float]] = {form: [] for form in gains}
+    for _ in range(args.repeat):
+        for form, gain in gains.items():
+            start = time.perf_counter()
+            for _ in range(ops):
+                np.multiply(e, gain, out=out)
+            one[form].append(time.perf_counter() - start)
+    for form, v in one.items():
+        print(f"   {form:>26}: {statistics.median(v) / (ops * m) * 1e9:6.2f}")
+    table.append({"multiply_ns_per_case": {form: statistics.median(v) / (ops * m) * 1e9 for form, v in one.items()}})
     return table
 
 

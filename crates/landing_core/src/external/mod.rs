@@ -322,8 +322,15 @@ impl<const D: usize, R: Real, P: Plant<R, D>> Parts<D, R, P> {
                 .as_ref()
                 .or(shared.plant.as_ref())
                 .expect(GATHERED),
-            reference: (self.reference.as_ref().or(shared.reference.as_ref())).expect(GATHERED),
-            disturbance: (self.disturbance.as_ref().or(shared.disturbance.as_ref()))
+            reference: self
+                .reference
+                .as_ref()
+                .or(shared.reference.as_ref())
+                .expect(GATHERED),
+            disturbance: self
+                .disturbance
+                .as_ref()
+                .or(shared.disturbance.as_ref())
                 .expect(GATHERED),
             table: common.table,
             cfg: common.cfg,
