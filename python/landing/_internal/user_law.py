@@ -105,8 +105,8 @@ def per_axis(owner: str, name: str, given: Any, n: int, axes: int) -> np.ndarray
             f"({axes},), ({n},), ({n}, 1) or ({n}, {axes})"
         )
     # copied whole, not a view with a zero stride along one axis only: numpy cannot merge such
-    # a view's two axes into one, so every operation with it loops over rows of D values, three
-    # to five times slower than over an array (BENCHMARKS.md, "per-axis parameters")
+    # a view's two axes into one, so every operation with it loops over rows of D values, 3 to
+    # 4.4 times slower than over an array (BENCHMARKS.md, "per-axis parameters")
     out = np.ascontiguousarray(out)
     out.setflags(write=False)
     return out
