@@ -528,7 +528,6 @@ pub fn run_external<const D: usize, P: PlantModel<D>, X: ExternalLaw<D>>(
         common: &common,
         w,
         n,
-        sliced: slices.len() > 1,
         threads,
         cancel,
     };
@@ -610,8 +609,6 @@ struct Driver<'a, 'c, const D: usize, P: PlantModel<D>> {
     w: usize,
     /// Cases in the batch.
     n: usize,
-    /// Whether the batch runs in more than one slice.
-    sliced: bool,
     threads: usize,
     cancel: &'a AtomicBool,
 }
@@ -633,13 +630,13 @@ impl<const D: usize, P: PlantModel<D>> Driver<'_, '_, D, P> {
         buffers: &mut [BlockBuffers<'_, D>],
     ) -> Result<(), ExternalError<X::Error>> {
         let mut slice = Running::start(self, blocks, buffers, 0);
-        // A small slice of a sliced batch advances its blocks on the calling thread. Any other
-        // runs its first two periods there too and spreads the rest over the pool only if the
-        // second (the first touches fresh memory) took at least `SPREAD_MIN`: handing a short
-        // period to the pool and waiting for it costs more than the period. The same bits
-        // either way.
-        let mut spread =
-            (self.threads == 1 || (self.sliced && slice.m < PARALLEL_SLICE)).then_some(false);
+        // On one thread the periods run on the calling thread. On more, the slice is the whole
+        // batch (a batch cut into slices runs them interleaved, `plan`): one too small to be
+        // cut in two, or a single block. It runs its first two periods on the calling thread
+        // too and spreads the rest over the pool only if the second (the first touches fresh
+        // memory) took at least `SPREAD_MIN`: handing a short period to the pool and waiting
+        // for it costs more than the period. The same bits either way.
+        let mut spread = (self.threads == 1).then_some(false);
         while slice.live() {
             self.check()?;
             slice.call(law).map_err(ExternalError::Law)?;
@@ -858,13 +855,6 @@ fn periods<'x, 'y, 'z: 'y, 'r, const D: usize, P: PlantModel<D>>(
         *running = kernel::dispatch(level, job);
     }
 }
-
-/// A slice of fewer cases than this, of a batch run a slice at a time on one thread, advances
-/// its blocks on the thread that calls the law: at 1024 cases per call, handing each instant's
-/// periods to the pool's other threads and waiting for them cost more than they saved (10^4
-/// Mars cases, 2 threads: 194 against 141 ns per case-step; BENCHMARKS.md). A batch run whole
-/// spreads its periods over the pool when they are long enough ([`SPREAD_MIN`]).
-const PARALLEL_SLICE: usize = 4096;
 
 /// A batch run whole on more than one thread spreads its periods over the pool when one
 /// period on the calling thread takes at least this long. On a 2-core virtual machine, handing
