@@ -350,7 +350,7 @@ fn plants_references_and_disturbances_given_per_case_or_shared_give_the_bits_of_
         let each = |i: usize| {
             let p = Vector3::new(10.0 * i as f64, -5.0, 0.0);
             let v = Vector3::new(0.0, 0.0, -1.0 - 0.1 * i as f64);
-            Reference::cubic_from_boundary(p, v, Vector3::zeros(), Vector3::zeros(), 0.3).unwrap()
+            Reference::cubic_from_boundary(p, v, Vector3::zeros(), Vector3::zeros(), 0.08).unwrap()
         };
         if per_case {
             PerCase::from_vec((0..n).map(each).collect())
@@ -370,7 +370,7 @@ fn plants_references_and_disturbances_given_per_case_or_shared_give_the_bits_of_
             PerCase::shared(each(7))
         }
     };
-    let cfg = SimConfig::new(0.4, 0.001, 2, 37, 11).unwrap();
+    let cfg = SimConfig::new(0.1, 0.001, 2, 37, 11).unwrap();
     for mask in 0..8 {
         let (p, r, d) = (mask & 1 != 0, mask & 2 != 0, mask & 4 != 0);
         let inside = Batch {
