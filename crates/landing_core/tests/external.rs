@@ -334,41 +334,34 @@ fn plants_references_and_disturbances_given_per_case_or_shared_give_the_bits_of_
         }
         .into()
     });
+    // case i's value for each of the n cases, or case `k`'s shared by all
+    fn given<T>(per_case: bool, n: usize, k: usize, each: impl Fn(usize) -> T) -> PerCase<T> {
+        if per_case {
+            PerCase::from_vec((0..n).map(each).collect())
+        } else {
+            PerCase::shared(each(k))
+        }
+    }
     let plants = |per_case: bool| {
-        let each = |i: usize| MarsLander {
+        given(per_case, n, 3, |i| MarsLander {
             thrust_limit: Vector3::new(40_000.0 + 500.0 * i as f64, 45_000.0, 50_000.0),
             isp: 225.0 + i as f64,
             ..Default::default()
-        };
-        if per_case {
-            PerCase::from_vec((0..n).map(each).collect())
-        } else {
-            PerCase::shared(each(3))
-        }
+        })
     };
     let references = |per_case: bool| {
-        let each = |i: usize| {
+        given(per_case, n, 5, |i| {
             let p = Vector3::new(10.0 * i as f64, -5.0, 0.0);
             let v = Vector3::new(0.0, 0.0, -1.0 - 0.1 * i as f64);
             Reference::cubic_from_boundary(p, v, Vector3::zeros(), Vector3::zeros(), 0.08).unwrap()
-        };
-        if per_case {
-            PerCase::from_vec((0..n).map(each).collect())
-        } else {
-            PerCase::shared(each(5))
-        }
+        })
     };
     let disturbances = |per_case: bool| {
-        let each = |i: usize| {
+        given(per_case, n, 7, |i| {
             Disturbance::none()
                 .with_constant(Vector3::new(0.01 * i as f64, -0.02, 0.03))
                 .with_noise(Vector3::repeat(0.1 + 0.01 * i as f64))
-        };
-        if per_case {
-            PerCase::from_vec((0..n).map(each).collect())
-        } else {
-            PerCase::shared(each(7))
-        }
+        })
     };
     let cfg = SimConfig::new(0.1, 0.001, 2, 37, 11).unwrap();
     for mask in 0..8 {
